@@ -1,0 +1,96 @@
+//! The crate's error type. Every variant says what was wrong and how to fix it.
+
+use thiserror::Error;
+
+/// Everything that can go wrong when building or driving a [`Surface`](crate::Surface).
+///
+/// A call that returns an error has changed nothing.
+#[derive(Debug, Clone, PartialEq, Error)]
+#[non_exhaustive]
+pub enum Error {
+    /// A parameter is not a finite number, or is outside its allowed range.
+    #[error("{name} = {value} is invalid: {expected}")]
+    InvalidParam {
+        /// The parameter's name as the CLI spells it (`mass`, `dt`, …).
+        name: &'static str,
+        /// The value that was refused.
+        value: f64,
+        /// What the value must be.
+        expected: &'static str,
+    },
+
+    /// The grid has fewer than 2 nodes in some direction.
+    #[error("grid {cols}x{rows} is too small: a surface needs at least 2x2 nodes")]
+    GridTooSmall {
+        /// Nodes per row.
+        cols: usize,
+        /// Rows.
+        rows: usize,
+    },
+
+    /// The grid has more nodes than this process can address or allocate.
+    #[error("grid {cols}x{rows} is too large to allocate ({bytes} bytes of state); use a smaller --size")]
+    GridTooLarge {
+        /// Nodes per row.
+        cols: usize,
+        /// Rows.
+        rows: usize,
+        /// Bytes the state would need (saturating).
+        bytes: u128,
+    },
+
+    /// The timestep is at or past the critical timestep of the lattice.
+    #[error(
+        "timestep {dt} is at or past the critical timestep {critical:.4} for these parameters; \
+         use dt < {critical:.4} (for example {suggest:.3}), raise the mass or lower the stiffness"
+    )]
+    TimestepTooLarge {
+        /// The timestep that was asked for.
+        dt: f32,
+        /// `critical_dt()` for the parameters (largest stiffness, smallest mass).
+        critical: f32,
+        /// A safe suggestion (95% of the critical value).
+        suggest: f32,
+    },
+
+    /// A step would have produced a non-finite position or velocity. The state is unchanged.
+    #[error(
+        "step {step} would make the state non-finite (node {node}); the step was not applied. \
+         Check external forces for NaN or huge values, and drops for |height| > radius"
+    )]
+    NonFinite {
+        /// Steps taken before the refused one.
+        step: u64,
+        /// The first node (row-major index) whose new value was not finite.
+        node: usize,
+    },
+
+    /// A node index or grid coordinate is outside the grid.
+    #[error("{what} {index} is out of range (the grid has {len})")]
+    OutOfRange {
+        /// What was indexed ("node", "col", …).
+        what: &'static str,
+        /// The index that was given.
+        index: usize,
+        /// The number of valid indices.
+        len: usize,
+    },
+
+    /// A slice passed in has the wrong length.
+    #[error("{what} has length {got}, expected {expected}")]
+    LengthMismatch {
+        /// Which argument.
+        what: &'static str,
+        /// Its length.
+        got: usize,
+        /// The required length.
+        expected: usize,
+    },
+
+    /// A snapshot could not be read: truncated, corrupted, or from another format version.
+    #[error("snapshot refused: {0}")]
+    Snapshot(String),
+}
+
+/// Shorthand for results whose error is [`Error`].
+pub type Result<T> = std::result::Result<T, Error>;

@@ -1,0 +1,64 @@
+//! # springwater
+//!
+//! A water surface for games and animation, simulated on the CPU as a mass-spring
+//! lattice (Markhichev & Soupikov): a `cols × rows` grid of nodes joined by springs on
+//! every grid edge and both diagonals, moved by `m x'' + γ x' + f = f_ext` with
+//! symplectic Euler at the seed's near-critical timestep.
+//!
+//! ```
+//! use springwater::{Params, Surface};
+//!
+//! let mut water = Surface::new(Params::with_size(128, 128))?;   // seed defaults
+//! water.drop_at(64.0, 64.0, 2.0, 3.0)?;
+//! for _ in 0..100 {
+//!     water.step()?;
+//! }
+//! let view = water.mesh_view();           // borrowed positions for the renderer
+//! assert_eq!(view.y().len(), 128 * 128);
+//! # Ok::<(), springwater::Error>(())
+//! ```
+//!
+//! ## The pipeline
+//!
+//! ```text
+//! Params ─validate─▶ Surface (SoA state + spring tables + colour batches)
+//!                       │ step(): forces (colour batches, SIMD, rayon) + integrate
+//!                       ▼
+//!                    MeshView<'_>  (borrows the SoA arrays: zero copy)
+//! ```
+//!
+//! * [`params`]: the model's parameters, their defaults and the stability limits.
+//! * [`grid`]: index math and spring families. Row-major, y up.
+//! * [`springs`]: per-spring tables and the colour batches (bands of rows).
+//! * `forces`: the scalar reference step and the SIMD + rayon engine step.
+//! * [`surface`]: [`Surface`], what a game owns.
+//! * [`mesh`]: the zero-copy [`MeshView`] for render-side stages.
+//! * [`baselines`]: comparison kernels for benchmarks (naive AoS, memory floor).
+//!
+//! ## Features
+//!
+//! * `parallel` (default): colour batches run on the rayon pool. Results are bitwise
+//!   identical with it off and for any number of threads.
+//! * `cli` (default): the `springwater` command-line tool. Engines embedding the library
+//!   use `default-features = false, features = ["parallel"]`.
+//! * `serde`: derive `Serialize`/`Deserialize` for [`Params`].
+
+#![warn(missing_docs)]
+#![forbid(unsafe_code)]
+
+pub mod baselines;
+pub mod error;
+mod forces;
+pub mod grid;
+pub mod mesh;
+pub mod params;
+pub mod simd;
+pub mod springs;
+mod state;
+pub mod surface;
+
+pub use error::{Error, Result};
+pub use grid::{Family, Grid, SpringId};
+pub use mesh::MeshView;
+pub use params::{Boundary, Params};
+pub use surface::{Energy, Stepper, Surface};

@@ -1,0 +1,88 @@
+//! Per-spring tables and the colour batches that let threads add forces without conflicts.
+//!
+//! # Spring tables
+//!
+//! Each family ([`Family`]) has a rest-length and a coefficient buffer indexed by the
+//! spring's origin node, padded like the node buffers. A spring that does not exist
+//! (E from the last column, S from the last row, …) has coefficient and rest length 0, so
+//! it contributes exactly nothing and lane code needs no special case for it.
+//!
+//! # Colours
+//!
+//! A spring touches two nodes, and two threads adding into one node's force at once would
+//! race. The springs are therefore cut into *bands*: band `b` owns every spring whose
+//! origin lies in rows `[b·H, (b+1)·H)`, and so touches rows `b·H ..= (b+1)·H`. Even bands
+//! are colour 0, odd bands colour 1. Two bands of one colour are at least one band apart,
+//! so they touch disjoint node sets and run in parallel with no atomics and no locks;
+//! inside a band, rows are processed in order with SIMD across columns.
+//!
+//! Why bands rather than single springs by family and parity (8 colours)? A colour pass
+//! over single springs is a full sweep over memory, so 8 colours read the state 8 times
+//! per step; a band streams its rows once and keeps the forces of the two rows in flight
+//! in cache. The band height trades locality (tall bands) against load balance on small
+//! grids (many bands); `benches/step.rs` sweeps it, and [`BAND_ROWS`] is the measured
+//! choice.
+
+use crate::grid::{Family, Grid, SpringId};
+use crate::params::Params;
+use crate::state::padded_len;
+use std::ops::Range;
+
+/// Rows per band (the colour granularity), chosen by the `band_rows` benchmark.
+pub const BAND_ROWS: usize = 8;
+
+/// Rest length and coefficient of every spring, one buffer per family.
+#[derive(Debug, Clone)]
+pub(crate) struct Springs {
+    /// Rest length `L0` per family, indexed by origin node.
+    pub rest: [Vec<f32>; 4],
+    /// Coefficient `c` per family, indexed by origin node.
+    pub coef: [Vec<f32>; 4],
+}
+
+impl Springs {
+    /// Uniform springs: coefficient `c`, rest length `rest_ratio ×` initial length.
+    pub fn new(params: &Params) -> Self {
+        let grid = Grid::new(params.cols, params.rows);
+        let len = padded_len(grid.len());
+        let mut rest: [Vec<f32>; 4] = std::array::from_fn(|_| vec![0.0; len]);
+        let mut coef: [Vec<f32>; 4] = std::array::from_fn(|_| vec![0.0; len]);
+        for (id, _) in grid.springs() {
+            let f = id.family as usize;
+            rest[f][id.origin] = params.rest_ratio * id.family.initial_length() * params.spacing;
+            coef[f][id.origin] = params.stiffness;
+        }
+        Self { rest, coef }
+    }
+}
+
+/// One batch of springs: a band of rows, with its colour.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Band {
+    /// 0 for even bands, 1 for odd ones.
+    pub colour: usize,
+    /// The rows whose springs (by origin) belong to this band.
+    pub rows: Range<usize>,
+}
+
+impl Band {
+    /// The springs of this band on `grid`.
+    pub fn springs(&self, grid: Grid) -> impl Iterator<Item = SpringId> + '_ {
+        let nodes = self.rows.start * grid.cols..self.rows.end * grid.cols;
+        Family::ALL.into_iter().flat_map(move |family| {
+            nodes
+                .clone()
+                .filter(move |&origin| grid.spring_end(family, origin).is_some())
+                .map(move |origin| SpringId { family, origin })
+        })
+    }
+}
+
+/// The bands of a grid with `rows` rows, `band_rows` rows each (the last may be shorter).
+pub fn bands(rows: usize, band_rows: usize) -> impl Iterator<Item = Band> {
+    let band_rows = band_rows.max(1);
+    (0..rows.div_ceil(band_rows)).map(move |b| Band {
+        colour: b % 2,
+        rows: b * band_rows..((b + 1) * band_rows).min(rows),
+    })
+}

@@ -1,0 +1,121 @@
+//! The structure-of-arrays node state.
+//!
+//! Every per-node quantity is its own `f32` buffer: x, y, z, vx, vy, vz, forces, mass,
+//! viscosity. Node `i` lives at index `i` of each buffer. Buffers are padded past the
+//! last node by more than a lane so that a SIMD chunk starting at any node, or one node
+//! further, stays in bounds; the padding is zero and never moves.
+//!
+//! Positions and velocities are double-buffered: a step reads the front buffers and writes
+//! the back ones, and only swaps them when every new value is finite. That is what makes a
+//! step transactional (see [`Surface::step`](crate::Surface::step)).
+
+use crate::grid::Grid;
+use crate::params::{Boundary, Params};
+use crate::simd::{round_up, LANES};
+
+/// Three coordinate buffers, `[x, y, z]`.
+pub(crate) type Xyz = [Vec<f32>; 3];
+
+pub(crate) fn zeros3(len: usize) -> Xyz {
+    [vec![0.0; len], vec![0.0; len], vec![0.0; len]]
+}
+
+/// Length of a padded per-node buffer for `nodes` nodes.
+pub(crate) fn padded_len(nodes: usize) -> usize {
+    round_up(nodes + LANES + 1)
+}
+
+/// Node state and per-node tables.
+#[derive(Debug, Clone)]
+pub(crate) struct State {
+    pub grid: Grid,
+    /// Positions (front buffer).
+    pub pos: Xyz,
+    /// Velocities (front buffer).
+    pub vel: Xyz,
+    /// Positions being written by a step (back buffer).
+    pub next_pos: Xyz,
+    /// Velocities being written by a step (back buffer).
+    pub next_vel: Xyz,
+    /// Spring force sum per node, used by the scalar reference step (the engine keeps
+    /// forces in per-band row buffers instead, see `forces::simd`).
+    pub force: Xyz,
+    /// External force per node for the next step, cleared by a successful step.
+    pub ext: Xyz,
+    /// True when `ext` holds anything non-zero.
+    pub ext_pending: bool,
+    /// Nodal mass `m`.
+    pub mass: Vec<f32>,
+    /// `1/m` for free nodes, `0` for pinned nodes: the integrator's only use of mass.
+    pub inv_mass: Vec<f32>,
+    /// Viscosity `γ`.
+    pub viscosity: Vec<f32>,
+    /// Pinned nodes never move.
+    pub pinned: Vec<bool>,
+}
+
+impl State {
+    /// The flat rest state of `params`: node `(col, row)` at `(col·h, 0, row·h)`, at rest.
+    pub fn new(params: &Params) -> Self {
+        let grid = Grid::new(params.cols, params.rows);
+        let n = grid.len();
+        let len = padded_len(n);
+        let mut pos = zeros3(len);
+        for i in 0..n {
+            let (c, r) = grid.coords(i);
+            pos[0][i] = c as f32 * params.spacing;
+            pos[2][i] = r as f32 * params.spacing;
+        }
+        let mut mass = vec![0.0; len];
+        mass[..n].fill(params.mass);
+        let mut viscosity = vec![0.0; len];
+        viscosity[..n].fill(params.viscosity);
+        let pinned: Vec<bool> = (0..n)
+            .map(|i| params.boundary == Boundary::Pinned && grid.is_border(i))
+            .collect();
+        let mut state = Self {
+            grid,
+            next_pos: pos.clone(),
+            pos,
+            vel: zeros3(len),
+            next_vel: zeros3(len),
+            force: zeros3(len),
+            ext: zeros3(len),
+            ext_pending: false,
+            mass,
+            inv_mass: vec![0.0; len],
+            viscosity,
+            pinned,
+        };
+        state.refresh_inv_mass();
+        state
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.grid.len()
+    }
+
+    /// Recomputes `inv_mass` from `mass` and `pinned`.
+    pub fn refresh_inv_mass(&mut self) {
+        for i in 0..self.len() {
+            self.inv_mass[i] = if self.pinned[i] { 0.0 } else { 1.0 / self.mass[i] };
+        }
+    }
+
+    /// Makes the back buffers the front ones.
+    pub fn swap(&mut self) {
+        std::mem::swap(&mut self.pos, &mut self.next_pos);
+        std::mem::swap(&mut self.vel, &mut self.next_vel);
+    }
+
+    /// Clears the external force buffer after it has been applied.
+    pub fn clear_ext(&mut self) {
+        if self.ext_pending {
+            for c in &mut self.ext {
+                c.fill(0.0);
+            }
+            self.ext_pending = false;
+        }
+    }
+}

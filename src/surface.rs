@@ -1,0 +1,417 @@
+//! [`Surface`]: the water surface a game owns, steps and reads.
+
+use crate::error::{Error, Result};
+use crate::forces::{self, simd::Workspace, StepConfig};
+use crate::grid::{Family, Grid, SpringId};
+use crate::mesh::MeshView;
+use crate::params::{self, Params};
+use crate::springs::{self, Band, Springs, BAND_ROWS};
+use crate::state::State;
+
+/// Most substeps one [`Surface::advance`] call may take.
+pub const MAX_SUBSTEPS: usize = 10_000;
+
+/// Which implementation of the step to run.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum Stepper {
+    /// Colour-partitioned bands, SIMD lanes, rayon threads (the default).
+    #[default]
+    Engine,
+    /// The plain scalar loops the engine is tested against.
+    Reference,
+}
+
+/// Kinetic and spring potential energy of the surface (computed in `f64`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct Energy {
+    /// `Σ ½ m |v|²` over free nodes.
+    pub kinetic: f64,
+    /// `Σ ½ c (L − L0)²` over all springs.
+    pub potential: f64,
+}
+
+impl Energy {
+    /// Kinetic plus potential.
+    pub fn total(&self) -> f64 {
+        self.kinetic + self.potential
+    }
+}
+
+/// A mass-spring water surface: structure-of-arrays state, spring tables, colour batches.
+///
+/// ```
+/// use springwater::{Params, Surface};
+///
+/// let mut water = Surface::new(Params::with_size(64, 48))?;
+/// water.drop_at(32.0, 24.0, 1.5, 3.0)?;       // a drop in the middle
+/// water.advance(1.0 / 60.0 * 24.0)?;           // one 60 Hz frame in model time units
+/// let [_x, y, _z] = water.positions();
+/// assert!(y.iter().any(|&h| h != 0.0));
+/// # Ok::<(), springwater::Error>(())
+/// ```
+#[derive(Debug, Clone)]
+pub struct Surface {
+    params: Params,
+    pub(crate) state: State,
+    pub(crate) springs: Springs,
+    workspace: Workspace,
+    /// Smallest node mass and largest spring coefficient: they set `critical_dt`.
+    min_mass: f32,
+    max_stiffness: f32,
+    steps: u64,
+    time: f64,
+}
+
+impl Surface {
+    /// A flat surface at rest with the given parameters, validated.
+    pub fn new(params: Params) -> Result<Self> {
+        params.validate()?;
+        Ok(Self::build(params))
+    }
+
+    /// Like [`Surface::new`] but without the critical-timestep check: for experiments
+    /// that probe the stability limit on purpose. Every other field is still validated.
+    pub fn new_unchecked_dt(params: Params) -> Result<Self> {
+        params.validate_except_dt()?;
+        Ok(Self::build(params))
+    }
+
+    fn build(params: Params) -> Self {
+        Self {
+            state: State::new(&params),
+            springs: Springs::new(&params),
+            workspace: Workspace::new(params.cols, params.rows, BAND_ROWS),
+            min_mass: params.mass,
+            max_stiffness: params.stiffness,
+            steps: 0,
+            time: 0.0,
+            params,
+        }
+    }
+
+    /// Sets the band height (colour granularity) of the engine. Results depend on it in
+    /// the last bits, never on the thread count. For benchmarks; the default is
+    /// [`BAND_ROWS`].
+    #[doc(hidden)]
+    pub fn set_band_rows(&mut self, band_rows: usize) {
+        self.workspace = Workspace::new(self.params.cols, self.params.rows, band_rows);
+    }
+
+    /// The parameters the surface was built with.
+    pub fn params(&self) -> &Params {
+        &self.params
+    }
+
+    /// The grid shape.
+    pub fn grid(&self) -> Grid {
+        self.state.grid
+    }
+
+    /// Number of nodes.
+    pub fn len(&self) -> usize {
+        self.state.len()
+    }
+
+    /// Always false: a surface has at least 2×2 nodes.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Steps taken so far.
+    pub fn steps(&self) -> u64 {
+        self.steps
+    }
+
+    /// Model time simulated so far.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// The largest safe timestep for the current tables: `sqrt(min m / (3 max c))`.
+    pub fn critical_dt(&self) -> f32 {
+        params::critical_dt(self.min_mass, self.max_stiffness)
+    }
+
+    /// Positions `[x, y, z]`, one value per node, row-major.
+    pub fn positions(&self) -> [&[f32]; 3] {
+        let n = self.len();
+        [&self.state.pos[0][..n], &self.state.pos[1][..n], &self.state.pos[2][..n]]
+    }
+
+    /// Velocities `[vx, vy, vz]`, one value per node, row-major.
+    pub fn velocities(&self) -> [&[f32]; 3] {
+        let n = self.len();
+        [&self.state.vel[0][..n], &self.state.vel[1][..n], &self.state.vel[2][..n]]
+    }
+
+    /// A borrowed view of the positions and grid shape for the render-side stages.
+    pub fn mesh_view(&self) -> MeshView<'_> {
+        let [x, y, z] = self.positions();
+        MeshView::new(self.grid(), self.params.spacing, x, y, z)
+            .expect("the surface's own buffers match its grid")
+    }
+
+    /// Advances one step of `params().dt` with the engine. See [`Surface::step_with`].
+    pub fn step(&mut self) -> Result<()> {
+        self.step_with(Stepper::Engine)
+    }
+
+    /// Advances one step of `params().dt` with the given implementation.
+    ///
+    /// The step is transactional: the new state is written to back buffers and checked
+    /// for finiteness in the same pass; only if every value is finite are the buffers
+    /// swapped (and the external force buffer cleared). Otherwise the step returns
+    /// [`Error::NonFinite`] and the surface is bitwise unchanged. The check costs one
+    /// compare per value in registers already loaded, and the swap is two pointer swaps.
+    pub fn step_with(&mut self, stepper: Stepper) -> Result<()> {
+        self.step_dt(self.params.dt, stepper)
+    }
+
+    fn step_dt(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
+        let cfg = StepConfig { dt, accel: self.params.acceleration };
+        let outcome = match stepper {
+            Stepper::Engine => {
+                forces::simd::step(&mut self.state, &self.springs, &mut self.workspace, cfg)
+            }
+            Stepper::Reference => forces::scalar::step(&mut self.state, &self.springs, cfg),
+        };
+        match outcome {
+            Ok(()) => {
+                self.state.swap();
+                self.state.clear_ext();
+                self.steps += 1;
+                self.time += dt as f64;
+                Ok(())
+            }
+            Err(node) => Err(Error::NonFinite { step: self.steps, node }),
+        }
+    }
+
+    /// Advances model time `frame_dt` in equal substeps no longer than `params().dt`, so a
+    /// game can pass its frame time without ever asking for an unstable step. Returns the
+    /// number of substeps taken. A failing substep stops the frame there (earlier substeps
+    /// stay applied, the failing one is not) and returns its error.
+    pub fn advance(&mut self, frame_dt: f32) -> Result<usize> {
+        params::non_negative("frame_dt", frame_dt)?;
+        let substeps = (frame_dt / self.params.dt).ceil();
+        if substeps > MAX_SUBSTEPS as f32 {
+            return Err(Error::InvalidParam {
+                name: "frame_dt",
+                value: frame_dt as f64,
+                expected: "at most 10000 timesteps long",
+            });
+        }
+        let substeps = substeps as usize;
+        if substeps == 0 {
+            return Ok(0);
+        }
+        let dt = frame_dt / substeps as f32;
+        for _ in 0..substeps {
+            self.step_dt(dt, Stepper::Engine)?;
+        }
+        Ok(substeps)
+    }
+
+    /// Drops a disturbance: adds `height · exp(−d²/radius²)` to y of every free node,
+    /// `d` the node's distance from `(col, row)` in grid steps (fractional coordinates
+    /// allowed, also outside the grid). Drops with `|height| ≤ radius` keep the lattice in
+    /// the regime where `critical_dt` guarantees stability.
+    pub fn drop_at(&mut self, col: f32, row: f32, height: f32, radius: f32) -> Result<()> {
+        params::finite("drop col", col)?;
+        params::finite("drop row", row)?;
+        params::finite("drop height", height)?;
+        params::positive("drop radius", radius)?;
+        let grid = self.grid();
+        let inv_r2 = 1.0 / (radius * radius);
+        for i in 0..grid.len() {
+            if self.state.pinned[i] {
+                continue;
+            }
+            let (c, r) = grid.coords(i);
+            let d2 = (c as f32 - col).powi(2) + (r as f32 - row).powi(2);
+            self.state.pos[1][i] += height * (-d2 * inv_r2).exp();
+        }
+        Ok(())
+    }
+
+    /// Adds `force` to node `node` for the next step only (buoyancy, a paddle, a wake).
+    pub fn add_force(&mut self, node: usize, force: [f32; 3]) -> Result<()> {
+        self.check_node(node)?;
+        for f in force {
+            params::finite("force", f)?;
+        }
+        for (k, f) in force.into_iter().enumerate() {
+            self.state.ext[k][node] += f;
+        }
+        self.state.ext_pending = true;
+        Ok(())
+    }
+
+    /// Adds a velocity change `dv` to a free node now (an impulse divided by its mass).
+    pub fn add_velocity(&mut self, node: usize, dv: [f32; 3]) -> Result<()> {
+        self.check_node(node)?;
+        for v in dv {
+            params::finite("velocity", v)?;
+        }
+        if !self.state.pinned[node] {
+            for (k, v) in dv.into_iter().enumerate() {
+                self.state.vel[k][node] += v;
+            }
+        }
+        Ok(())
+    }
+
+    /// Replaces the external force buffer for the next step with `[fx, fy, fz]`, one
+    /// value per node. Every value must be finite; on error nothing changes.
+    pub fn set_forces(&mut self, force: [&[f32]; 3]) -> Result<()> {
+        let n = self.len();
+        for c in force {
+            if c.len() != n {
+                return Err(Error::LengthMismatch { what: "force buffer", got: c.len(), expected: n });
+            }
+            if let Some(&bad) = c.iter().find(|v| !v.is_finite()) {
+                return Err(Error::InvalidParam { name: "force", value: bad as f64, expected: "finite values" });
+            }
+        }
+        for (dst, src) in self.state.ext.iter_mut().zip(force) {
+            dst[..n].copy_from_slice(src);
+        }
+        self.state.ext_pending = true;
+        Ok(())
+    }
+
+    /// Pending external forces `[fx, fy, fz]` for the next step.
+    pub fn forces(&self) -> [&[f32]; 3] {
+        let n = self.len();
+        [&self.state.ext[0][..n], &self.state.ext[1][..n], &self.state.ext[2][..n]]
+    }
+
+    /// Sets the uniform acceleration applied to every free node (gravity, wind).
+    pub fn set_acceleration(&mut self, accel: [f32; 3]) -> Result<()> {
+        for a in accel {
+            params::finite("acceleration", a)?;
+        }
+        self.params.acceleration = accel;
+        Ok(())
+    }
+
+    /// Pins (`true`) or frees a node. Pinning zeroes its velocity.
+    pub fn set_pinned(&mut self, node: usize, pinned: bool) -> Result<()> {
+        self.check_node(node)?;
+        self.state.pinned[node] = pinned;
+        if pinned {
+            for v in &mut self.state.vel {
+                v[node] = 0.0;
+            }
+        }
+        self.state.inv_mass[node] = if pinned { 0.0 } else { 1.0 / self.state.mass[node] };
+        Ok(())
+    }
+
+    /// Whether a node is pinned.
+    pub fn is_pinned(&self, node: usize) -> Result<bool> {
+        self.check_node(node)?;
+        Ok(self.state.pinned[node])
+    }
+
+    /// Sets a node's mass. Refused if it would put `params().dt` at or past the critical
+    /// timestep (the bound uses the smallest mass ever set).
+    pub fn set_mass(&mut self, node: usize, mass: f32) -> Result<()> {
+        self.check_node(node)?;
+        params::positive("mass", mass)?;
+        let min_mass = self.min_mass.min(mass);
+        params::check_dt(self.params.dt, params::critical_dt(min_mass, self.max_stiffness))?;
+        self.min_mass = min_mass;
+        self.state.mass[node] = mass;
+        if !self.state.pinned[node] {
+            self.state.inv_mass[node] = 1.0 / mass;
+        }
+        Ok(())
+    }
+
+    /// Sets a node's viscosity `γ` (≥ 0).
+    pub fn set_viscosity(&mut self, node: usize, viscosity: f32) -> Result<()> {
+        self.check_node(node)?;
+        params::non_negative("viscosity", viscosity)?;
+        self.state.viscosity[node] = viscosity;
+        Ok(())
+    }
+
+    /// Node masses.
+    pub fn masses(&self) -> &[f32] {
+        &self.state.mass[..self.len()]
+    }
+
+    /// Node viscosities.
+    pub fn viscosities(&self) -> &[f32] {
+        &self.state.viscosity[..self.len()]
+    }
+
+    /// Pinned flags.
+    pub fn pinned(&self) -> &[bool] {
+        &self.state.pinned
+    }
+
+    /// `(rest length, coefficient)` of a spring; `None` if the grid has no such spring.
+    pub fn spring(&self, id: SpringId) -> Option<(f32, f32)> {
+        (id.origin < self.len() && self.grid().spring_end(id.family, id.origin).is_some()).then(|| {
+            let f = id.family as usize;
+            (self.springs.rest[f][id.origin], self.springs.coef[f][id.origin])
+        })
+    }
+
+    /// Sets a spring's rest length (≥ 0) and coefficient (> 0). Refused if the spring does
+    /// not exist or the coefficient would put `params().dt` past the critical timestep.
+    pub fn set_spring(&mut self, id: SpringId, rest: f32, coef: f32) -> Result<()> {
+        self.check_node(id.origin)?;
+        if self.grid().spring_end(id.family, id.origin).is_none() {
+            return Err(Error::OutOfRange { what: "spring origin", index: id.origin, len: self.len() });
+        }
+        params::non_negative("rest length", rest)?;
+        params::positive("stiffness", coef)?;
+        let max_stiffness = self.max_stiffness.max(coef);
+        params::check_dt(self.params.dt, params::critical_dt(self.min_mass, max_stiffness))?;
+        self.max_stiffness = max_stiffness;
+        let f = id.family as usize;
+        self.springs.rest[f][id.origin] = rest;
+        self.springs.coef[f][id.origin] = coef;
+        Ok(())
+    }
+
+    /// The colour batches of the engine: bands of rows, even bands colour 0, odd bands
+    /// colour 1 (see [`crate::springs`]).
+    pub fn bands(&self) -> impl Iterator<Item = Band> {
+        springs::bands(self.params.rows, self.workspace.band_rows())
+    }
+
+    /// Kinetic plus spring potential energy, a diagnostic (`O(nodes)`).
+    pub fn energy(&self) -> Energy {
+        let s = &self.state;
+        let n = self.len();
+        let mut kinetic = 0.0;
+        for i in (0..n).filter(|&i| !s.pinned[i]) {
+            let v2: f64 = (0..3).map(|k| (s.vel[k][i] as f64).powi(2)).sum();
+            kinetic += 0.5 * s.mass[i] as f64 * v2;
+        }
+        let mut potential = 0.0;
+        for (id, j) in self.grid().springs() {
+            let i = id.origin;
+            let l = (0..3).map(|k| (s.pos[k][j] as f64 - s.pos[k][i] as f64).powi(2)).sum::<f64>().sqrt();
+            let f = id.family as usize;
+            let stretch = l - self.springs.rest[f][i] as f64;
+            potential += 0.5 * self.springs.coef[f][i] as f64 * stretch * stretch;
+        }
+        Energy { kinetic, potential }
+    }
+
+    fn check_node(&self, node: usize) -> Result<()> {
+        if node < self.len() {
+            Ok(())
+        } else {
+            Err(Error::OutOfRange { what: "node", index: node, len: self.len() })
+        }
+    }
+}
+
+/// All four spring families, re-exported for convenience in `set_spring` calls.
+pub const FAMILIES: [Family; 4] = Family::ALL;
