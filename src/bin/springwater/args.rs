@@ -1,0 +1,165 @@
+//! Flag parsing shared by every subcommand: the model flags of DESIGN.md §3.
+
+use lexopt::{Arg, Parser, ValueExt};
+
+use springwater::{Boundary, Params, Surface};
+use std::ffi::OsString;
+use std::str::FromStr;
+
+/// A one-line error for the user; `main` prints it and exits non-zero.
+pub type CliResult<T> = Result<T, String>;
+
+/// A command-line argument that owns its text (so the parser can be used again).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Flag {
+    /// `--name`
+    Long(String),
+    /// `-c`
+    Short(char),
+    /// A positional value.
+    Value(OsString),
+}
+
+/// The next argument, or `None` at the end.
+pub fn next_flag(p: &mut Parser) -> CliResult<Option<Flag>> {
+    Ok(match p.next().map_err(|e| e.to_string())? {
+        None => None,
+        Some(Arg::Long(l)) => Some(Flag::Long(l.to_string())),
+        Some(Arg::Short(c)) => Some(Flag::Short(c)),
+        Some(Arg::Value(v)) => Some(Flag::Value(v)),
+    })
+}
+
+/// The model flags every subcommand takes.
+#[derive(Debug, Clone)]
+pub struct ModelArgs {
+    pub params: Params,
+    pub steps: u64,
+    pub drops: Vec<[f32; 4]>,
+    pub threads: Option<usize>,
+}
+
+impl Default for ModelArgs {
+    fn default() -> Self {
+        Self { params: Params::default(), steps: 100, drops: Vec::new(), threads: None }
+    }
+}
+
+impl ModelArgs {
+    /// Consumes `arg` if it is a model flag. Returns false for flags it does not know.
+    pub fn parse_flag(&mut self, arg: &Flag, p: &mut Parser) -> CliResult<bool> {
+        let Flag::Long(name) = arg else { return Ok(false) };
+        let params = &mut self.params;
+        match name.as_str() {
+            "size" => {
+                let v = string(p, "--size")?;
+                let (c, r) = v
+                    .split_once(['x', 'X'])
+                    .ok_or_else(|| format!("--size expects COLSxROWS (for example 256x128), got '{v}'"))?;
+                params.cols = number(c, "--size columns")?;
+                params.rows = number(r, "--size rows")?;
+            }
+            "steps" => self.steps = value(p, "--steps")?,
+            "dt" => params.dt = value(p, "--dt")?,
+            "mass" => params.mass = value(p, "--mass")?,
+            "stiffness" => params.stiffness = value(p, "--stiffness")?,
+            "viscosity" => params.viscosity = value(p, "--viscosity")?,
+            "rest-ratio" => params.rest_ratio = value(p, "--rest-ratio")?,
+            "spacing" => params.spacing = value(p, "--spacing")?,
+            "boundary" => {
+                params.boundary = match string(p, "--boundary")?.as_str() {
+                    "pinned" => Boundary::Pinned,
+                    "free" => Boundary::Free,
+                    other => return Err(format!("--boundary expects 'pinned' or 'free', got '{other}'")),
+                }
+            }
+            "drop" => self.drops.push(list(&string(p, "--drop")?, "--drop COL,ROW,HEIGHT,RADIUS")?),
+            "threads" => {
+                let n: usize = value(p, "--threads")?;
+                if n == 0 || n > 1024 {
+                    return Err(format!("--threads must be between 1 and 1024, got {n}"));
+                }
+                self.threads = Some(n);
+            }
+            _ => return Ok(false),
+        }
+        Ok(true)
+    }
+
+    /// A validated surface with the drops applied.
+    pub fn surface(&self) -> CliResult<Surface> {
+        let mut s = Surface::new(self.params).map_err(|e| e.to_string())?;
+        self.apply_drops(&mut s)?;
+        Ok(s)
+    }
+
+    /// Applies every `--drop` to `s`.
+    pub fn apply_drops(&self, s: &mut Surface) -> CliResult<()> {
+        for [c, r, h, rad] in &self.drops {
+            s.drop_at(*c, *r, *h, *rad).map_err(|e| format!("--drop: {e}"))?;
+        }
+        Ok(())
+    }
+
+    /// Runs `f` on a rayon pool of `--threads` threads (the global pool without the flag).
+    pub fn with_threads<T: Send>(&self, f: impl FnOnce() -> T + Send) -> CliResult<T> {
+        match self.threads {
+            None => Ok(f()),
+            Some(n) => rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map(|pool| pool.install(f))
+                .map_err(|e| format!("cannot start {n} threads: {e}")),
+        }
+    }
+}
+
+/// The next value as a UTF-8 string.
+pub fn string(p: &mut Parser, flag: &str) -> CliResult<String> {
+    let v: OsString = p.value().map_err(|_| format!("{flag} needs a value"))?;
+    v.string().map_err(|_| format!("{flag}: the value is not valid UTF-8"))
+}
+
+/// The next value parsed as `T`.
+pub fn value<T: FromStr>(p: &mut Parser, flag: &str) -> CliResult<T> {
+    let v = string(p, flag)?;
+    number(&v, flag)
+}
+
+/// Parses a number, naming the flag in the error.
+pub fn number<T: FromStr>(v: &str, what: &str) -> CliResult<T> {
+    v.trim()
+        .parse()
+        .map_err(|_| {
+            let kind = match std::any::type_name::<T>() {
+                "f32" | "f64" => "number",
+                _ => "whole number",
+            };
+            format!("{what}: '{v}' is not a valid {kind}")
+        })
+}
+
+/// Parses `N` comma-separated numbers.
+pub fn list<const N: usize>(v: &str, what: &str) -> CliResult<[f32; N]> {
+    let parts: Vec<&str> = v.split(',').collect();
+    if parts.len() != N {
+        return Err(format!("{what} expects {N} comma-separated numbers, got '{v}'"));
+    }
+    let mut out = [0.0; N];
+    for (o, s) in out.iter_mut().zip(parts) {
+        *o = number(s, what)?;
+        if !(*o as f32).is_finite() {
+            return Err(format!("{what}: '{s}' is not a finite number"));
+        }
+    }
+    Ok(out)
+}
+
+/// The error for a flag no subcommand knows.
+pub fn unexpected(arg: Flag, command: &str) -> String {
+    match arg {
+        Flag::Long(l) => format!("{command}: unknown flag --{l} (see springwater --help)"),
+        Flag::Short(c) => format!("{command}: unknown flag -{c} (see springwater --help)"),
+        Flag::Value(v) => format!("{command}: unexpected argument '{}'", v.to_string_lossy()),
+    }
+}

@@ -1,0 +1,165 @@
+//! `springwater bench`: time the engine step, and compare it in the same run with the
+//! scalar reference, the naive array-of-structs baseline and the memory floor.
+
+use crate::args::{next_flag, Flag, string, unexpected, value, CliResult, ModelArgs};
+use lexopt::Parser;
+use springwater::baselines::{MemoryFloor, NaiveSurface};
+use springwater::simd::LANES;
+use springwater::{Stepper, Surface};
+use std::time::Instant;
+
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Kernel {
+    Engine,
+    Reference,
+    Naive,
+    Floor,
+}
+
+impl Kernel {
+    fn name(self) -> &'static str {
+        match self {
+            Kernel::Engine => "engine",
+            Kernel::Reference => "reference",
+            Kernel::Naive => "naive",
+            Kernel::Floor => "memory-floor",
+        }
+    }
+}
+
+pub fn run(p: &mut Parser) -> CliResult<()> {
+    let mut model = ModelArgs::default();
+    let mut repeats: usize = 5;
+    let mut compare = vec![Kernel::Reference, Kernel::Naive, Kernel::Floor];
+    while let Some(arg) = next_flag(p)? {
+        if model.parse_flag(&arg, p)? {
+            continue;
+        }
+        match arg {
+            Flag::Long(l) if l == "repeats" => {
+                repeats = value(p, "--repeats")?;
+                if repeats == 0 {
+                    return Err("--repeats must be at least 1".into());
+                }
+            }
+            Flag::Long(l) if l == "compare" => {
+                compare = string(p, "--compare")?
+                    .split(',')
+                    .filter(|s| !s.is_empty() && *s != "none")
+                    .map(|s| match s {
+                        "reference" => Ok(Kernel::Reference),
+                        "naive" => Ok(Kernel::Naive),
+                        "floor" => Ok(Kernel::Floor),
+                        other => Err(format!("--compare: unknown kernel '{other}' (reference, naive, floor, none)")),
+                    })
+                    .collect::<CliResult<_>>()?;
+            }
+            other => return Err(unexpected(other, "bench")),
+        }
+    }
+    if model.steps == 0 {
+        return Err("--steps must be at least 1 for bench".into());
+    }
+    let mut surface = model.surface()?;
+    if model.drops.is_empty() {
+        let p = surface.params();
+        surface
+            .drop_at(p.cols as f32 / 2.0, p.rows as f32 / 2.0, 1.0, 4.0)
+            .map_err(|e| e.to_string())?;
+    }
+    let threads = model.threads.unwrap_or_else(rayon::current_num_threads);
+    let params = *surface.params();
+    let nodes = surface.len();
+    // Slow baselines run fewer steps per block; rates are per step.
+    let slow_steps = (model.steps / 10).max(2);
+    let mut kernels = vec![Kernel::Engine];
+    kernels.extend(compare);
+    println!(
+        "bench {}x{} ({nodes} nodes), {} steps x {repeats} repeats, {threads} thread(s), {LANES} f32 lanes, target features: {}",
+        params.cols,
+        params.rows,
+        model.steps,
+        features()
+    );
+
+    let samples = model.with_threads(|| -> CliResult<Vec<Vec<f64>>> {
+        let mut naive = kernels.contains(&Kernel::Naive).then(|| {
+            let mut n = NaiveSurface::new(&params);
+            n.drop_at(params.cols, params.cols as f32 / 2.0, params.rows as f32 / 2.0, 1.0, 4.0);
+            n
+        });
+        let mut reference = kernels.contains(&Kernel::Reference).then(|| surface.clone());
+        let mut floor = kernels.contains(&Kernel::Floor).then(|| MemoryFloor::new(nodes));
+        let mut samples = vec![Vec::new(); kernels.len()];
+        // One warm-up round, then `repeats` interleaved rounds so drift hits every kernel.
+        for round in 0..=repeats {
+            for (k, kernel) in kernels.iter().enumerate() {
+                let start = Instant::now();
+                let steps = match kernel {
+                    Kernel::Engine => {
+                        for _ in 0..model.steps {
+                            surface.step().map_err(|e| e.to_string())?;
+                        }
+                        model.steps
+                    }
+                    Kernel::Reference => {
+                        let s: &mut Surface = reference.as_mut().expect("built above");
+                        for _ in 0..slow_steps {
+                            s.step_with(Stepper::Reference).map_err(|e| e.to_string())?;
+                        }
+                        slow_steps
+                    }
+                    Kernel::Naive => {
+                        let n = naive.as_mut().expect("built above");
+                        for _ in 0..slow_steps {
+                            n.step();
+                        }
+                        slow_steps
+                    }
+                    Kernel::Floor => {
+                        let f = floor.as_mut().expect("built above");
+                        for _ in 0..model.steps {
+                            f.pass(params.dt, 0.999);
+                        }
+                        std::hint::black_box(f.checksum());
+                        model.steps
+                    }
+                };
+                if round > 0 {
+                    samples[k].push(start.elapsed().as_secs_f64() / steps as f64);
+                }
+            }
+        }
+        Ok(samples)
+    })??;
+
+    let per_step: Vec<f64> = samples.iter().map(|s| median(s)).collect();
+    println!("{:<14}{:>16}{:>20}{:>18}", "kernel", "s/step (median)", "node updates/s", "engine speed-up");
+    for (kernel, t) in kernels.iter().zip(&per_step) {
+        let ratio = if *kernel == Kernel::Engine { String::from("1.00x") } else { format!("{:.2}x", t / per_step[0]) };
+        println!("{:<14}{:>16.6e}{:>20.4e}{:>18}", kernel.name(), t, nodes as f64 / t, ratio);
+    }
+    let seconds = per_step[0] * model.steps as f64;
+    println!(
+        "nodes={nodes} steps={} seconds={seconds:.6} node_updates_per_s={:.4e}",
+        model.steps,
+        nodes as f64 * model.steps as f64 / seconds
+    );
+    Ok(())
+}
+
+fn median(v: &[f64]) -> f64 {
+    let mut v = v.to_vec();
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn features() -> &'static str {
+    if cfg!(target_feature = "avx512f") {
+        "avx512f"
+    } else if cfg!(target_feature = "avx2") {
+        "avx2"
+    } else {
+        "baseline (sse2)"
+    }
+}
