@@ -32,6 +32,8 @@
 //! * [`springs`]: per-spring tables and the colour batches (bands of rows).
 //! * `forces`: the scalar reference step and the SIMD + rayon engine step.
 //! * [`surface`]: [`Surface`], what a game owns.
+//! * [`snapshot`]: save and restore a surface bitwise ([`Snapshot`], a versioned binary
+//!   format with a checksum).
 //! * [`mesh`]: the zero-copy [`MeshView`] for render-side stages.
 //! * [`baselines`]: comparison kernels for benchmarks (naive AoS, memory floor).
 //!
@@ -41,7 +43,7 @@
 //!   identical with it off and for any number of threads.
 //! * `cli` (default): the `springwater` command-line tool. Engines embedding the library
 //!   use `default-features = false, features = ["parallel"]`.
-//! * `serde`: derive `Serialize`/`Deserialize` for [`Params`].
+//! * `serde`: derive `Serialize`/`Deserialize` for [`Params`] and [`Snapshot`].
 
 #![warn(missing_docs)]
 #![forbid(unsafe_code)]
@@ -53,6 +55,7 @@ pub mod grid;
 pub mod mesh;
 pub mod params;
 pub mod simd;
+pub mod snapshot;
 pub mod springs;
 mod state;
 pub mod surface;
@@ -61,4 +64,5 @@ pub use error::{Error, Result};
 pub use grid::{Family, Grid, SpringId};
 pub use mesh::MeshView;
 pub use params::{Boundary, Params};
+pub use snapshot::Snapshot;
 pub use surface::{Energy, Stepper, Surface};

@@ -55,9 +55,11 @@ pub struct Surface {
     pub(crate) state: State,
     pub(crate) springs: Springs,
     workspace: Workspace,
-    /// Smallest node mass and largest spring coefficient: they set `critical_dt`.
-    min_mass: f32,
-    max_stiffness: f32,
+    /// Smallest node mass, largest spring coefficient and largest viscosity ever set: they
+    /// set `critical_dt`.
+    pub(crate) min_mass: f32,
+    pub(crate) max_stiffness: f32,
+    pub(crate) max_viscosity: f32,
     steps: u64,
     time: f64,
 }
@@ -77,16 +79,38 @@ impl Surface {
     }
 
     fn build(params: Params) -> Self {
+        let (state, springs) = (State::new(&params), Springs::new(&params));
+        let bounds = [params.mass, params.stiffness, params.viscosity];
+        Self::from_parts(params, state, springs, bounds, BAND_ROWS, (0, 0.0))
+    }
+
+    /// A surface from validated parts (used by [`Surface::new`] and the snapshot loader).
+    /// `bounds` is `[min_mass, max_stiffness, max_viscosity]`, `progress` is `(steps, time)`.
+    pub(crate) fn from_parts(
+        params: Params,
+        state: State,
+        springs: Springs,
+        bounds: [f32; 3],
+        band_rows: usize,
+        progress: (u64, f64),
+    ) -> Self {
+        let [min_mass, max_stiffness, max_viscosity] = bounds;
         Self {
-            state: State::new(&params),
-            springs: Springs::new(&params),
-            workspace: Workspace::new(params.cols, params.rows, BAND_ROWS),
-            min_mass: params.mass,
-            max_stiffness: params.stiffness,
-            steps: 0,
-            time: 0.0,
+            workspace: Workspace::new(params.cols, params.rows, band_rows),
+            state,
+            springs,
+            min_mass,
+            max_stiffness,
+            max_viscosity,
+            steps: progress.0,
+            time: progress.1,
             params,
         }
+    }
+
+    /// Rows per engine band.
+    pub(crate) fn band_rows(&self) -> usize {
+        self.workspace.band_rows()
     }
 
     /// Sets the band height (colour granularity) of the engine. Results depend on it in
@@ -127,9 +151,10 @@ impl Surface {
         self.time
     }
 
-    /// The largest safe timestep for the current tables: `sqrt(min m / (3 max c))`.
+    /// The largest safe timestep for the current tables: `sqrt(min m / (3 max c))`, a little
+    /// less with viscosity (see [`crate::params`]).
     pub fn critical_dt(&self) -> f32 {
-        params::critical_dt(self.min_mass, self.max_stiffness)
+        params::critical_dt(self.min_mass, self.max_stiffness, self.max_viscosity)
     }
 
     /// Positions `[x, y, z]`, one value per node, row-major.
@@ -223,13 +248,27 @@ impl Surface {
         params::positive("drop radius", radius)?;
         let grid = self.grid();
         let inv_r2 = 1.0 / (radius * radius);
-        for i in 0..grid.len() {
-            if self.state.pinned[i] {
-                continue;
-            }
+        // `d2 * inv_r2` is 0 × ∞ = NaN at the centre when radius² underflows: the weight
+        // there is 1 by definition.
+        let lift = |y: &[f32], i: usize| {
             let (c, r) = grid.coords(i);
             let d2 = (c as f32 - col).powi(2) + (r as f32 - row).powi(2);
-            self.state.pos[1][i] += height * (-d2 * inv_r2).exp();
+            let w = if d2 == 0.0 { 1.0 } else { (-d2 * inv_r2).exp() };
+            y[i] + height * w
+        };
+        // Check first, then write: a drop that would overflow a height changes nothing.
+        let pinned = &self.state.pinned;
+        if (0..grid.len()).any(|i| !pinned[i] && !lift(&self.state.pos[1], i).is_finite()) {
+            return Err(Error::InvalidParam {
+                name: "drop height",
+                value: height as f64,
+                expected: "small enough that every node's height stays finite",
+            });
+        }
+        for i in 0..grid.len() {
+            if !self.state.pinned[i] {
+                self.state.pos[1][i] = lift(&self.state.pos[1], i);
+            }
         }
         Ok(())
     }
@@ -237,25 +276,37 @@ impl Surface {
     /// Adds `force` to node `node` for the next step only (buoyancy, a paddle, a wake).
     pub fn add_force(&mut self, node: usize, force: [f32; 3]) -> Result<()> {
         self.check_node(node)?;
-        for f in force {
-            params::finite("force", f)?;
+        let mut sum = [0.0; 3];
+        for k in 0..3 {
+            params::finite("force", force[k])?;
+            sum[k] = self.state.ext[k][node] + force[k];
+            params::finite("accumulated force", sum[k])?;
         }
-        for (k, f) in force.into_iter().enumerate() {
-            self.state.ext[k][node] += f;
+        for (k, f) in sum.into_iter().enumerate() {
+            self.state.ext[k][node] = f;
         }
         self.state.ext_pending = true;
         Ok(())
     }
 
+    /// Discards the pending external forces (for example after a step refused them).
+    pub fn clear_forces(&mut self) {
+        self.state.ext_pending = true;
+        self.state.clear_ext();
+    }
+
     /// Adds a velocity change `dv` to a free node now (an impulse divided by its mass).
     pub fn add_velocity(&mut self, node: usize, dv: [f32; 3]) -> Result<()> {
         self.check_node(node)?;
-        for v in dv {
-            params::finite("velocity", v)?;
+        let mut sum = [0.0; 3];
+        for k in 0..3 {
+            params::finite("velocity", dv[k])?;
+            sum[k] = self.state.vel[k][node] + dv[k];
+            params::finite("resulting velocity", sum[k])?;
         }
         if !self.state.pinned[node] {
-            for (k, v) in dv.into_iter().enumerate() {
-                self.state.vel[k][node] += v;
+            for (k, v) in sum.into_iter().enumerate() {
+                self.state.vel[k][node] = v;
             }
         }
         Ok(())
@@ -319,8 +370,18 @@ impl Surface {
     pub fn set_mass(&mut self, node: usize, mass: f32) -> Result<()> {
         self.check_node(node)?;
         params::positive("mass", mass)?;
+        if !(1.0 / mass).is_finite() {
+            return Err(Error::InvalidParam {
+                name: "mass",
+                value: mass as f64,
+                expected: "at least 1.2e-38 (the reciprocal must be finite)",
+            });
+        }
         let min_mass = self.min_mass.min(mass);
-        params::check_dt(self.params.dt, params::critical_dt(min_mass, self.max_stiffness))?;
+        params::check_dt(
+            self.params.dt,
+            params::critical_dt(min_mass, self.max_stiffness, self.max_viscosity),
+        )?;
         self.min_mass = min_mass;
         self.state.mass[node] = mass;
         if !self.state.pinned[node] {
@@ -329,10 +390,18 @@ impl Surface {
         Ok(())
     }
 
-    /// Sets a node's viscosity `γ` (≥ 0).
+    /// Sets a node's viscosity `γ` (≥ 0). Refused if it would put `params().dt` at or past
+    /// the critical timestep (explicit damping has a limit too; the bound uses the largest
+    /// viscosity ever set).
     pub fn set_viscosity(&mut self, node: usize, viscosity: f32) -> Result<()> {
         self.check_node(node)?;
         params::non_negative("viscosity", viscosity)?;
+        let max_viscosity = self.max_viscosity.max(viscosity);
+        params::check_dt(
+            self.params.dt,
+            params::critical_dt(self.min_mass, self.max_stiffness, max_viscosity),
+        )?;
+        self.max_viscosity = max_viscosity;
         self.state.viscosity[node] = viscosity;
         Ok(())
     }
@@ -370,7 +439,10 @@ impl Surface {
         params::non_negative("rest length", rest)?;
         params::positive("stiffness", coef)?;
         let max_stiffness = self.max_stiffness.max(coef);
-        params::check_dt(self.params.dt, params::critical_dt(self.min_mass, max_stiffness))?;
+        params::check_dt(
+            self.params.dt,
+            params::critical_dt(self.min_mass, max_stiffness, self.max_viscosity),
+        )?;
         self.max_stiffness = max_stiffness;
         let f = id.family as usize;
         self.springs.rest[f][id.origin] = rest;

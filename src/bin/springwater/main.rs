@@ -14,7 +14,8 @@ springwater — CPU water surface animation (mass-spring lattice)
 usage: springwater <command> [flags]
 
 commands:
-  simulate   run the steps and print a summary        [--csv FILE]
+  simulate   run the steps and print a summary        [--csv FILE] [--save FILE]
+             continue from a snapshot: simulate --load FILE --steps N [--drop …]
   bench      time the step against the scalar reference, a naive AoS
              baseline and a memory-bandwidth floor    [--repeats N] [--compare LIST]
 

@@ -1,38 +1,82 @@
-//! `springwater simulate`: run the steps, print a summary, optionally write a CSV.
+//! `springwater simulate`: run the steps, print a summary, optionally write a CSV and a
+//! snapshot, or continue from a snapshot.
+//!
+//! With `--load FILE` the model (grid, parameters, per-node and per-spring tables, step
+//! count) comes from the snapshot, so the flags that define a model are refused next to it;
+//! `--steps`, `--drop` (added to the loaded state before the steps), `--threads`, `--csv`
+//! and `--save` apply as usual.
 
 use crate::args::{next_flag, Flag, string, unexpected, CliResult, ModelArgs};
 use lexopt::Parser;
 use springwater::Surface;
 use std::io::Write;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
+
+/// Model flags whose values a snapshot already holds.
+const MODEL_FLAGS: [&str; 8] =
+    ["size", "dt", "mass", "stiffness", "viscosity", "rest-ratio", "spacing", "boundary"];
 
 pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut model = ModelArgs::default();
     let mut csv: Option<PathBuf> = None;
+    let mut save: Option<PathBuf> = None;
+    let mut load: Option<PathBuf> = None;
+    let mut model_flag: Option<String> = None;
     while let Some(arg) = next_flag(p)? {
+        if let Flag::Long(l) = &arg {
+            if MODEL_FLAGS.contains(&l.as_str()) {
+                model_flag.get_or_insert_with(|| l.clone());
+            }
+        }
         if model.parse_flag(&arg, p)? {
             continue;
         }
         match arg {
             Flag::Long(l) if l == "csv" => csv = Some(string(p, "--csv")?.into()),
+            Flag::Long(l) if l == "save" => save = Some(string(p, "--save")?.into()),
+            Flag::Long(l) if l == "load" => load = Some(string(p, "--load")?.into()),
             other => return Err(unexpected(other, "simulate")),
         }
     }
-    let mut surface = model.surface()?;
-    // Open the output first: an unwritable path fails before any work is done.
-    let csv = csv
-        .map(|path| create(&path).map(|file| (path, file)))
-        .transpose()?;
+    let mut surface = match (&load, model_flag) {
+        (Some(_), Some(flag)) => {
+            return Err(format!(
+                "--{flag} cannot be combined with --load: the model comes from the snapshot \
+                 (only --steps, --drop, --threads, --csv and --save apply)"
+            ))
+        }
+        (Some(path), None) => {
+            let mut s = load_snapshot(path)?;
+            model.apply_drops(&mut s)?;
+            s
+        }
+        (None, _) => model.surface()?,
+    };
+    // Open the outputs first: an unwritable path fails before any work is done.
+    let csv = csv.map(|path| create(&path).map(|file| (path, file))).transpose()?;
+    let save = save.map(|path| create(&path).map(|file| (path, file))).transpose()?;
     let start = Instant::now();
     model.with_threads(|| run_steps(&mut surface, model.steps))??;
     let seconds = start.elapsed().as_secs_f64();
-    print_summary(&surface, seconds);
+    print_summary(&surface, model.steps, seconds);
     if let Some((path, file)) = csv {
         write_csv(&surface, file).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         println!("wrote {}", path.display());
     }
+    if let Some((path, file)) = save {
+        surface
+            .save(std::io::BufWriter::new(file))
+            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
     Ok(())
+}
+
+/// Reads a snapshot file, naming it in the error.
+pub fn load_snapshot(path: &Path) -> CliResult<Surface> {
+    let file = std::fs::File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    Surface::load(std::io::BufReader::new(file)).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// Steps `steps` times, naming the failing step.
@@ -43,7 +87,8 @@ pub fn run_steps(surface: &mut Surface, steps: u64) -> CliResult<()> {
     Ok(())
 }
 
-pub fn print_summary(s: &Surface, seconds: f64) {
+/// Prints the summary; `steps_run` (this run's steps, not the loaded ones) sets the rate.
+pub fn print_summary(s: &Surface, steps_run: u64, seconds: f64) {
     let p = s.params();
     let [_, y, _] = s.positions();
     let (lo, hi) = y.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
@@ -54,7 +99,7 @@ pub fn print_summary(s: &Surface, seconds: f64) {
     println!("height      min {lo:.5}  max {hi:.5}");
     println!("energy      kinetic {:.6}  potential {:.6}  total {:.6}", e.kinetic, e.potential, e.total());
     if seconds > 0.0 {
-        let rate = s.len() as f64 * s.steps() as f64 / seconds;
+        let rate = s.len() as f64 * steps_run as f64 / seconds;
         println!("wall time   {seconds:.3} s ({rate:.3e} node updates/s)");
     }
 }

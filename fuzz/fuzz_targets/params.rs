@@ -1,0 +1,110 @@
+//! Raw parameter values and CLI argument lists: an error or a valid surface, never a panic.
+//!
+//! The CLI's model-flag parser is compiled in from the binary's own source file, so the
+//! fuzzer exercises exactly the code `springwater simulate` runs, without the library
+//! having to export command-line types.
+
+#![no_main]
+
+#[allow(dead_code)]
+#[path = "../../src/bin/springwater/args.rs"]
+mod args;
+
+use arbitrary::Arbitrary;
+use libfuzzer_sys::fuzz_target;
+use springwater::{Boundary, Params, Surface};
+
+/// Largest surface the target builds (validation alone runs for any size).
+const MAX_BUILD: usize = 1 << 12;
+
+#[derive(Debug, Arbitrary)]
+struct Input {
+    cols: u32,
+    rows: u32,
+    spacing: f32,
+    mass: f32,
+    stiffness: f32,
+    viscosity: f32,
+    dt: f32,
+    rest_ratio: f32,
+    free: bool,
+    acceleration: [f32; 3],
+    drop: [f32; 4],
+    node: u32,
+    value: f32,
+    args: Vec<String>,
+}
+
+fuzz_target!(|input: Input| {
+    let p = Params {
+        cols: input.cols as usize,
+        rows: input.rows as usize,
+        spacing: input.spacing,
+        mass: input.mass,
+        stiffness: input.stiffness,
+        viscosity: input.viscosity,
+        dt: input.dt,
+        rest_ratio: input.rest_ratio,
+        boundary: if input.free {
+            Boundary::Free
+        } else {
+            Boundary::Pinned
+        },
+        acceleration: input.acceleration,
+    };
+    if p.validate().is_ok() && p.nodes() <= MAX_BUILD {
+        let mut s = Surface::new(p).expect("validate() accepted these params");
+        exercise(&mut s, &input);
+    }
+
+    // The same through the command line: every model flag, arbitrary values.
+    let mut parser = lexopt::Parser::from_args(input.args.iter().map(String::as_str));
+    let mut model = args::ModelArgs::default();
+    loop {
+        match args::next_flag(&mut parser) {
+            Ok(Some(flag)) => match model.parse_flag(&flag, &mut parser) {
+                Ok(true) => {}
+                Ok(false) | Err(_) => return,
+            },
+            Ok(None) => break,
+            Err(_) => return,
+        }
+    }
+    if model.params.validate().is_ok() && model.params.nodes() <= MAX_BUILD {
+        if let Ok(mut s) = model.surface() {
+            exercise(&mut s, &input);
+        }
+    }
+});
+
+/// Every mutating entry point with the raw values: errors are fine, panics and non-finite
+/// state are not.
+fn exercise(s: &mut Surface, input: &Input) {
+    let node = input.node as usize;
+    let v = input.value;
+    let [c, r, h, rad] = input.drop;
+    let _ = s.drop_at(c, r, h, rad);
+    let _ = s.add_force(node, [v, -v, v]);
+    let _ = s.add_velocity(node, [v; 3]);
+    let _ = s.set_mass(node, v);
+    let _ = s.set_viscosity(node, v);
+    let _ = s.set_pinned(node, v > 0.0);
+    let _ = s.set_acceleration(input.acceleration);
+    let id = springwater::SpringId {
+        family: springwater::Family::ALL[node % 4],
+        origin: node / 4,
+    };
+    let _ = s.set_spring(id, v, input.spacing);
+    let _ = s.advance(input.dt);
+    for _ in 0..4 {
+        if s.step().is_err() {
+            s.clear_forces();
+        }
+    }
+    for c in s.positions().iter().chain(&s.velocities()) {
+        assert!(
+            c.iter().all(|x| x.is_finite()),
+            "non-finite state after errors-only calls"
+        );
+    }
+}

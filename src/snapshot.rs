@@ -1,0 +1,578 @@
+//! Snapshots: the complete state of a [`Surface`], saved and restored bitwise.
+//!
+//! A game saves a surface with [`Surface::save`] (or [`Surface::to_bytes`]) and gets it back
+//! with [`Surface::load`], [`Surface::from_bytes`] or, into an existing surface,
+//! [`Surface::restore`]. A restored surface continues **bitwise identically** to the one
+//! that was saved: every buffer the step reads is stored with its exact bits. The engine's
+//! per-band scratch buffers are not state (a step overwrites them before reading) and are
+//! rebuilt.
+//!
+//! Engines that serialise their own way convert to the plain-data [`Snapshot`] with
+//! [`Surface::snapshot`] and back with [`Surface::from_snapshot`]; with the `serde` feature
+//! it implements `Serialize` and `Deserialize`. Both paths run the same validation.
+//!
+//! # Format (version 1)
+//!
+//! Little-endian throughout; `n = cols × rows`. Per-node arrays hold exactly `n` values
+//! (no SIMD padding); spring tables are indexed by origin node, with `0.0` for springs
+//! that do not exist (E from the last column, S from the last row, …).
+//!
+//! | offset | size | field |
+//! |---|---|---|
+//! | 0 | 8 | magic `b"SPRWATER"` |
+//! | 8 | 4 | format version `u32` (1) |
+//! | 12 | 4 | flags `u32`: bit 0 = external forces pending; other bits 0 |
+//! | 16 | 8 | total length in bytes `u64`, checksum included |
+//! | 24 | 8, 8 | `cols`, `rows` as `u64` |
+//! | 40 | 6 × 4 | `spacing`, `mass`, `stiffness`, `viscosity`, `dt`, `rest_ratio` (`f32`) |
+//! | 64 | 4 | boundary `u32`: 0 = pinned, 1 = free |
+//! | 68 | 3 × 4 | uniform acceleration x, y, z (`f32`) |
+//! | 80 | 8 | steps taken `u64` |
+//! | 88 | 8 | model time `f64` |
+//! | 96 | 3 × 4 | `min_mass`, `max_stiffness`, `max_viscosity` (`f32`): the bounds behind `critical_dt` |
+//! | 108 | 4 | engine band height `u32` (results depend on it in the last bits) |
+//! | 112 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z |
+//! | | 2 × 4n | mass, viscosity per node |
+//! | | n | pinned per node, `u8` 0 or 1 |
+//! | | 8 × 4n | rest length then coefficient, for families E, S, SE, SW |
+//! | end − 4 | 4 | CRC-32 (IEEE) of every byte before it |
+//!
+//! The total is `116 + 77 n` bytes. Loading refuses, with [`Error::Snapshot`] and a message
+//! that says what is wrong: a wrong magic or version, a total length that disagrees with
+//! `cols × rows` or with the bytes present, a checksum mismatch, parameters that
+//! [`Params::validate`] refuses, non-finite values, masses or coefficients out of range,
+//! pinned nodes that move, springs outside the grid, and bounds that do not cover the
+//! tables. Lengths are checked against the bytes actually present before anything is
+//! allocated, so a lying length field costs nothing. A refused snapshot changes nothing.
+
+use crate::error::{Error, Result};
+use crate::grid::Grid;
+use crate::params::{self, Boundary, Params, MAX_NODES};
+use crate::springs::Springs;
+use crate::state::State;
+use crate::surface::Surface;
+use std::io::{Read, Write};
+
+/// The first eight bytes of every snapshot.
+pub const MAGIC: [u8; 8] = *b"SPRWATER";
+/// The format version this build writes and reads.
+pub const VERSION: u32 = 1;
+/// Bytes before the per-node arrays.
+const HEADER: usize = 112;
+/// Bytes per node: 11 `f32` arrays, 1 `u8`, 8 `f32` spring arrays.
+const PER_NODE: usize = 11 * 4 + 1 + 8 * 4;
+/// Trailing checksum.
+const CRC: usize = 4;
+const FLAG_FORCES_PENDING: u32 = 1;
+
+/// The complete state of a surface as plain data, one value per node (no padding).
+///
+/// Produced by [`Surface::snapshot`], turned back into a surface by
+/// [`Surface::from_snapshot`], which validates everything. With the `serde` feature it can
+/// be serialised in any format serde supports.
+#[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct Snapshot {
+    /// The parameters the surface was built with (acceleration as currently set).
+    pub params: Params,
+    /// Steps taken.
+    pub steps: u64,
+    /// Model time simulated.
+    pub time: f64,
+    /// Smallest node mass ever set: with `max_stiffness` it sets `critical_dt`.
+    pub min_mass: f32,
+    /// Largest spring coefficient ever set.
+    pub max_stiffness: f32,
+    /// Largest viscosity ever set.
+    pub max_viscosity: f32,
+    /// Rows per engine band (the colour granularity).
+    pub band_rows: u32,
+    /// Whether `forces` is applied by the next step.
+    pub forces_pending: bool,
+    /// Positions `[x, y, z]`.
+    pub positions: [Vec<f32>; 3],
+    /// Velocities `[vx, vy, vz]`.
+    pub velocities: [Vec<f32>; 3],
+    /// External forces for the next step `[fx, fy, fz]`.
+    pub forces: [Vec<f32>; 3],
+    /// Node masses.
+    pub mass: Vec<f32>,
+    /// Node viscosities.
+    pub viscosity: Vec<f32>,
+    /// Pinned flags.
+    pub pinned: Vec<bool>,
+    /// Rest lengths per family (E, S, SE, SW), indexed by origin node.
+    pub rest: [Vec<f32>; 4],
+    /// Coefficients per family (E, S, SE, SW), indexed by origin node.
+    pub coef: [Vec<f32>; 4],
+}
+
+/// Snapshot size in bytes for `nodes` nodes, or `None` on overflow.
+fn encoded_len(nodes: usize) -> Option<usize> {
+    nodes.checked_mul(PER_NODE)?.checked_add(HEADER + CRC)
+}
+
+fn bad(msg: impl Into<String>) -> Error {
+    Error::Snapshot(msg.into())
+}
+
+impl Snapshot {
+    /// Encodes the snapshot in the binary format of the module docs.
+    ///
+    /// The snapshot is not validated here; [`Snapshot::from_bytes`] validates.
+    pub fn to_bytes(&self) -> Vec<u8> {
+        let n = self.mass.len();
+        let total = encoded_len(n).expect("a snapshot of an allocated surface fits in memory");
+        let mut b = Vec::with_capacity(total);
+        let p = &self.params;
+        b.extend_from_slice(&MAGIC);
+        b.extend_from_slice(&VERSION.to_le_bytes());
+        let flags = if self.forces_pending {
+            FLAG_FORCES_PENDING
+        } else {
+            0
+        };
+        b.extend_from_slice(&flags.to_le_bytes());
+        b.extend_from_slice(&(total as u64).to_le_bytes());
+        b.extend_from_slice(&(p.cols as u64).to_le_bytes());
+        b.extend_from_slice(&(p.rows as u64).to_le_bytes());
+        for v in [
+            p.spacing,
+            p.mass,
+            p.stiffness,
+            p.viscosity,
+            p.dt,
+            p.rest_ratio,
+        ] {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        let boundary: u32 = match p.boundary {
+            Boundary::Pinned => 0,
+            Boundary::Free => 1,
+        };
+        b.extend_from_slice(&boundary.to_le_bytes());
+        for v in p.acceleration {
+            b.extend_from_slice(&v.to_le_bytes());
+        }
+        b.extend_from_slice(&self.steps.to_le_bytes());
+        b.extend_from_slice(&self.time.to_le_bytes());
+        b.extend_from_slice(&self.min_mass.to_le_bytes());
+        b.extend_from_slice(&self.max_stiffness.to_le_bytes());
+        b.extend_from_slice(&self.max_viscosity.to_le_bytes());
+        b.extend_from_slice(&self.band_rows.to_le_bytes());
+        debug_assert_eq!(b.len(), HEADER);
+        let arrays = self
+            .positions
+            .iter()
+            .chain(&self.velocities)
+            .chain(&self.forces);
+        for a in arrays.chain([&self.mass, &self.viscosity]) {
+            a.iter().for_each(|v| b.extend_from_slice(&v.to_le_bytes()));
+        }
+        b.extend(self.pinned.iter().map(|&p| p as u8));
+        for f in 0..4 {
+            for a in [&self.rest[f], &self.coef[f]] {
+                a.iter().for_each(|v| b.extend_from_slice(&v.to_le_bytes()));
+            }
+        }
+        let crc = crc32fast::hash(&b);
+        b.extend_from_slice(&crc.to_le_bytes());
+        debug_assert_eq!(b.len(), total, "every array holds one value per node");
+        b
+    }
+
+    /// Decodes a snapshot from exactly `bytes` (no trailing data), checking the magic, the
+    /// version, the lengths and the checksum. The contents are validated when the snapshot
+    /// becomes a surface ([`Surface::from_snapshot`]).
+    pub fn from_bytes(bytes: &[u8]) -> Result<Self> {
+        let total = check_header(bytes)?;
+        if bytes.len() != total {
+            return Err(bad(format!(
+                "the header says {total} bytes but {} are present ({})",
+                bytes.len(),
+                if bytes.len() < total {
+                    "truncated"
+                } else {
+                    "trailing data"
+                }
+            )));
+        }
+        let (body, crc) = bytes.split_at(total - CRC);
+        let stored = u32::from_le_bytes(crc.try_into().expect("4 bytes"));
+        let actual = crc32fast::hash(body);
+        if stored != actual {
+            return Err(bad(format!(
+                "checksum mismatch (stored {stored:08x}, computed {actual:08x}): the data is corrupted"
+            )));
+        }
+        let mut r = Cursor { bytes: body, at: 8 };
+        let _version = r.u32();
+        let flags = r.u32();
+        let _total = r.u64();
+        let cols = r.u64() as usize;
+        let rows = r.u64() as usize;
+        let [spacing, mass, stiffness, viscosity, dt, rest_ratio] = [(); 6].map(|_| r.f32());
+        let boundary = match r.u32() {
+            0 => Boundary::Pinned,
+            1 => Boundary::Free,
+            other => {
+                return Err(bad(format!(
+                    "unknown boundary code {other} (0 = pinned, 1 = free)"
+                )))
+            }
+        };
+        let acceleration = [(); 3].map(|_| r.f32());
+        let params = Params {
+            cols,
+            rows,
+            spacing,
+            mass,
+            stiffness,
+            viscosity,
+            dt,
+            rest_ratio,
+            boundary,
+            acceleration,
+        };
+        let steps = r.u64();
+        let time = r.f64();
+        let min_mass = r.f32();
+        let max_stiffness = r.f32();
+        let max_viscosity = r.f32();
+        let band_rows = r.u32();
+        if flags & !FLAG_FORCES_PENDING != 0 {
+            return Err(bad(format!(
+                "unknown flags {flags:#x}: written by an incompatible writer"
+            )));
+        }
+        let n = cols * rows; // bounded by check_header
+        let mut f32s = || r.f32s(n);
+        let positions = [f32s(), f32s(), f32s()];
+        let velocities = [f32s(), f32s(), f32s()];
+        let forces = [f32s(), f32s(), f32s()];
+        let mass_n = f32s();
+        let viscosity_n = f32s();
+        let pinned = r.take(n).to_vec();
+        if let Some(i) = pinned.iter().position(|&b| b > 1) {
+            return Err(bad(format!(
+                "node {i}: pinned flag {} is neither 0 nor 1",
+                pinned[i]
+            )));
+        }
+        let pinned = pinned.into_iter().map(|b| b == 1).collect();
+        let mut rest: [Vec<f32>; 4] = Default::default();
+        let mut coef: [Vec<f32>; 4] = Default::default();
+        for f in 0..4 {
+            rest[f] = r.f32s(n);
+            coef[f] = r.f32s(n);
+        }
+        debug_assert_eq!(r.at, body.len());
+        Ok(Self {
+            params,
+            steps,
+            time,
+            min_mass,
+            max_stiffness,
+            max_viscosity,
+            band_rows,
+            forces_pending: flags & FLAG_FORCES_PENDING != 0,
+            positions,
+            velocities,
+            forces,
+            mass: mass_n,
+            viscosity: viscosity_n,
+            pinned,
+            rest,
+            coef,
+        })
+    }
+
+    /// Checks every invariant a surface relies on. See [`Surface::from_snapshot`].
+    pub fn validate(&self) -> Result<()> {
+        let p = &self.params;
+        p.validate_except_dt()
+            .map_err(|e| bad(format!("parameters: {e}")))?;
+        let grid = Grid::new(p.cols, p.rows);
+        let n = grid.len();
+        let arrays = self
+            .positions
+            .iter()
+            .chain(&self.velocities)
+            .chain(&self.forces);
+        let named = ["x", "y", "z", "vx", "vy", "vz", "fx", "fy", "fz"]
+            .into_iter()
+            .zip(arrays);
+        for (what, a) in named.chain([("mass", &self.mass), ("viscosity", &self.viscosity)]) {
+            if a.len() != n {
+                return Err(bad(format!(
+                    "{what} has {} values for a {}x{} grid",
+                    a.len(),
+                    p.cols,
+                    p.rows
+                )));
+            }
+            if let Some(i) = a.iter().position(|v| !v.is_finite()) {
+                return Err(bad(format!(
+                    "{what} of node {i} is {}, not a finite number",
+                    a[i]
+                )));
+            }
+        }
+        if self.pinned.len() != n {
+            return Err(bad(format!(
+                "pinned has {} flags for {n} nodes",
+                self.pinned.len()
+            )));
+        }
+        for f in 0..4 {
+            for (what, a) in [
+                ("rest length", &self.rest[f]),
+                ("coefficient", &self.coef[f]),
+            ] {
+                if a.len() != n {
+                    return Err(bad(format!(
+                        "{what} table {f} has {} values for {n} nodes",
+                        a.len()
+                    )));
+                }
+            }
+        }
+        if !(self.time.is_finite() && self.time >= 0.0) {
+            return Err(bad(format!(
+                "model time {} is not a finite number >= 0",
+                self.time
+            )));
+        }
+        if self.band_rows == 0 {
+            return Err(bad("band height 0: must be at least 1"));
+        }
+        params::positive("min_mass", self.min_mass).map_err(|e| bad(e.to_string()))?;
+        params::positive("max_stiffness", self.max_stiffness).map_err(|e| bad(e.to_string()))?;
+        params::non_negative("max_viscosity", self.max_viscosity)
+            .map_err(|e| bad(e.to_string()))?;
+        for i in 0..n {
+            let m = self.mass[i];
+            if m < self.min_mass || !(1.0 / m).is_finite() {
+                return Err(bad(format!(
+                    "mass {m} of node {i} is below min_mass {} or too small to invert",
+                    self.min_mass
+                )));
+            }
+            let g = self.viscosity[i];
+            if !(0.0..=self.max_viscosity).contains(&g) {
+                return Err(bad(format!(
+                    "viscosity {g} of node {i} is negative or above max_viscosity {}",
+                    self.max_viscosity
+                )));
+            }
+            if self.pinned[i] && self.velocities.iter().any(|v| v[i] != 0.0) {
+                return Err(bad(format!("node {i} is pinned but has a velocity")));
+            }
+        }
+        for (f, family) in crate::grid::Family::ALL.into_iter().enumerate() {
+            for i in 0..n {
+                let (rest, coef) = (self.rest[f][i], self.coef[f][i]);
+                if grid.spring_end(family, i).is_none() {
+                    if rest.to_bits() != 0 || coef.to_bits() != 0 {
+                        return Err(bad(format!(
+                            "spring {family:?} at node {i} lies outside the grid but is not zero"
+                        )));
+                    }
+                } else if !(rest.is_finite() && rest >= 0.0 && coef.is_finite() && coef > 0.0) {
+                    return Err(bad(format!(
+                        "spring {family:?} at node {i}: rest length {rest} and coefficient {coef} must be finite, >= 0 and > 0"
+                    )));
+                } else if coef > self.max_stiffness {
+                    return Err(bad(format!(
+                        "spring {family:?} at node {i}: coefficient {coef} is above max_stiffness {}",
+                        self.max_stiffness
+                    )));
+                }
+            }
+        }
+        let critical = params::critical_dt(self.min_mass, self.max_stiffness, self.max_viscosity);
+        params::check_dt(p.dt, critical).map_err(|e| bad(e.to_string()))
+    }
+}
+
+/// Checks magic, version and lengths; returns the total length the header announces,
+/// which is consistent with `cols × rows` and at most [`MAX_NODES`] nodes.
+fn check_header(bytes: &[u8]) -> Result<usize> {
+    if bytes.len() < 8 && MAGIC.starts_with(bytes) {
+        return Err(bad(format!(
+            "truncated: {} bytes, the header alone has {HEADER}",
+            bytes.len()
+        )));
+    }
+    if bytes.len() < 8 || bytes[..8] != MAGIC {
+        return Err(bad("not a springwater snapshot (wrong magic bytes)"));
+    }
+    if bytes.len() < HEADER {
+        return Err(bad(format!(
+            "truncated: {} bytes, the header alone has {HEADER}",
+            bytes.len()
+        )));
+    }
+    let mut r = Cursor { bytes, at: 8 };
+    let version = r.u32();
+    if version != VERSION {
+        return Err(bad(format!(
+            "format version {version}, this build of springwater reads version {VERSION}"
+        )));
+    }
+    let _flags = r.u32();
+    let total = r.u64();
+    let (cols, rows) = (r.u64(), r.u64());
+    let nodes = cols.checked_mul(rows).filter(|&n| n <= MAX_NODES as u64);
+    let Some(expected) = nodes.and_then(|n| encoded_len(n as usize)) else {
+        return Err(bad(format!(
+            "grid {cols}x{rows} is larger than any surface (at most {MAX_NODES} nodes)"
+        )));
+    };
+    if total != expected as u64 {
+        return Err(bad(format!(
+            "inconsistent lengths: the header says {total} bytes, a {cols}x{rows} grid needs {expected}"
+        )));
+    }
+    Ok(expected)
+}
+
+/// A forward reader over bytes whose length has been checked already.
+struct Cursor<'a> {
+    bytes: &'a [u8],
+    at: usize,
+}
+
+impl Cursor<'_> {
+    fn take(&mut self, len: usize) -> &[u8] {
+        let s = &self.bytes[self.at..self.at + len];
+        self.at += len;
+        s
+    }
+    fn u32(&mut self) -> u32 {
+        u32::from_le_bytes(self.take(4).try_into().expect("4 bytes"))
+    }
+    fn u64(&mut self) -> u64 {
+        u64::from_le_bytes(self.take(8).try_into().expect("8 bytes"))
+    }
+    fn f32(&mut self) -> f32 {
+        f32::from_bits(self.u32())
+    }
+    fn f64(&mut self) -> f64 {
+        f64::from_bits(self.u64())
+    }
+    fn f32s(&mut self, n: usize) -> Vec<f32> {
+        self.take(4 * n)
+            .chunks_exact(4)
+            .map(|c| f32::from_le_bytes(c.try_into().expect("4 bytes")))
+            .collect()
+    }
+}
+
+impl Surface {
+    /// The complete state as plain data.
+    pub fn snapshot(&self) -> Snapshot {
+        let n = self.len();
+        let s = &self.state;
+        let cut3 = |a: &[Vec<f32>; 3]| [a[0][..n].to_vec(), a[1][..n].to_vec(), a[2][..n].to_vec()];
+        let cut4 = |a: &[Vec<f32>; 4]| std::array::from_fn(|f| a[f][..n].to_vec());
+        Snapshot {
+            params: *self.params(),
+            steps: self.steps(),
+            time: self.time(),
+            min_mass: self.min_mass,
+            max_stiffness: self.max_stiffness,
+            max_viscosity: self.max_viscosity,
+            band_rows: u32::try_from(self.band_rows()).unwrap_or(u32::MAX),
+            forces_pending: s.ext_pending,
+            positions: cut3(&s.pos),
+            velocities: cut3(&s.vel),
+            forces: cut3(&s.ext),
+            mass: s.mass[..n].to_vec(),
+            viscosity: s.viscosity[..n].to_vec(),
+            pinned: s.pinned.clone(),
+            rest: cut4(&self.springs.rest),
+            coef: cut4(&self.springs.coef),
+        }
+    }
+
+    /// A surface from a snapshot, after checking every invariant the engine relies on
+    /// (see the [module docs](crate::snapshot)). Errors are [`Error::Snapshot`].
+    pub fn from_snapshot(snap: Snapshot) -> Result<Surface> {
+        snap.validate()?;
+        let p = snap.params;
+        let n = p.cols * p.rows;
+        let mut state = State::new(&p);
+        let mut springs = Springs::new(&p);
+        let fill3 = |dst: &mut [Vec<f32>; 3], src: &[Vec<f32>; 3]| {
+            for (d, s) in dst.iter_mut().zip(src) {
+                d[..n].copy_from_slice(s);
+            }
+        };
+        fill3(&mut state.pos, &snap.positions);
+        fill3(&mut state.next_pos, &snap.positions);
+        fill3(&mut state.vel, &snap.velocities);
+        fill3(&mut state.ext, &snap.forces);
+        state.ext_pending = snap.forces_pending;
+        state.mass[..n].copy_from_slice(&snap.mass);
+        state.viscosity[..n].copy_from_slice(&snap.viscosity);
+        state.pinned.copy_from_slice(&snap.pinned);
+        state.refresh_inv_mass();
+        for f in 0..4 {
+            springs.rest[f][..n].copy_from_slice(&snap.rest[f]);
+            springs.coef[f][..n].copy_from_slice(&snap.coef[f]);
+        }
+        let bounds = [snap.min_mass, snap.max_stiffness, snap.max_viscosity];
+        let band_rows = snap.band_rows as usize;
+        Ok(Surface::from_parts(
+            p,
+            state,
+            springs,
+            bounds,
+            band_rows,
+            (snap.steps, snap.time),
+        ))
+    }
+
+    /// The snapshot in the binary format of the [module docs](crate::snapshot).
+    pub fn to_bytes(&self) -> Vec<u8> {
+        self.snapshot().to_bytes()
+    }
+
+    /// Writes [`Surface::to_bytes`] to `w`.
+    pub fn save(&self, mut w: impl Write) -> Result<()> {
+        w.write_all(&self.to_bytes())
+            .and_then(|()| w.flush())
+            .map_err(|e| bad(format!("cannot write: {e}")))
+    }
+
+    /// A surface from a binary snapshot: exactly the bytes [`Surface::to_bytes`] wrote.
+    pub fn from_bytes(bytes: &[u8]) -> Result<Surface> {
+        Surface::from_snapshot(Snapshot::from_bytes(bytes)?)
+    }
+
+    /// Reads one snapshot from `r` (exactly its bytes; data after it stays unread).
+    ///
+    /// Reading grows the buffer as bytes arrive, so a header announcing a huge grid over a
+    /// short stream fails with "truncated" instead of allocating.
+    pub fn load(mut r: impl Read) -> Result<Surface> {
+        let io = |e: std::io::Error| bad(format!("cannot read: {e}"));
+        let mut bytes = Vec::with_capacity(HEADER);
+        (&mut r)
+            .take(HEADER as u64)
+            .read_to_end(&mut bytes)
+            .map_err(io)?;
+        let total = check_header(&bytes)?;
+        (&mut r)
+            .take((total - HEADER) as u64)
+            .read_to_end(&mut bytes)
+            .map_err(io)?;
+        Surface::from_bytes(&bytes)
+    }
+
+    /// Replaces this surface's state with a binary snapshot. On error `self` is unchanged.
+    pub fn restore(&mut self, bytes: &[u8]) -> Result<()> {
+        *self = Surface::from_bytes(bytes)?;
+        Ok(())
+    }
+}

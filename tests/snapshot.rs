@@ -1,0 +1,295 @@
+//! Snapshots: bitwise round trips, identical continuation, and refusal of damaged data.
+
+use springwater::snapshot::{Snapshot, MAGIC, VERSION};
+use springwater::{Boundary, Error, Family, Params, SpringId, Surface};
+
+/// A surface that uses every piece of state: drops, velocities, pending forces, per-node
+/// mass/viscosity/pins, per-spring tables, a non-default band height, steps taken.
+fn busy_surface() -> Surface {
+    let mut p = Params::with_size(19, 13);
+    p.acceleration = [0.0, -0.01, 0.0];
+    let mut s = Surface::new(p).unwrap();
+    s.set_band_rows(3);
+    s.drop_at(9.0, 6.0, 1.5, 2.5).unwrap();
+    s.drop_at(4.3, 3.7, -0.8, 1.2).unwrap();
+    for _ in 0..17 {
+        s.step().unwrap();
+    }
+    s.set_mass(40, 5.5).unwrap();
+    s.set_viscosity(41, 0.2).unwrap();
+    s.set_pinned(60, true).unwrap();
+    s.set_pinned(0, false).unwrap();
+    s.set_spring(
+        SpringId {
+            family: Family::SE,
+            origin: 42,
+        },
+        0.9,
+        6.0,
+    )
+    .unwrap();
+    s.add_velocity(70, [0.0, 0.3, 0.1]).unwrap();
+    s.add_force(71, [0.5, -1.0, 0.25]).unwrap();
+    s
+}
+
+fn run(s: &mut Surface, steps: usize) {
+    for _ in 0..steps {
+        s.step().unwrap();
+    }
+}
+
+#[test]
+fn round_trip_is_bitwise() {
+    let s = busy_surface();
+    let bytes = s.to_bytes();
+    let back = Surface::from_bytes(&bytes).unwrap();
+    assert_eq!(back.to_bytes(), bytes);
+    assert_eq!(back.snapshot(), s.snapshot());
+    assert_eq!(back.steps(), s.steps());
+    assert_eq!(back.time().to_bits(), s.time().to_bits());
+    assert_eq!(back.critical_dt().to_bits(), s.critical_dt().to_bits());
+    assert_eq!(back.forces(), s.forces());
+}
+
+#[test]
+fn restored_surface_continues_bitwise_identically() {
+    let mut original = busy_surface();
+    let mut restored = Surface::from_bytes(&original.to_bytes()).unwrap();
+    run(&mut original, 200);
+    run(&mut restored, 200);
+    assert_eq!(original.to_bytes(), restored.to_bytes());
+    // Not trivially equal: the surface moved.
+    assert_ne!(original.to_bytes(), busy_surface().to_bytes());
+}
+
+#[test]
+fn save_then_load_through_io() {
+    let s = busy_surface();
+    let mut file = Vec::new();
+    s.save(&mut file).unwrap();
+    file.extend_from_slice(b"trailing game data");
+    let mut reader = &file[..];
+    let back = Surface::load(&mut reader).unwrap();
+    assert_eq!(back.to_bytes(), s.to_bytes());
+    assert_eq!(
+        reader, b"trailing game data",
+        "load reads exactly one snapshot"
+    );
+}
+
+#[test]
+fn restore_replaces_state_and_refusal_changes_nothing() {
+    let saved = busy_surface();
+    let mut target = Surface::new(Params::with_size(5, 7)).unwrap();
+    target.restore(&saved.to_bytes()).unwrap();
+    assert_eq!(target.to_bytes(), saved.to_bytes());
+
+    let mut target = Surface::new(Params::with_size(5, 7)).unwrap();
+    target.drop_at(2.0, 3.0, 0.5, 1.0).unwrap();
+    let before = target.to_bytes();
+    let mut bad = saved.to_bytes();
+    bad[500] ^= 0x40;
+    let err = target.restore(&bad).unwrap_err();
+    assert!(matches!(err, Error::Snapshot(_)), "{err}");
+    assert!(err.to_string().contains("checksum"), "{err}");
+    assert_eq!(target.to_bytes(), before);
+}
+
+fn message(bytes: &[u8]) -> String {
+    match Surface::from_bytes(bytes) {
+        Err(Error::Snapshot(m)) => m,
+        other => panic!("expected Error::Snapshot, got {other:?}"),
+    }
+}
+
+#[test]
+fn truncated_snapshots_are_refused_at_every_length() {
+    let bytes = Surface::new(Params::with_size(3, 2)).unwrap().to_bytes();
+    for len in 0..bytes.len() {
+        let m = message(&bytes[..len]);
+        assert!(m.contains("truncated"), "length {len}: {m}");
+        assert!(Surface::load(&bytes[..len]).is_err());
+    }
+}
+
+#[test]
+fn every_single_bit_flip_is_refused() {
+    let bytes = Surface::new(Params::with_size(3, 2)).unwrap().to_bytes();
+    for at in 0..bytes.len() {
+        for bit in 0..8 {
+            let mut b = bytes.clone();
+            b[at] ^= 1 << bit;
+            assert!(
+                Surface::from_bytes(&b).is_err(),
+                "flip of bit {bit} at byte {at} accepted"
+            );
+        }
+    }
+}
+
+/// Rewrites the checksum so that content checks are reached.
+fn fix_crc(b: &mut [u8]) {
+    let end = b.len() - 4;
+    let crc = crc32(&b[..end]);
+    b[end..].copy_from_slice(&crc.to_le_bytes());
+}
+
+fn crc32(data: &[u8]) -> u32 {
+    let mut crc = !0u32;
+    for &byte in data {
+        crc ^= byte as u32;
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xEDB8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+#[test]
+fn wrong_magic_and_version_are_refused() {
+    let bytes = Surface::new(Params::with_size(4, 4)).unwrap().to_bytes();
+    assert_eq!(&bytes[..8], &MAGIC);
+    let mut b = bytes.clone();
+    b[0] = b'X';
+    assert!(message(&b).contains("magic"));
+    let mut b = bytes.clone();
+    b[8..12].copy_from_slice(&(VERSION + 1).to_le_bytes());
+    fix_crc(&mut b);
+    let m = message(&b);
+    assert!(m.contains("version 2"), "{m}");
+}
+
+#[test]
+fn lying_lengths_are_refused_without_allocating() {
+    let bytes = Surface::new(Params::with_size(4, 4)).unwrap().to_bytes();
+    // A header announcing 2^28 nodes over a few hundred bytes: refused as truncated, and the
+    // reader path does not allocate the announced size.
+    let mut b = bytes.clone();
+    b[24..32].copy_from_slice(&(1u64 << 14).to_le_bytes());
+    b[32..40].copy_from_slice(&(1u64 << 14).to_le_bytes());
+    b[16..24].copy_from_slice(&(116u64 + 77 * (1 << 28)).to_le_bytes());
+    assert!(message(&b).contains("truncated"));
+    assert!(Surface::load(&b[..]).is_err());
+    // cols × rows overflowing u64.
+    let mut b = bytes.clone();
+    b[24..32].copy_from_slice(&u64::MAX.to_le_bytes());
+    assert!(message(&b).contains("larger than any surface"));
+    // Total length disagreeing with cols × rows.
+    let mut b = bytes.clone();
+    b[16..24].copy_from_slice(&(bytes.len() as u64 + 77).to_le_bytes());
+    assert!(message(&b).contains("inconsistent lengths"));
+    // Trailing data after a complete snapshot.
+    let mut b = bytes.clone();
+    b.push(0);
+    assert!(message(&b).contains("trailing"));
+}
+
+#[test]
+fn invalid_contents_with_a_valid_checksum_are_refused() {
+    let s = busy_surface();
+    let n = s.len();
+    let base = s.snapshot();
+    let cases: Vec<(&str, Box<dyn Fn(&mut Snapshot)>)> = vec![
+        ("NaN position", Box::new(|s| s.positions[1][7] = f32::NAN)),
+        (
+            "infinite velocity",
+            Box::new(|s| s.velocities[0][8] = f32::INFINITY),
+        ),
+        ("NaN force", Box::new(|s| s.forces[2][9] = f32::NAN)),
+        ("zero mass", Box::new(|s| s.mass[10] = 0.0)),
+        (
+            "subnormal mass",
+            Box::new(|s| {
+                s.mass[10] = 1e-40;
+                s.min_mass = 1e-40
+            }),
+        ),
+        ("negative viscosity", Box::new(|s| s.viscosity[11] = -1.0)),
+        (
+            "viscosity above bound",
+            Box::new(|s| s.viscosity[11] = 100.0),
+        ),
+        (
+            "moving pinned node",
+            Box::new(|s| {
+                s.pinned[30] = true;
+                s.velocities[1][30] = 0.5
+            }),
+        ),
+        ("negative rest", Box::new(|s| s.rest[0][30] = -1.0)),
+        ("zero coefficient", Box::new(|s| s.coef[1][30] = 0.0)),
+        (
+            "coef above bound",
+            Box::new(|s| s.coef[2][30] = s.max_stiffness * 2.0),
+        ),
+        (
+            "spring off the grid",
+            Box::new(move |s| s.coef[0][18] = 1.0),
+        ),
+        ("dt past critical", Box::new(|s| s.params.dt = 1.0)),
+        ("invalid param", Box::new(|s| s.params.rest_ratio = 2.0)),
+        ("zero band height", Box::new(|s| s.band_rows = 0)),
+        ("negative time", Box::new(|s| s.time = -1.0)),
+        (
+            "wrong array length",
+            Box::new(move |s| s.mass.truncate(n - 1)),
+        ),
+    ];
+    for (what, edit) in cases {
+        let mut snap = base.clone();
+        edit(&mut snap);
+        let err = Surface::from_snapshot(snap.clone()).unwrap_err();
+        assert!(matches!(err, Error::Snapshot(_)), "{what}: {err}");
+        if snap.mass.len() == n {
+            // Through the binary format too (with a valid checksum).
+            let err = Surface::from_bytes(&snap.to_bytes()).unwrap_err();
+            assert!(matches!(err, Error::Snapshot(_)), "{what}: {err}");
+        }
+    }
+    // And the untouched snapshot is fine.
+    Surface::from_snapshot(base).unwrap();
+}
+
+#[test]
+fn unknown_codes_in_the_header_are_refused() {
+    let bytes = Surface::new(Params::with_size(4, 4)).unwrap().to_bytes();
+    let mut b = bytes.clone();
+    b[64..68].copy_from_slice(&7u32.to_le_bytes()); // boundary
+    fix_crc(&mut b);
+    assert!(message(&b).contains("boundary"));
+    let mut b = bytes.clone();
+    b[12..16].copy_from_slice(&0x80u32.to_le_bytes()); // flags
+    fix_crc(&mut b);
+    assert!(message(&b).contains("flags"));
+    let mut b = bytes;
+    let pinned_at = 112 + 11 * 4 * 16;
+    b[pinned_at] = 2;
+    fix_crc(&mut b);
+    assert!(message(&b).contains("pinned flag"));
+}
+
+#[test]
+fn free_boundary_and_snapshot_of_fresh_surface() {
+    let mut p = Params::with_size(2, 2);
+    p.boundary = Boundary::Free;
+    let s = Surface::new(p).unwrap();
+    let bytes = s.to_bytes();
+    assert_eq!(bytes.len(), 116 + 77 * 4);
+    assert_eq!(Surface::from_bytes(&bytes).unwrap().to_bytes(), bytes);
+}
+
+#[test]
+fn pending_forces_survive_a_snapshot() {
+    let mut a = Surface::new(Params::with_size(8, 8)).unwrap();
+    a.add_force(27, [0.0, 3.0, 0.0]).unwrap();
+    let mut b = Surface::from_bytes(&a.to_bytes()).unwrap();
+    a.step().unwrap();
+    b.step().unwrap();
+    assert_eq!(a.to_bytes(), b.to_bytes());
+    assert!(a.positions()[1][27] > 0.0, "the force was applied");
+}
