@@ -1,7 +1,8 @@
 //! The structure-of-arrays node state.
 //!
-//! Every per-node quantity is its own `f32` buffer: x, y, z, vx, vy, vz, forces, mass,
-//! viscosity. Node `i` lives at index `i` of each buffer. Buffers are padded past the
+//! Every per-node quantity is its own `f32` buffer: x, y, z, vx, vy, vz, external forces,
+//! mass, viscosity. (Spring forces live with the step that computes them: per family and
+//! row in the engine, per family and node in the scalar reference.) Node `i` lives at index `i` of each buffer. Buffers are padded past the
 //! last node by more than a lane so that a SIMD chunk starting at any node, or one node
 //! further, stays in bounds; the padding is zero and never moves.
 //!
@@ -37,9 +38,6 @@ pub(crate) struct State {
     pub next_pos: Xyz,
     /// Velocities being written by a step (back buffer).
     pub next_vel: Xyz,
-    /// Spring force sum per node, used by the scalar reference step (the engine keeps
-    /// forces in per-band row buffers instead, see `forces::simd`).
-    pub force: Xyz,
     /// External force per node for the next step, cleared by a successful step.
     pub ext: Xyz,
     /// True when `ext` holds anything non-zero.
@@ -79,7 +77,6 @@ impl State {
             pos,
             vel: zeros3(len),
             next_vel: zeros3(len),
-            force: zeros3(len),
             ext: zeros3(len),
             ext_pending: false,
             mass,

@@ -55,6 +55,7 @@ pub struct Surface {
     pub(crate) state: State,
     pub(crate) springs: Springs,
     workspace: Workspace,
+    reference: forces::scalar::Scratch,
     /// Smallest node mass and largest spring coefficient: they set `critical_dt`.
     min_mass: f32,
     max_stiffness: f32,
@@ -81,6 +82,7 @@ impl Surface {
             state: State::new(&params),
             springs: Springs::new(&params),
             workspace: Workspace::new(params.cols, params.rows, BAND_ROWS),
+            reference: Default::default(),
             min_mass: params.mass,
             max_stiffness: params.stiffness,
             steps: 0,
@@ -173,7 +175,9 @@ impl Surface {
             Stepper::Engine => {
                 forces::simd::step(&mut self.state, &self.springs, &mut self.workspace, cfg)
             }
-            Stepper::Reference => forces::scalar::step(&mut self.state, &self.springs, cfg),
+            Stepper::Reference => {
+                forces::scalar::step(&mut self.state, &self.springs, &mut self.reference, cfg)
+            }
         };
         match outcome {
             Ok(()) => {
