@@ -170,7 +170,9 @@ impl Surface {
     }
 
     fn step_dt(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
-        let cfg = StepConfig { dt, accel: self.params.acceleration };
+        // `+ 0.0` turns a −0 acceleration into +0, which keeps a zero force's sign from
+        // reaching the state (see `forces::simd::spring_force`).
+        let cfg = StepConfig { dt, accel: self.params.acceleration.map(|a| a + 0.0) };
         let outcome = match stepper {
             Stepper::Engine => {
                 forces::simd::step(&mut self.state, &self.springs, &mut self.workspace, cfg)

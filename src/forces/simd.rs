@@ -42,6 +42,9 @@ use std::cell::RefCell;
 /// Offset of column 0 in a row buffer: index `LEAD − 1` is a zero "column −1".
 const LEAD: usize = LANES;
 
+/// A lane mask with every lane on.
+const ALL: Lane = Lane::new([f32::from_bits(u32::MAX); LANES]);
+
 /// Spring forces of one row, by family (E, S, SE, SW) and axis, on the row's origin nodes.
 /// Column `c` is at `LEAD + c`; the columns before 0 and after the row read as zero.
 #[derive(Debug, Clone)]
@@ -266,16 +269,16 @@ fn odd_band(inp: &Inputs, b: usize, h: usize, pair: &mut [RowForces], mut rows: 
     })
 }
 
-/// Force on the `i` lanes from springs `i → j`: `c (L − L0) d / L`, zero where `L = 0` and
-/// exactly `+0` where the spring does not exist (`coef = 0`).
+/// Force on the `i` lanes from springs `i → j`: `c (L − L0) d / L`, zero where `L = 0`.
+/// A spring that does not exist has `c = 0` and gives ±0, which sums like the reference's
+/// +0 in every case but an all-zero force, and the integrator adds `+0` (or `g`) to that.
 #[inline(always)]
 fn spring_force(pi: [Lane; 3], pj: [Lane; 3], coef: Lane, rest: Lane) -> [Lane; 3] {
     let d = [pj[0] - pi[0], pj[1] - pi[1], pj[2] - pi[2]];
     let l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     let l = l2.sqrt();
     let s = l2.simd_gt(Lane::ZERO).select(coef * (l - rest) / l, Lane::ZERO);
-    let exists = coef.simd_gt(Lane::ZERO);
-    [(s * d[0]) & exists, (s * d[1]) & exists, (s * d[2]) & exists]
+    [s * d[0], s * d[1], s * d[2]]
 }
 
 #[inline(always)]
@@ -289,25 +292,41 @@ fn load3(s: [&[f32]; 3], at: usize) -> [Lane; 3] {
 fn row_springs(inp: &Inputs, r: usize, out: &mut RowForces) {
     let cols = inp.cols;
     let base = r * cols;
-    let has_down = r + 1 < inp.rows;
-    if !has_down {
-        out.zero_down();
-    }
+    let span = cols + LANES + 1;
+    // Row slices, taken once: `here` starts at column 0 of row r, `down` at column −1 of
+    // row r+1, so the other ends of E, SW, S, SE sit at offsets +1, 0, +1, +2.
+    let here = inp.pos.map(|p| &p[base..base + span]);
     let sp = inp.springs;
-    let all = first_lanes(LANES);
-    for c0 in (0..cols).step_by(LANES) {
-        let i = base + c0;
-        let live = if c0 + LANES > cols { inp.tail } else { all };
-        let pi = load3(inp.pos, i);
-        // (family, index of the spring's other end)
-        let families: &[(usize, usize)] = if has_down { &[(0, i + 1), (1, i + cols), (2, i + cols + 1), (3, i + cols - 1)] } else { &[(0, i + 1)] };
-        for &(fam, j) in families {
-            let coef = load(&sp.coef[fam], i) & live;
-            let f = spring_force(pi, load3(inp.pos, j), coef, load(&sp.rest[fam], i));
-            for (k, fk) in f.into_iter().enumerate() {
-                store(&mut out.fam[fam][k], LEAD + c0, fk);
+    let coef: [&[f32]; 4] = std::array::from_fn(|f| &sp.coef[f][base..base + span]);
+    let rest: [&[f32]; 4] = std::array::from_fn(|f| &sp.rest[f][base..base + span]);
+    let [e, s, se, sw] = &mut out.fam;
+    let has_down = r + 1 < inp.rows;
+    let down = if has_down { inp.pos.map(|p| &p[base + cols - 1..base + cols - 1 + span + 1]) } else { here };
+    if !has_down {
+        for fam in [&mut *s, &mut *se, &mut *sw] {
+            for c in fam {
+                c.fill(0.0);
             }
         }
+    }
+    for c0 in (0..cols).step_by(LANES) {
+        let live = if c0 + LANES > cols { inp.tail } else { ALL };
+        let pi = load3(here, c0);
+        spring_lanes(pi, load3(here, c0 + 1), coef[0], rest[0], c0, live, e);
+        if has_down {
+            spring_lanes(pi, load3(down, c0 + 1), coef[1], rest[1], c0, live, s);
+            spring_lanes(pi, load3(down, c0 + 2), coef[2], rest[2], c0, live, se);
+            spring_lanes(pi, load3(down, c0), coef[3], rest[3], c0, live, sw);
+        }
+    }
+}
+
+/// One family's springs for the lanes at column `c0`, stored into that family's row.
+#[inline(always)]
+fn spring_lanes(pi: [Lane; 3], pj: [Lane; 3], coef: &[f32], rest: &[f32], c0: usize, live: Lane, out: &mut [Vec<f32>; 3]) {
+    let f = spring_force(pi, pj, load(coef, c0) & live, load(rest, c0));
+    for (o, fk) in out.iter_mut().zip(f) {
+        store(o, LEAD + c0, fk);
     }
 }
 
@@ -318,41 +337,54 @@ fn row_springs(inp: &Inputs, r: usize, out: &mut RowForces) {
 fn integrate_row(inp: &Inputs, r: usize, cur: &RowForces, prev: &RowForces, rows: &mut Rows) -> Option<usize> {
     let cols = inp.cols;
     let base = r * cols;
+    fn row(s: &[f32], base: usize, cols: usize) -> &[f32] {
+        &s[base..base + cols + LANES]
+    }
+    let node = |s| row(s, base, cols);
+    let (inv_mass, viscosity) = (node(inp.inv_mass), node(inp.viscosity));
     let out_base = (r - rows.first_row) * cols;
     let dt = Lane::splat(inp.cfg.dt);
-    let g = inp.cfg.accel.map(Lane::splat);
-    let all = first_lanes(LANES);
-    let mut finite = all;
-    for c0 in (0..cols).step_by(LANES) {
-        let i = base + c0;
-        let a = LEAD + c0;
-        let count = (cols - c0).min(LANES);
-        let live = if count < LANES { inp.tail } else { all };
-        let inv_mass = load(inp.inv_mass, i);
-        let viscosity = load(inp.viscosity, i);
-        let free = inv_mass.simd_gt(Lane::ZERO);
-        for k in 0..3 {
-            // Same expression as `scalar::node_force`: leaving minus arriving, per family.
-            let [e, s, se, sw] = &cur.fam;
-            let [_, ps, pse, psw] = &prev.fam;
-            let mut force = (load(&e[k], a) - load(&e[k], a - 1))
-                + (load(&s[k], a) - load(&ps[k], a))
-                + (load(&se[k], a) - load(&pse[k], a - 1))
-                + (load(&sw[k], a) - load(&psw[k], a + 1));
-            if let Some(ext) = inp.ext {
-                force += load(ext[k], i);
+    let mut finite = Lane::ZERO;
+    for k in 0..3 {
+        let (pos, vel) = (node(inp.pos[k]), node(inp.vel[k]));
+        let ext = inp.ext.map(|e| node(e[k]));
+        let g = Lane::splat(inp.cfg.accel[k]);
+        let [e, s, se, sw] = cur.fam.each_ref().map(|f| &f[k][..]);
+        let [_, ps, pse, psw] = prev.fam.each_ref().map(|f| &f[k][..]);
+        let (out_x, out_v) = {
+            let [x0, x1, x2, v0, v1, v2] = &mut rows.out;
+            match k {
+                0 => (&mut **x0, &mut **v0),
+                1 => (&mut **x1, &mut **v1),
+                _ => (&mut **x2, &mut **v2),
             }
-            let v = load(inp.vel[k], i);
-            let x = load(inp.pos[k], i);
-            let acc = (force - viscosity * v) * inv_mass + free.select(g[k], Lane::ZERO);
+        };
+        for c0 in (0..cols).step_by(LANES) {
+            let a = LEAD + c0;
+            // Same expression as `scalar::node_force`: leaving minus arriving, per family.
+            let mut force = (load(e, a) - load(e, a - 1))
+                + (load(s, a) - load(ps, a))
+                + (load(se, a) - load(pse, a - 1))
+                + (load(sw, a) - load(psw, a + 1));
+            if let Some(ext) = ext {
+                force += load(ext, c0);
+            }
+            let inv_mass = load(inv_mass, c0);
+            let free = inv_mass.simd_gt(Lane::ZERO);
+            let v = load(vel, c0);
+            let acc = (force - load(viscosity, c0) * v) * inv_mass + free.select(g, Lane::ZERO);
             let v1 = v + acc * dt;
-            let x1 = x + v1 * dt;
-            finite &= (x1.is_finite() & v1.is_finite()) | !live;
-            store_first(rows.out[k], out_base + c0, x1, count);
-            store_first(rows.out[3 + k], out_base + c0, v1, count);
+            let x1 = load(pos, c0) + v1 * dt;
+            // Fused finiteness check: `x·0` is 0 for finite x and NaN otherwise, and x' is
+            // non-finite whenever v' is. Lanes past the row hold other rows' values or zero
+            // padding; a non-finite one there is reported when its own row is checked.
+            finite += x1 * Lane::ZERO;
+            let count = (cols - c0).min(LANES);
+            store_first(out_x, out_base + c0, x1, count);
+            store_first(out_v, out_base + c0, v1, count);
         }
     }
-    if finite.all() {
+    if !finite.is_nan().any() {
         return None;
     }
     (0..cols).find_map(|c| (0..6).any(|k| !rows.out[k][out_base + c].is_finite()).then_some(base + c))

@@ -30,6 +30,7 @@ impl Kernel {
 pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut model = ModelArgs::default();
     let mut repeats: usize = 5;
+    let mut band_rows: Option<usize> = None;
     let mut compare = vec![Kernel::Reference, Kernel::Naive, Kernel::Floor];
     while let Some(arg) = next_flag(p)? {
         if model.parse_flag(&arg, p)? {
@@ -41,6 +42,13 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                 if repeats == 0 {
                     return Err("--repeats must be at least 1".into());
                 }
+            }
+            Flag::Long(l) if l == "band-rows" => {
+                let h: usize = value(p, "--band-rows")?;
+                if h == 0 {
+                    return Err("--band-rows must be at least 1".into());
+                }
+                band_rows = Some(h);
             }
             Flag::Long(l) if l == "compare" => {
                 compare = string(p, "--compare")?
@@ -61,6 +69,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         return Err("--steps must be at least 1 for bench".into());
     }
     let mut surface = model.surface()?;
+    if let Some(h) = band_rows {
+        surface.set_band_rows(h);
+    }
     if model.drops.is_empty() {
         let p = surface.params();
         surface

@@ -17,6 +17,7 @@ commands:
   simulate   run the steps and print a summary        [--csv FILE]
   bench      time the step against the scalar reference, a naive AoS
              baseline and a memory-bandwidth floor    [--repeats N] [--compare LIST]
+                                                      [--band-rows H]
 
 model flags (seed defaults):
   --size COLSxROWS     grid size (128x128)
