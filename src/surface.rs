@@ -246,8 +246,12 @@ impl Surface {
         for f in force {
             params::finite("force", f)?;
         }
-        for (k, f) in force.into_iter().enumerate() {
-            self.state.ext[k][node] += f;
+        let sum: [f32; 3] = std::array::from_fn(|k| self.state.ext[k][node] + force[k]);
+        for f in sum {
+            params::finite("accumulated force", f)?;
+        }
+        for (k, f) in sum.into_iter().enumerate() {
+            self.state.ext[k][node] = f;
         }
         self.state.ext_pending = true;
         Ok(())
