@@ -56,7 +56,10 @@ pub(crate) struct RowForces {
 impl RowForces {
     fn new(cols: usize) -> Self {
         let len = LEAD + crate::simd::round_up(cols) + LANES;
-        Self { cols, fam: std::array::from_fn(|_| std::array::from_fn(|_| vec![0.0; len])) }
+        Self {
+            cols,
+            fam: std::array::from_fn(|_| std::array::from_fn(|_| vec![0.0; len])),
+        }
     }
 
     /// Copies the forces of the families in `families` from `other`.
@@ -80,20 +83,51 @@ impl RowForces {
 /// The engine's reusable buffers: one parked [`RowForces`] per band.
 #[derive(Debug, Clone)]
 pub(crate) struct Workspace {
+    /// A band height fixed by the caller, or `None` to follow [`crate::springs::band_rows`].
+    fixed: Option<usize>,
     band_rows: usize,
     parked: Vec<RowForces>,
 }
 
 impl Workspace {
-    pub fn new(cols: usize, rows: usize, band_rows: usize) -> Self {
-        let band_rows = band_rows.max(1);
-        let parked = (0..rows.div_ceil(band_rows)).map(|_| RowForces::new(cols)).collect();
-        Self { band_rows, parked }
+    pub fn new(fixed: Option<usize>) -> Self {
+        Self {
+            fixed: fixed.map(|h| h.max(1)),
+            band_rows: 0,
+            parked: Vec::new(),
+        }
     }
 
-    pub fn band_rows(&self) -> usize {
-        self.band_rows
+    /// The band height for this grid and the current thread count; rebuilds the parked
+    /// rows when it changes (only when the thread count does).
+    fn prepare(&mut self, cols: usize, rows: usize) -> usize {
+        let h = self.band_rows_for(rows);
+        if h != self.band_rows
+            || self.parked.first().is_some_and(|p| p.cols != cols)
+            || self.parked.is_empty()
+        {
+            self.band_rows = h;
+            self.parked = (0..rows.div_ceil(h))
+                .map(|_| RowForces::new(cols))
+                .collect();
+        }
+        h
     }
+
+    pub fn band_rows_for(&self, rows: usize) -> usize {
+        self.fixed
+            .unwrap_or_else(|| crate::springs::band_rows(rows, threads()))
+    }
+}
+
+#[cfg(feature = "parallel")]
+fn threads() -> usize {
+    rayon::current_num_threads()
+}
+
+#[cfg(not(feature = "parallel"))]
+fn threads() -> usize {
+    1
 }
 
 thread_local! {
@@ -142,15 +176,28 @@ impl<'a> Rows<'a> {
         let held = self.out[0].len() / self.cols;
         let at = row.saturating_sub(self.first_row).min(held);
         let [a, b, c, d, e, f] = self.out.map(|s| s.split_at_mut(at * self.cols));
-        let head = Rows { first_row: self.first_row, cols: self.cols, out: [a.0, b.0, c.0, d.0, e.0, f.0] };
-        let tail = Rows { first_row: self.first_row + at, cols: self.cols, out: [a.1, b.1, c.1, d.1, e.1, f.1] };
+        let head = Rows {
+            first_row: self.first_row,
+            cols: self.cols,
+            out: [a.0, b.0, c.0, d.0, e.0, f.0],
+        };
+        let tail = Rows {
+            first_row: self.first_row + at,
+            cols: self.cols,
+            out: [a.1, b.1, c.1, d.1, e.1, f.1],
+        };
         (head, tail)
     }
 }
 
 /// One engine step from the front into the back buffers. Returns the first non-finite
 /// node, if any.
-pub(crate) fn step(state: &mut State, springs: &Springs, ws: &mut Workspace, cfg: StepConfig) -> Result<(), usize> {
+pub(crate) fn step(
+    state: &mut State,
+    springs: &Springs,
+    ws: &mut Workspace,
+    cfg: StepConfig,
+) -> Result<(), usize> {
     let grid = state.grid;
     let (cols, rows, n) = (grid.cols, grid.rows, grid.len());
     let inp = Inputs {
@@ -160,29 +207,56 @@ pub(crate) fn step(state: &mut State, springs: &Springs, ws: &mut Workspace, cfg
         vel: [&state.vel[0], &state.vel[1], &state.vel[2]],
         inv_mass: &state.inv_mass,
         viscosity: &state.viscosity,
-        ext: state.ext_pending.then(|| [&state.ext[0][..], &state.ext[1][..], &state.ext[2][..]]),
+        ext: state
+            .ext_pending
+            .then(|| [&state.ext[0][..], &state.ext[1][..], &state.ext[2][..]]),
         springs,
         cfg,
         tail: first_lanes(cols - (cols - 1) / LANES * LANES),
     };
-    let h = ws.band_rows;
+    let h = ws.prepare(cols, rows);
 
     // Colour 0: even bands, each paired with the odd band below it.
     let [px, py, pz] = &mut state.next_pos;
     let [vx, vy, vz] = &mut state.next_vel;
-    let out = [&mut px[..n], &mut py[..n], &mut pz[..n], &mut vx[..n], &mut vy[..n], &mut vz[..n]];
-    let all = Rows { first_row: 0, cols, out };
-    let bad_even = for_each_pair(&mut ws.parked, 0, all, h, &|b, pair, rows| even_band(&inp, b, h, pair, rows));
+    let out = [
+        &mut px[..n],
+        &mut py[..n],
+        &mut pz[..n],
+        &mut vx[..n],
+        &mut vy[..n],
+        &mut vz[..n],
+    ];
+    let all = Rows {
+        first_row: 0,
+        cols,
+        out,
+    };
+    let bad_even = for_each_pair(&mut ws.parked, 0, all, h, &|b, pair, rows| {
+        even_band(&inp, b, h, pair, rows)
+    });
 
     // Colour 1: odd bands, each paired with the even band below it.
     let [px, py, pz] = &mut state.next_pos;
     let [vx, vy, vz] = &mut state.next_vel;
-    let out = [&mut px[..n], &mut py[..n], &mut pz[..n], &mut vx[..n], &mut vy[..n], &mut vz[..n]];
-    let (_, from_band_1) = Rows { first_row: 0, cols, out }.split_at_row(h);
+    let out = [
+        &mut px[..n],
+        &mut py[..n],
+        &mut pz[..n],
+        &mut vx[..n],
+        &mut vy[..n],
+        &mut vz[..n],
+    ];
+    let (_, from_band_1) = Rows {
+        first_row: 0,
+        cols,
+        out,
+    }
+    .split_at_row(h);
     let bad_odd = match ws.parked.get_mut(1..) {
-        Some(odd) if !odd.is_empty() => {
-            for_each_pair(odd, 1, from_band_1, h, &|b, pair, rows| odd_band(&inp, b, h, pair, rows))
-        }
+        Some(odd) if !odd.is_empty() => for_each_pair(odd, 1, from_band_1, h, &|b, pair, rows| {
+            odd_band(&inp, b, h, pair, rows)
+        }),
         _ => None,
     };
     match (bad_even, bad_odd) {
@@ -194,7 +268,13 @@ pub(crate) fn step(state: &mut State, springs: &Springs, ws: &mut Workspace, cfg
 /// Runs `f` on consecutive pairs of bands (`parked[0..2]`, `parked[2..4]`, …) with the
 /// rows of each pair, splitting recursively with `rayon::join` (in order without the
 /// `parallel` feature). Returns the smallest non-finite node reported.
-fn for_each_pair<F>(parked: &mut [RowForces], first_band: usize, rows: Rows<'_>, band_rows: usize, f: &F) -> Option<usize>
+fn for_each_pair<F>(
+    parked: &mut [RowForces],
+    first_band: usize,
+    rows: Rows<'_>,
+    band_rows: usize,
+    f: &F,
+) -> Option<usize>
 where
     F: Fn(usize, &mut [RowForces], Rows<'_>) -> Option<usize> + Sync,
 {
@@ -225,7 +305,13 @@ fn join<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
 }
 
 /// Colour 0: band `b` (even). `pair[0]` is its parked row, `pair.get(1)` the odd band's.
-fn even_band(inp: &Inputs, b: usize, h: usize, pair: &mut [RowForces], mut rows: Rows) -> Option<usize> {
+fn even_band(
+    inp: &Inputs,
+    b: usize,
+    h: usize,
+    pair: &mut [RowForces],
+    mut rows: Rows,
+) -> Option<usize> {
     let r0 = b * h;
     let r1 = ((b + 1) * h).min(inp.rows);
     with_ring(inp.cols, |ring| {
@@ -249,7 +335,13 @@ fn even_band(inp: &Inputs, b: usize, h: usize, pair: &mut [RowForces], mut rows:
 }
 
 /// Colour 1: band `b` (odd). `pair[0]` is its parked row, `pair.get(1)` the even band's.
-fn odd_band(inp: &Inputs, b: usize, h: usize, pair: &mut [RowForces], mut rows: Rows) -> Option<usize> {
+fn odd_band(
+    inp: &Inputs,
+    b: usize,
+    h: usize,
+    pair: &mut [RowForces],
+    mut rows: Rows,
+) -> Option<usize> {
     let r0 = b * h;
     let r1 = ((b + 1) * h).min(inp.rows);
     with_ring(inp.cols, |ring| {
@@ -277,7 +369,9 @@ fn spring_force(pi: [Lane; 3], pj: [Lane; 3], coef: Lane, rest: Lane) -> [Lane; 
     let d = [pj[0] - pi[0], pj[1] - pi[1], pj[2] - pi[2]];
     let l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     let l = l2.sqrt();
-    let s = l2.simd_gt(Lane::ZERO).select(coef * (l - rest) / l, Lane::ZERO);
+    let s = l2
+        .simd_gt(Lane::ZERO)
+        .select(coef * (l - rest) / l, Lane::ZERO);
     [s * d[0], s * d[1], s * d[2]]
 }
 
@@ -301,7 +395,12 @@ fn row_springs(inp: &Inputs, r: usize, out: &mut RowForces) {
     let rest: [&[f32]; 4] = std::array::from_fn(|f| &sp.rest[f][base..base + span]);
     let [e, s, se, sw] = &mut out.fam;
     let has_down = r + 1 < inp.rows;
-    let down = if has_down { inp.pos.map(|p| &p[base + cols - 1..base + cols - 1 + span + 1]) } else { here };
+    let down = if has_down {
+        inp.pos
+            .map(|p| &p[base + cols - 1..base + cols - 1 + span + 1])
+    } else {
+        here
+    };
     if !has_down {
         for fam in [&mut *s, &mut *se, &mut *sw] {
             for c in fam {
@@ -323,7 +422,15 @@ fn row_springs(inp: &Inputs, r: usize, out: &mut RowForces) {
 
 /// One family's springs for the lanes at column `c0`, stored into that family's row.
 #[inline(always)]
-fn spring_lanes(pi: [Lane; 3], pj: [Lane; 3], coef: &[f32], rest: &[f32], c0: usize, live: Lane, out: &mut [Vec<f32>; 3]) {
+fn spring_lanes(
+    pi: [Lane; 3],
+    pj: [Lane; 3],
+    coef: &[f32],
+    rest: &[f32],
+    c0: usize,
+    live: Lane,
+    out: &mut [Vec<f32>; 3],
+) {
     let f = spring_force(pi, pj, load(coef, c0) & live, load(rest, c0));
     for (o, fk) in out.iter_mut().zip(f) {
         store(o, LEAD + c0, fk);
@@ -334,7 +441,13 @@ fn spring_lanes(pi: [Lane; 3], pj: [Lane; 3], coef: &[f32], rest: &[f32], c0: us
 /// row r−1) and integrates the row into the back buffers. Returns the first node whose
 /// new state is not finite.
 #[inline(always)]
-fn integrate_row(inp: &Inputs, r: usize, cur: &RowForces, prev: &RowForces, rows: &mut Rows) -> Option<usize> {
+fn integrate_row(
+    inp: &Inputs,
+    r: usize,
+    cur: &RowForces,
+    prev: &RowForces,
+    rows: &mut Rows,
+) -> Option<usize> {
     let cols = inp.cols;
     let base = r * cols;
     fn row(s: &[f32], base: usize, cols: usize) -> &[f32] {
@@ -387,5 +500,9 @@ fn integrate_row(inp: &Inputs, r: usize, cur: &RowForces, prev: &RowForces, rows
     if !finite.is_nan().any() {
         return None;
     }
-    (0..cols).find_map(|c| (0..6).any(|k| !rows.out[k][out_base + c].is_finite()).then_some(base + c))
+    (0..cols).find_map(|c| {
+        (0..6)
+            .any(|k| !rows.out[k][out_base + c].is_finite())
+            .then_some(base + c)
+    })
 }

@@ -64,6 +64,8 @@ fn run() -> args::CliResult<()> {
             print!("{USAGE}");
             Ok(())
         }
-        other => Err(format!("unknown command '{other}' (simulate, bench; see springwater --help)")),
+        other => Err(format!(
+            "unknown command '{other}' (simulate, bench; see springwater --help)"
+        )),
     }
 }
