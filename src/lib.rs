@@ -66,3 +66,8 @@ pub use mesh::MeshView;
 pub use params::{Boundary, Params};
 pub use snapshot::Snapshot;
 pub use surface::{Energy, Stepper, Surface};
+
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

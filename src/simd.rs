@@ -66,7 +66,11 @@ pub fn sub_from(s: &mut [f32], at: usize, v: Lane) {
 pub fn first_lanes(count: usize) -> Lane {
     let mut m = [0.0f32; LANES];
     for (i, v) in m.iter_mut().enumerate() {
-        *v = if i < count { f32::from_bits(u32::MAX) } else { 0.0 };
+        *v = if i < count {
+            f32::from_bits(u32::MAX)
+        } else {
+            0.0
+        };
     }
     Lane::new(m)
 }

@@ -30,7 +30,7 @@
 //! | 80 | 8 | steps taken `u64` |
 //! | 88 | 8 | model time `f64` |
 //! | 96 | 3 × 4 | `min_mass`, `max_stiffness`, `max_viscosity` (`f32`): the bounds behind `critical_dt` |
-//! | 108 | 4 | engine band height `u32` (results depend on it in the last bits) |
+//! | 108 | 4 | reserved, 0 |
 //! | 112 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z |
 //! | | 2 × 4n | mass, viscosity per node |
 //! | | n | pinned per node, `u8` 0 or 1 |
@@ -85,8 +85,6 @@ pub struct Snapshot {
     pub max_stiffness: f32,
     /// Largest viscosity ever set.
     pub max_viscosity: f32,
-    /// Rows per engine band (the colour granularity).
-    pub band_rows: u32,
     /// Whether `forces` is applied by the next step.
     pub forces_pending: bool,
     /// Positions `[x, y, z]`.
@@ -159,7 +157,7 @@ impl Snapshot {
         b.extend_from_slice(&self.min_mass.to_le_bytes());
         b.extend_from_slice(&self.max_stiffness.to_le_bytes());
         b.extend_from_slice(&self.max_viscosity.to_le_bytes());
-        b.extend_from_slice(&self.band_rows.to_le_bytes());
+        b.extend_from_slice(&0u32.to_le_bytes());
         debug_assert_eq!(b.len(), HEADER);
         let arrays = self
             .positions
@@ -239,11 +237,16 @@ impl Snapshot {
         let min_mass = r.f32();
         let max_stiffness = r.f32();
         let max_viscosity = r.f32();
-        let band_rows = r.u32();
+        let reserved = r.u32();
         if flags & !FLAG_FORCES_PENDING != 0 {
             return Err(bad(format!(
                 "unknown flags {flags:#x}: written by an incompatible writer"
             )));
+        }
+        if reserved != 0 {
+            return Err(bad(
+                "the reserved header field is not 0: written by an incompatible writer",
+            ));
         }
         let n = cols * rows; // bounded by check_header
         let mut f32s = || r.f32s(n);
@@ -274,7 +277,6 @@ impl Snapshot {
             min_mass,
             max_stiffness,
             max_viscosity,
-            band_rows,
             forces_pending: flags & FLAG_FORCES_PENDING != 0,
             positions,
             velocities,
@@ -342,9 +344,6 @@ impl Snapshot {
                 "model time {} is not a finite number >= 0",
                 self.time
             )));
-        }
-        if self.band_rows == 0 {
-            return Err(bad("band height 0: must be at least 1"));
         }
         params::positive("min_mass", self.min_mass).map_err(|e| bad(e.to_string()))?;
         params::positive("max_stiffness", self.max_stiffness).map_err(|e| bad(e.to_string()))?;
@@ -483,7 +482,6 @@ impl Surface {
             min_mass: self.min_mass,
             max_stiffness: self.max_stiffness,
             max_viscosity: self.max_viscosity,
-            band_rows: u32::try_from(self.band_rows()).unwrap_or(u32::MAX),
             forces_pending: s.ext_pending,
             positions: cut3(&s.pos),
             velocities: cut3(&s.vel),
@@ -523,13 +521,11 @@ impl Surface {
             springs.coef[f][..n].copy_from_slice(&snap.coef[f]);
         }
         let bounds = [snap.min_mass, snap.max_stiffness, snap.max_viscosity];
-        let band_rows = snap.band_rows as usize;
         Ok(Surface::from_parts(
             p,
             state,
             springs,
             bounds,
-            band_rows,
             (snap.steps, snap.time),
         ))
     }

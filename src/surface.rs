@@ -5,7 +5,7 @@ use crate::forces::{self, simd::Workspace, StepConfig};
 use crate::grid::{Family, Grid, SpringId};
 use crate::mesh::MeshView;
 use crate::params::{self, Params};
-use crate::springs::{self, Band, Springs, BAND_ROWS};
+use crate::springs::{self, Band, Springs};
 use crate::state::State;
 
 /// Most substeps one [`Surface::advance`] call may take.
@@ -55,6 +55,7 @@ pub struct Surface {
     pub(crate) state: State,
     pub(crate) springs: Springs,
     workspace: Workspace,
+    reference: forces::scalar::Scratch,
     /// Smallest node mass, largest spring coefficient and largest viscosity ever set: they
     /// set `critical_dt`.
     pub(crate) min_mass: f32,
@@ -81,22 +82,23 @@ impl Surface {
     fn build(params: Params) -> Self {
         let (state, springs) = (State::new(&params), Springs::new(&params));
         let bounds = [params.mass, params.stiffness, params.viscosity];
-        Self::from_parts(params, state, springs, bounds, BAND_ROWS, (0, 0.0))
+        Self::from_parts(params, state, springs, bounds, (0, 0.0))
     }
 
     /// A surface from validated parts (used by [`Surface::new`] and the snapshot loader).
     /// `bounds` is `[min_mass, max_stiffness, max_viscosity]`, `progress` is `(steps, time)`.
+    /// The engine's scratch buffers are rebuilt: they are not state.
     pub(crate) fn from_parts(
         params: Params,
         state: State,
         springs: Springs,
         bounds: [f32; 3],
-        band_rows: usize,
         progress: (u64, f64),
     ) -> Self {
         let [min_mass, max_stiffness, max_viscosity] = bounds;
         Self {
-            workspace: Workspace::new(params.cols, params.rows, band_rows),
+            workspace: Workspace::new(None),
+            reference: Default::default(),
             state,
             springs,
             min_mass,
@@ -108,17 +110,11 @@ impl Surface {
         }
     }
 
-    /// Rows per engine band.
-    pub(crate) fn band_rows(&self) -> usize {
-        self.workspace.band_rows()
-    }
-
-    /// Sets the band height (colour granularity) of the engine. Results depend on it in
-    /// the last bits, never on the thread count. For benchmarks; the default is
-    /// [`BAND_ROWS`].
+    /// Fixes the band height (colour granularity) of the engine instead of
+    /// [`springs::band_rows`]. Results do not change by a bit; for benchmarks and tests.
     #[doc(hidden)]
     pub fn set_band_rows(&mut self, band_rows: usize) {
-        self.workspace = Workspace::new(self.params.cols, self.params.rows, band_rows);
+        self.workspace = Workspace::new(Some(band_rows));
     }
 
     /// The parameters the surface was built with.
@@ -160,13 +156,21 @@ impl Surface {
     /// Positions `[x, y, z]`, one value per node, row-major.
     pub fn positions(&self) -> [&[f32]; 3] {
         let n = self.len();
-        [&self.state.pos[0][..n], &self.state.pos[1][..n], &self.state.pos[2][..n]]
+        [
+            &self.state.pos[0][..n],
+            &self.state.pos[1][..n],
+            &self.state.pos[2][..n],
+        ]
     }
 
     /// Velocities `[vx, vy, vz]`, one value per node, row-major.
     pub fn velocities(&self) -> [&[f32]; 3] {
         let n = self.len();
-        [&self.state.vel[0][..n], &self.state.vel[1][..n], &self.state.vel[2][..n]]
+        [
+            &self.state.vel[0][..n],
+            &self.state.vel[1][..n],
+            &self.state.vel[2][..n],
+        ]
     }
 
     /// A borrowed view of the positions and grid shape for the render-side stages.
@@ -193,12 +197,19 @@ impl Surface {
     }
 
     fn step_dt(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
-        let cfg = StepConfig { dt, accel: self.params.acceleration };
+        // `+ 0.0` turns a −0 acceleration into +0, which keeps a zero force's sign from
+        // reaching the state (see `forces::simd::spring_force`).
+        let cfg = StepConfig {
+            dt,
+            accel: self.params.acceleration.map(|a| a + 0.0),
+        };
         let outcome = match stepper {
             Stepper::Engine => {
                 forces::simd::step(&mut self.state, &self.springs, &mut self.workspace, cfg)
             }
-            Stepper::Reference => forces::scalar::step(&mut self.state, &self.springs, cfg),
+            Stepper::Reference => {
+                forces::scalar::step(&mut self.state, &self.springs, &mut self.reference, cfg)
+            }
         };
         match outcome {
             Ok(()) => {
@@ -208,7 +219,10 @@ impl Surface {
                 self.time += dt as f64;
                 Ok(())
             }
-            Err(node) => Err(Error::NonFinite { step: self.steps, node }),
+            Err(node) => Err(Error::NonFinite {
+                step: self.steps,
+                node,
+            }),
         }
     }
 
@@ -276,11 +290,12 @@ impl Surface {
     /// Adds `force` to node `node` for the next step only (buoyancy, a paddle, a wake).
     pub fn add_force(&mut self, node: usize, force: [f32; 3]) -> Result<()> {
         self.check_node(node)?;
-        let mut sum = [0.0; 3];
-        for k in 0..3 {
-            params::finite("force", force[k])?;
-            sum[k] = self.state.ext[k][node] + force[k];
-            params::finite("accumulated force", sum[k])?;
+        for f in force {
+            params::finite("force", f)?;
+        }
+        let sum: [f32; 3] = std::array::from_fn(|k| self.state.ext[k][node] + force[k]);
+        for f in sum {
+            params::finite("accumulated force", f)?;
         }
         for (k, f) in sum.into_iter().enumerate() {
             self.state.ext[k][node] = f;
@@ -298,11 +313,12 @@ impl Surface {
     /// Adds a velocity change `dv` to a free node now (an impulse divided by its mass).
     pub fn add_velocity(&mut self, node: usize, dv: [f32; 3]) -> Result<()> {
         self.check_node(node)?;
-        let mut sum = [0.0; 3];
-        for k in 0..3 {
-            params::finite("velocity", dv[k])?;
-            sum[k] = self.state.vel[k][node] + dv[k];
-            params::finite("resulting velocity", sum[k])?;
+        for v in dv {
+            params::finite("velocity", v)?;
+        }
+        let sum: [f32; 3] = std::array::from_fn(|k| self.state.vel[k][node] + dv[k]);
+        for v in sum {
+            params::finite("resulting velocity", v)?;
         }
         if !self.state.pinned[node] {
             for (k, v) in sum.into_iter().enumerate() {
@@ -318,10 +334,18 @@ impl Surface {
         let n = self.len();
         for c in force {
             if c.len() != n {
-                return Err(Error::LengthMismatch { what: "force buffer", got: c.len(), expected: n });
+                return Err(Error::LengthMismatch {
+                    what: "force buffer",
+                    got: c.len(),
+                    expected: n,
+                });
             }
             if let Some(&bad) = c.iter().find(|v| !v.is_finite()) {
-                return Err(Error::InvalidParam { name: "force", value: bad as f64, expected: "finite values" });
+                return Err(Error::InvalidParam {
+                    name: "force",
+                    value: bad as f64,
+                    expected: "finite values",
+                });
             }
         }
         for (dst, src) in self.state.ext.iter_mut().zip(force) {
@@ -334,7 +358,11 @@ impl Surface {
     /// Pending external forces `[fx, fy, fz]` for the next step.
     pub fn forces(&self) -> [&[f32]; 3] {
         let n = self.len();
-        [&self.state.ext[0][..n], &self.state.ext[1][..n], &self.state.ext[2][..n]]
+        [
+            &self.state.ext[0][..n],
+            &self.state.ext[1][..n],
+            &self.state.ext[2][..n],
+        ]
     }
 
     /// Sets the uniform acceleration applied to every free node (gravity, wind).
@@ -355,7 +383,11 @@ impl Surface {
                 v[node] = 0.0;
             }
         }
-        self.state.inv_mass[node] = if pinned { 0.0 } else { 1.0 / self.state.mass[node] };
+        self.state.inv_mass[node] = if pinned {
+            0.0
+        } else {
+            1.0 / self.state.mass[node]
+        };
         Ok(())
     }
 
@@ -423,10 +455,15 @@ impl Surface {
 
     /// `(rest length, coefficient)` of a spring; `None` if the grid has no such spring.
     pub fn spring(&self, id: SpringId) -> Option<(f32, f32)> {
-        (id.origin < self.len() && self.grid().spring_end(id.family, id.origin).is_some()).then(|| {
-            let f = id.family as usize;
-            (self.springs.rest[f][id.origin], self.springs.coef[f][id.origin])
-        })
+        (id.origin < self.len() && self.grid().spring_end(id.family, id.origin).is_some()).then(
+            || {
+                let f = id.family as usize;
+                (
+                    self.springs.rest[f][id.origin],
+                    self.springs.coef[f][id.origin],
+                )
+            },
+        )
     }
 
     /// Sets a spring's rest length (≥ 0) and coefficient (> 0). Refused if the spring does
@@ -434,7 +471,11 @@ impl Surface {
     pub fn set_spring(&mut self, id: SpringId, rest: f32, coef: f32) -> Result<()> {
         self.check_node(id.origin)?;
         if self.grid().spring_end(id.family, id.origin).is_none() {
-            return Err(Error::OutOfRange { what: "spring origin", index: id.origin, len: self.len() });
+            return Err(Error::OutOfRange {
+                what: "spring origin",
+                index: id.origin,
+                len: self.len(),
+            });
         }
         params::non_negative("rest length", rest)?;
         params::positive("stiffness", coef)?;
@@ -450,10 +491,13 @@ impl Surface {
         Ok(())
     }
 
-    /// The colour batches of the engine: bands of rows, even bands colour 0, odd bands
-    /// colour 1 (see [`crate::springs`]).
+    /// The colour batches the engine uses on the current thread pool: bands of rows, even
+    /// bands colour 0, odd bands colour 1 (see [`crate::springs`]).
     pub fn bands(&self) -> impl Iterator<Item = Band> {
-        springs::bands(self.params.rows, self.workspace.band_rows())
+        springs::bands(
+            self.params.rows,
+            self.workspace.band_rows_for(self.params.rows),
+        )
     }
 
     /// Kinetic plus spring potential energy, a diagnostic (`O(nodes)`).
@@ -468,7 +512,10 @@ impl Surface {
         let mut potential = 0.0;
         for (id, j) in self.grid().springs() {
             let i = id.origin;
-            let l = (0..3).map(|k| (s.pos[k][j] as f64 - s.pos[k][i] as f64).powi(2)).sum::<f64>().sqrt();
+            let l = (0..3)
+                .map(|k| (s.pos[k][j] as f64 - s.pos[k][i] as f64).powi(2))
+                .sum::<f64>()
+                .sqrt();
             let f = id.family as usize;
             let stretch = l - self.springs.rest[f][i] as f64;
             potential += 0.5 * self.springs.coef[f][i] as f64 * stretch * stretch;
@@ -480,7 +527,11 @@ impl Surface {
         if node < self.len() {
             Ok(())
         } else {
-            Err(Error::OutOfRange { what: "node", index: node, len: self.len() })
+            Err(Error::OutOfRange {
+                what: "node",
+                index: node,
+                len: self.len(),
+            })
         }
     }
 }

@@ -4,12 +4,12 @@ use springwater::snapshot::{Snapshot, MAGIC, VERSION};
 use springwater::{Boundary, Error, Family, Params, SpringId, Surface};
 
 /// A surface that uses every piece of state: drops, velocities, pending forces, per-node
-/// mass/viscosity/pins, per-spring tables, a non-default band height, steps taken.
+/// mass/viscosity/pins, per-spring tables, steps taken.
 fn busy_surface() -> Surface {
     let mut p = Params::with_size(19, 13);
     p.acceleration = [0.0, -0.01, 0.0];
     let mut s = Surface::new(p).unwrap();
-    s.set_band_rows(3);
+
     s.drop_at(9.0, 6.0, 1.5, 2.5).unwrap();
     s.drop_at(4.3, 3.7, -0.8, 1.2).unwrap();
     for _ in 0..17 {
@@ -194,7 +194,8 @@ fn invalid_contents_with_a_valid_checksum_are_refused() {
     let s = busy_surface();
     let n = s.len();
     let base = s.snapshot();
-    let cases: Vec<(&str, Box<dyn Fn(&mut Snapshot)>)> = vec![
+    type Edit = Box<dyn Fn(&mut Snapshot)>;
+    let cases: Vec<(&str, Edit)> = vec![
         ("NaN position", Box::new(|s| s.positions[1][7] = f32::NAN)),
         (
             "infinite velocity",
@@ -233,7 +234,6 @@ fn invalid_contents_with_a_valid_checksum_are_refused() {
         ),
         ("dt past critical", Box::new(|s| s.params.dt = 1.0)),
         ("invalid param", Box::new(|s| s.params.rest_ratio = 2.0)),
-        ("zero band height", Box::new(|s| s.band_rows = 0)),
         ("negative time", Box::new(|s| s.time = -1.0)),
         (
             "wrong array length",

@@ -162,8 +162,9 @@ pub fn list<const N: usize>(v: &str, what: &str) -> CliResult<[f32; N]> {
     }
     let mut out = [0.0; N];
     for (o, s) in out.iter_mut().zip(parts) {
-        *o = number(s, what)?;
-        if !(*o as f32).is_finite() {
+        let v: f32 = number(s, what)?;
+        *o = v;
+        if !v.is_finite() {
             return Err(format!("{what}: '{s}' is not a finite number"));
         }
     }

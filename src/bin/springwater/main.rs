@@ -18,6 +18,7 @@ commands:
              continue from a snapshot: simulate --load FILE --steps N [--drop …]
   bench      time the step against the scalar reference, a naive AoS
              baseline and a memory-bandwidth floor    [--repeats N] [--compare LIST]
+                                                      [--band-rows H]
 
 model flags (seed defaults):
   --size COLSxROWS     grid size (128x128)
@@ -64,6 +65,8 @@ fn run() -> args::CliResult<()> {
             print!("{USAGE}");
             Ok(())
         }
-        other => Err(format!("unknown command '{other}' (simulate, bench; see springwater --help)")),
+        other => Err(format!(
+            "unknown command '{other}' (simulate, bench; see springwater --help)"
+        )),
     }
 }

@@ -6,7 +6,7 @@
 //! `--steps`, `--drop` (added to the loaded state before the steps), `--threads`, `--csv`
 //! and `--save` apply as usual.
 
-use crate::args::{next_flag, Flag, string, unexpected, CliResult, ModelArgs};
+use crate::args::{next_flag, string, unexpected, CliResult, Flag, ModelArgs};
 use lexopt::Parser;
 use springwater::Surface;
 use std::io::Write;
@@ -14,8 +14,16 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Model flags whose values a snapshot already holds.
-const MODEL_FLAGS: [&str; 8] =
-    ["size", "dt", "mass", "stiffness", "viscosity", "rest-ratio", "spacing", "boundary"];
+const MODEL_FLAGS: [&str; 8] = [
+    "size",
+    "dt",
+    "mass",
+    "stiffness",
+    "viscosity",
+    "rest-ratio",
+    "spacing",
+    "boundary",
+];
 
 pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut model = ModelArgs::default();
@@ -54,8 +62,12 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         (None, _) => model.surface()?,
     };
     // Open the outputs first: an unwritable path fails before any work is done.
-    let csv = csv.map(|path| create(&path).map(|file| (path, file))).transpose()?;
-    let save = save.map(|path| create(&path).map(|file| (path, file))).transpose()?;
+    let csv = csv
+        .map(|path| create(&path).map(|file| (path, file)))
+        .transpose()?;
+    let save = save
+        .map(|path| create(&path).map(|file| (path, file)))
+        .transpose()?;
     let start = Instant::now();
     model.with_threads(|| run_steps(&mut surface, model.steps))??;
     let seconds = start.elapsed().as_secs_f64();
@@ -75,7 +87,8 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
 
 /// Reads a snapshot file, naming it in the error.
 pub fn load_snapshot(path: &Path) -> CliResult<Surface> {
-    let file = std::fs::File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let file =
+        std::fs::File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
     Surface::load(std::io::BufReader::new(file)).map_err(|e| format!("{}: {e}", path.display()))
 }
 
@@ -91,13 +104,30 @@ pub fn run_steps(surface: &mut Surface, steps: u64) -> CliResult<()> {
 pub fn print_summary(s: &Surface, steps_run: u64, seconds: f64) {
     let p = s.params();
     let [_, y, _] = s.positions();
-    let (lo, hi) = y.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+    let (lo, hi) = y
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
     let e = s.energy();
-    println!("grid        {}x{} nodes, h {}, m {}, c {}, gamma {}, rest ratio {}", p.cols, p.rows, p.spacing, p.mass, p.stiffness, p.viscosity, p.rest_ratio);
-    println!("timestep    {} ({:.0}% of the critical {:.4})", p.dt, 100.0 * p.dt / s.critical_dt(), s.critical_dt());
+    println!(
+        "grid        {}x{} nodes, h {}, m {}, c {}, gamma {}, rest ratio {}",
+        p.cols, p.rows, p.spacing, p.mass, p.stiffness, p.viscosity, p.rest_ratio
+    );
+    println!(
+        "timestep    {} ({:.0}% of the critical {:.4})",
+        p.dt,
+        100.0 * p.dt / s.critical_dt(),
+        s.critical_dt()
+    );
     println!("steps       {} (model time {:.2})", s.steps(), s.time());
     println!("height      min {lo:.5}  max {hi:.5}");
-    println!("energy      kinetic {:.6}  potential {:.6}  total {:.6}", e.kinetic, e.potential, e.total());
+    println!(
+        "energy      kinetic {:.6}  potential {:.6}  total {:.6}",
+        e.kinetic,
+        e.potential,
+        e.total()
+    );
     if seconds > 0.0 {
         let rate = s.len() as f64 * steps_run as f64 / seconds;
         println!("wall time   {seconds:.3} s ({rate:.3e} node updates/s)");
