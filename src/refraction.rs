@@ -29,7 +29,9 @@
 //! * the node lies below the bottom (`P.y < −depth`);
 //! * the hit point is not a finite `f32` (a ray within about 10⁻³⁸ of horizontal).
 //!
-//! The eye sitting exactly on a node counts as looking straight down there.
+//! The eye sitting exactly on a node counts as looking straight down there. The view
+//! direction is scaled by its largest component before it is normalised, so any finite
+//! eye works, however far away.
 //!
 //! # Fresnel
 //!
@@ -189,9 +191,12 @@ pub fn refract_node(
 ) -> [f32; 3] {
     let eta = 1.0 / params.ior;
     let (dx, dy, dz) = (p.x - eye.x, p.y - eye.y, p.z - eye.z);
+    // Scale by the largest component first so that no eye distance overflows or underflows.
+    let big = dx.abs().max(dy.abs()).max(dz.abs());
+    let (dx, dy, dz) = (dx / big, dy / big, dz / big);
     let l2 = dx * dx + dy * dy + dz * dz;
     let inv = 1.0 / l2.sqrt();
-    let (dx, dy, dz) = if l2 > f32::MIN_POSITIVE && l2.is_finite() {
+    let (dx, dy, dz) = if big > 0.0 && big.is_finite() {
         (dx * inv, dy * inv, dz * inv)
     } else {
         (0.0, -1.0, 0.0)
@@ -286,9 +291,11 @@ impl Kernel {
             let (px, py, pz) = (load(x, i), load(y, i), load(z, i));
             let (nx, ny, nz) = (load(nx, i), load(ny, i), load(nz, i));
             let (dx, dy, dz) = (px - ex, py - ey, pz - ez);
+            let big = dx.abs().max(dy.abs()).max(dz.abs());
+            let (dx, dy, dz) = (dx / big, dy / big, dz / big);
             let l2 = dx * dx + dy * dy + dz * dz;
             let inv = one / l2.sqrt();
-            let has_dir = l2.simd_gt(splat(f32::MIN_POSITIVE)) & l2.is_finite();
+            let has_dir = big.simd_gt(zero) & big.is_finite();
             let (dx, dy, dz) = (
                 has_dir.select(dx * inv, zero),
                 has_dir.select(dy * inv, -one),
