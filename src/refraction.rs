@@ -208,7 +208,7 @@ pub fn refract_node(
     let (tx, ty, tz) = (eta * dx + f * n.x, eta * dy + f * n.y, eta * dz + f * n.z);
     let s = (-params.depth - p.y) / ty;
     let front = cosi > 0.0;
-    let valid = front && ty < 0.0 && s >= 0.0 && s < MAX_TRAVEL;
+    let valid = front && ty < 0.0 && (0.0..MAX_TRAVEL).contains(&s);
     let (hx, hz) = if valid {
         (p.x + s * tx, p.z + s * tz)
     } else {
