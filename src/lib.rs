@@ -52,7 +52,8 @@
 //! * `serde`: derive `Serialize`/`Deserialize` for [`Params`] and [`Snapshot`].
 
 #![warn(missing_docs)]
-#![forbid(unsafe_code)]
+#![deny(unsafe_op_in_unsafe_fn)]
+#![warn(clippy::undocumented_unsafe_blocks)]
 
 pub mod baselines;
 pub mod error;

@@ -137,24 +137,33 @@ fn a_drops_wavefront_travels_at_the_predicted_speed() {
 proptest! {
     #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
 
-    /// Just below `critical_dt`, drops with |height| ≤ radius stay bounded for 5,000
-    /// undamped steps.
+    /// Just below `critical_dt`, drops with |height| ≤ radius (away from the pinned rim, which
+    /// would cut a drop into a steeper cliff) stay bounded for 5,000 undamped steps: the
+    /// state stays finite and the displacement does not grow (an unstable mode grows
+    /// exponentially). Energy is no measure here: so close to the limit the energy that
+    /// symplectic Euler conserves differs from the physical one by up to ~1/(1 − (ωΔt/2)²).
     #[test]
     fn drops_in_the_stable_regime_stay_bounded_below_critical_dt(
-        drops in prop::collection::vec((2.0f32..22.0, 2.0f32..22.0, -1.0f32..=1.0, 1.0f32..4.0), 1..4),
+        drops in prop::collection::vec((10.0f32..22.0, 10.0f32..22.0, -1.0f32..=1.0, 1.0f32..4.0), 1..4),
         rest_ratio in 0.0f32..0.9,
     ) {
-        let mut p = undamped(24, 24);
+        let mut p = undamped(32, 32);
         p.rest_ratio = rest_ratio;
         p.dt = 0.99 * p.critical_dt();
         let mut s = Surface::new(p).unwrap();
-        for (c, r, h, rad) in drops {
+        for &(c, r, h, rad) in &drops {
             s.drop_at(c, r, h * rad, rad).unwrap();
         }
+        let (mut early, mut late) = (0.0f32, 0.0f32);
         for step in 0..5000 {
             prop_assert!(s.step().is_ok(), "non-finite at step {}", step);
+            match step {
+                0..500 => early = early.max(max_displacement(&s)),
+                4500.. => late = late.max(max_displacement(&s)),
+                _ => {}
+            }
         }
-        prop_assert!(max_displacement(&s) < 10.0, "displacement {}", max_displacement(&s));
+        prop_assert!(late <= 2.0 * early + 1e-3, "displacement grew from {} to {}", early, late);
     }
 }
 
