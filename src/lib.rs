@@ -79,3 +79,8 @@ pub use surface::{Energy, Stepper, Surface};
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
+
+/// The examples of docs/reliability.md, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/reliability.md")]
+pub struct ReliabilityDoctests;
