@@ -293,3 +293,18 @@ fn pending_forces_survive_a_snapshot() {
     assert_eq!(a.to_bytes(), b.to_bytes());
     assert!(a.positions()[1][27] > 0.0, "the force was applied");
 }
+
+/// With the `serde` feature, `Snapshot` goes through any serde format and back bitwise.
+#[cfg(feature = "serde")]
+#[test]
+fn serde_round_trip_is_bitwise() {
+    let s = busy_surface();
+    let json = serde_json::to_string(&s.snapshot()).unwrap();
+    let back: Snapshot = serde_json::from_str(&json).unwrap();
+    let restored = Surface::from_snapshot(back).unwrap();
+    assert_eq!(restored.to_bytes(), s.to_bytes());
+    // And the same validation applies to what comes in.
+    let bad = json.replacen("\"min_mass\":", "\"min_mass\":-", 1);
+    let snap: Snapshot = serde_json::from_str(&bad).unwrap();
+    assert!(matches!(Surface::from_snapshot(snap), Err(Error::Snapshot(_))));
+}
