@@ -101,6 +101,16 @@ fn exercise(s: &mut Surface, input: &Input) {
             s.clear_forces();
         }
     }
+    let (qx, qz) = (input.drop[0], input.drop[1]);
+    if let Ok(y) = s.height_at(qx, qz) {
+        assert!(y.is_finite());
+    }
+    if let Ok(n) = s.normal_at(qx, qz) {
+        assert!(n.is_finite());
+    }
+    if let Ok(v) = s.velocity_at(qx, qz) {
+        assert!(v.is_finite());
+    }
     for c in s.positions().iter().chain(&s.velocities()) {
         assert!(
             c.iter().all(|x| x.is_finite()),
