@@ -117,8 +117,32 @@ fn bad(msg: impl Into<String>) -> Error {
 impl Snapshot {
     /// Encodes the snapshot in the binary format of the module docs.
     ///
-    /// The snapshot is not validated here; [`Snapshot::from_bytes`] validates.
-    pub fn to_bytes(&self) -> Vec<u8> {
+    /// Only the array lengths are checked here (every array must hold `cols × rows`
+    /// values, or the bytes would not say what the arrays hold); the contents are
+    /// validated when the bytes are loaded. [`Surface::to_bytes`] cannot fail.
+    pub fn to_bytes(&self) -> Result<Vec<u8>> {
+        let n = self.params.cols.checked_mul(self.params.rows);
+        let arrays = self
+            .positions
+            .iter()
+            .chain(&self.velocities)
+            .chain(&self.forces);
+        let arrays = arrays
+            .chain([&self.mass, &self.viscosity])
+            .chain(&self.rest)
+            .chain(&self.coef);
+        let mut lengths = arrays.map(Vec::len).chain([self.pinned.len()]);
+        match n {
+            Some(n) if lengths.all(|len| len == n) => Ok(self.encode()),
+            _ => Err(bad(format!(
+                "cannot encode: the arrays do not all hold one value per node of a {}x{} grid",
+                self.params.cols, self.params.rows
+            ))),
+        }
+    }
+
+    /// [`Snapshot::to_bytes`] for a snapshot whose arrays are known to be consistent.
+    pub(crate) fn encode(&self) -> Vec<u8> {
         let n = self.mass.len();
         let total = encoded_len(n).expect("a snapshot of an allocated surface fits in memory");
         let mut b = Vec::with_capacity(total);
@@ -175,7 +199,6 @@ impl Snapshot {
         }
         let crc = crc32fast::hash(&b);
         b.extend_from_slice(&crc.to_le_bytes());
-        debug_assert_eq!(b.len(), total, "every array holds one value per node");
         b
     }
 
@@ -532,7 +555,7 @@ impl Surface {
 
     /// The snapshot in the binary format of the [module docs](crate::snapshot).
     pub fn to_bytes(&self) -> Vec<u8> {
-        self.snapshot().to_bytes()
+        self.snapshot().encode()
     }
 
     /// Writes [`Surface::to_bytes`] to `w`.

@@ -247,7 +247,7 @@ fn invalid_contents_with_a_valid_checksum_are_refused() {
         assert!(matches!(err, Error::Snapshot(_)), "{what}: {err}");
         if snap.mass.len() == n {
             // Through the binary format too (with a valid checksum).
-            let err = Surface::from_bytes(&snap.to_bytes()).unwrap_err();
+            let err = Surface::from_bytes(&snap.to_bytes().unwrap()).unwrap_err();
             assert!(matches!(err, Error::Snapshot(_)), "{what}: {err}");
         }
     }
@@ -306,5 +306,21 @@ fn serde_round_trip_is_bitwise() {
     // And the same validation applies to what comes in.
     let bad = json.replacen("\"min_mass\":", "\"min_mass\":-", 1);
     let snap: Snapshot = serde_json::from_str(&bad).unwrap();
-    assert!(matches!(Surface::from_snapshot(snap), Err(Error::Snapshot(_))));
+    assert!(matches!(
+        Surface::from_snapshot(snap),
+        Err(Error::Snapshot(_))
+    ));
+}
+
+#[test]
+fn a_hand_built_inconsistent_snapshot_is_refused_by_the_encoder() {
+    let mut snap = busy_surface().snapshot();
+    // Same total length, so only a per-array check can tell.
+    snap.positions[0].pop();
+    snap.coef[3].push(1.0);
+    assert!(matches!(snap.to_bytes(), Err(Error::Snapshot(_))));
+    assert!(Surface::from_snapshot(snap).is_err());
+    let mut snap = busy_surface().snapshot();
+    snap.params.cols = usize::MAX;
+    assert!(snap.to_bytes().is_err());
 }
