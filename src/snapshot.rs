@@ -362,6 +362,11 @@ impl Snapshot {
                 }
             }
         }
+        if !self.forces_pending && self.forces.iter().flatten().any(|f| f.to_bits() != 0) {
+            return Err(bad(
+                "external forces are stored but not marked pending (flag bit 0)",
+            ));
+        }
         if !(self.time.is_finite() && self.time >= 0.0) {
             return Err(bad(format!(
                 "model time {} is not a finite number >= 0",

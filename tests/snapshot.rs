@@ -202,6 +202,7 @@ fn invalid_contents_with_a_valid_checksum_are_refused() {
             Box::new(|s| s.velocities[0][8] = f32::INFINITY),
         ),
         ("NaN force", Box::new(|s| s.forces[2][9] = f32::NAN)),
+        ("force not pending", Box::new(|s| s.forces_pending = false)),
         ("zero mass", Box::new(|s| s.mass[10] = 0.0)),
         (
             "subnormal mass",
