@@ -4,6 +4,7 @@
 
 mod args;
 mod bench;
+mod export;
 mod simulate;
 
 use std::process::ExitCode;
@@ -18,6 +19,9 @@ commands:
   bench      time the step against the scalar reference, a naive AoS
              baseline and a memory-bandwidth floor    [--repeats N] [--compare LIST]
                                                       [--band-rows H]
+  export     write the frame as a Wavefront OBJ (positions, normals, refraction UVs,
+             LOD triangles)   --eye X,Y,Z --depth D [--ior N] --obj FILE
+                              [--patch-cells N] [--first-range R] [--levels L]
 
 model flags (seed defaults):
   --size COLSxROWS     grid size (128x128)
@@ -60,12 +64,13 @@ fn run() -> args::CliResult<()> {
     match command.as_str() {
         "simulate" => simulate::run(&mut p),
         "bench" => bench::run(&mut p),
+        "export" => export::run(&mut p),
         "help" => {
             print!("{USAGE}");
             Ok(())
         }
         other => Err(format!(
-            "unknown command '{other}' (simulate, bench; see springwater --help)"
+            "unknown command '{other}' (simulate, bench, export; see springwater --help)"
         )),
     }
 }
