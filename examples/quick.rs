@@ -1,20 +1,27 @@
 use springwater::*;
 fn main() {
-    for (c, r) in [(2usize, 2usize), (5, 3), (17, 9), (64, 64), (33, 70)] {
-        let p = Params::with_size(c, r);
-        let mut a = Surface::new(p).unwrap();
-        a.drop_at(c as f32 / 2.0, r as f32 / 2.0, 1.0, 2.0).unwrap();
-        let mut b = a.clone();
-        for _ in 0..200 {
-            a.step().unwrap();
-            b.step_with(Stepper::Reference).unwrap();
-        }
-        let mut maxd = 0f32;
-        for k in 0..3 {
-            for (x, y) in a.positions()[k].iter().zip(b.positions()[k]) {
-                maxd = maxd.max((x - y).abs());
+    let (cols, rows) = (41, 33);
+    let mut s = Surface::new(Params {
+        viscosity: 0.0,
+        ..Params::with_size(cols, rows)
+    })
+    .unwrap();
+    s.drop_at(20.0, 16.0, 1.0, 2.5).unwrap();
+    for _ in 0..500 {
+        s.step().unwrap();
+    }
+    let g = s.grid();
+    let [x, y, _z] = s.positions();
+    let mut worst = (0f32, 0, 0, 0f32);
+    for r in 0..rows {
+        for c in 0..cols {
+            let (i, n) = (g.index(c, r), g.index(cols - 1 - c, r));
+            let e = ((x[i] - c as f32) + (x[n] - (cols - 1 - c) as f32)).abs();
+            if e > worst.0 {
+                worst = (e, c, r, x[i] - c as f32);
             }
         }
-        println!("{c}x{r}: maxdiff {maxd:e} energy {:?} {:?}", a.energy().total(), b.energy().total());
     }
+    let scale = y.iter().fold(0.0f32, |m, v| m.max(v.abs()));
+    println!("worst {:?} scale {scale}", worst);
 }

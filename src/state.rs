@@ -1,7 +1,8 @@
 //! The structure-of-arrays node state.
 //!
-//! Every per-node quantity is its own `f32` buffer: x, y, z, vx, vy, vz, forces, mass,
-//! viscosity. Node `i` lives at index `i` of each buffer. Buffers are padded past the
+//! Every per-node quantity is its own `f32` buffer: x, y, z, vx, vy, vz, external forces,
+//! mass, viscosity. (Spring forces live with the step that computes them: per family and
+//! row in the engine, per family and node in the scalar reference.) Node `i` lives at index `i` of each buffer. Buffers are padded past the
 //! last node by more than a lane so that a SIMD chunk starting at any node, or one node
 //! further, stays in bounds; the padding is zero and never moves.
 //!
@@ -37,9 +38,6 @@ pub(crate) struct State {
     pub next_pos: Xyz,
     /// Velocities being written by a step (back buffer).
     pub next_vel: Xyz,
-    /// Spring force sum per node, used by the scalar reference step (the engine keeps
-    /// forces in per-band row buffers instead, see `forces::simd`).
-    pub force: Xyz,
     /// External force per node for the next step, cleared by a successful step.
     pub ext: Xyz,
     /// True when `ext` holds anything non-zero.
@@ -61,10 +59,11 @@ impl State {
         let n = grid.len();
         let len = padded_len(n);
         let mut pos = zeros3(len);
-        for i in 0..n {
+        let [x, _, z] = &mut pos;
+        for (i, (x, z)) in x.iter_mut().zip(z.iter_mut()).take(n).enumerate() {
             let (c, r) = grid.coords(i);
-            pos[0][i] = c as f32 * params.spacing;
-            pos[2][i] = r as f32 * params.spacing;
+            *x = c as f32 * params.spacing;
+            *z = r as f32 * params.spacing;
         }
         let mut mass = vec![0.0; len];
         mass[..n].fill(params.mass);
@@ -79,7 +78,6 @@ impl State {
             pos,
             vel: zeros3(len),
             next_vel: zeros3(len),
-            force: zeros3(len),
             ext: zeros3(len),
             ext_pending: false,
             mass,
@@ -99,7 +97,11 @@ impl State {
     /// Recomputes `inv_mass` from `mass` and `pinned`.
     pub fn refresh_inv_mass(&mut self) {
         for i in 0..self.len() {
-            self.inv_mass[i] = if self.pinned[i] { 0.0 } else { 1.0 / self.mass[i] };
+            self.inv_mass[i] = if self.pinned[i] {
+                0.0
+            } else {
+                1.0 / self.mass[i]
+            };
         }
     }
 

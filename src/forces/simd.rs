@@ -3,68 +3,149 @@
 //! # How a band streams its rows
 //!
 //! A band owns the springs whose origin lies in its rows (see [`crate::springs`]). For row
-//! `r` it evaluates the E springs inside the row and the S, SE, SW springs down to row
-//! `r+1`, adding them into two row-sized force accumulators (`cur` for row r, `next` for
-//! row r+1). After that, row r has received every spring force it will get (the springs
-//! from row r−1 were added when row r−1 was processed), so it is integrated at once while
-//! its data is still in cache, and the accumulators rotate. Forces never make a trip to
-//! main memory: a step reads positions, velocities and tables once and writes the new
+//! `r` it evaluates, with lanes across columns, the E springs inside the row and the S, SE
+//! and SW springs down to row `r+1`, into per-family row buffers ([`RowForces`]). Row r
+//! then has everything it needs — its own springs and the ones arriving from row r−1,
+//! computed one row earlier — so it is summed and integrated at once while its data is
+//! still in cache, and the two row buffers rotate. Spring forces never travel to main
+//! memory: a step reads positions, velocities and tables once and writes the new
 //! positions and velocities once.
+//!
+//! A node's force is the same expression as in the scalar reference
+//! ([`super::scalar::node_force`]), so the two steps agree bit for bit.
 //!
 //! # The two colours
 //!
 //! Only the first row of a band needs springs from outside it (from the last row of the
 //! band above). The step runs in two phases:
 //!
-//! 1. **Colour 0, even bands, in parallel.** Every row is integrated except the band's
-//!    first row, whose partial force is parked in the band's `boundary` buffer; the forces
-//!    that the band's last row sends down are parked in the next (odd) band's `boundary`.
-//! 2. **Colour 1, odd bands, in parallel.** The band starts its first row from the parked
-//!    forces, integrates all its rows, and finally the first row of the even band below
-//!    (parked forces + the ones it just sent down).
+//! 1. **Colour 0, even bands, in parallel.** Each integrates its rows except its first,
+//!    whose own spring forces it parks in the band's [`RowForces`]; it also parks the
+//!    forces its last row sends down, in the next (odd) band's slot.
+//! 2. **Colour 1, odd bands, in parallel.** Each starts from the forces parked for it,
+//!    integrates all its rows, then the first row of the even band below (from that band's
+//!    parked forces and the ones it has just sent down).
 //!
 //! Bands of one colour touch disjoint rows, so each task gets `&mut` slices of its own rows
-//! (split with `split_at_mut`, no `unsafe`, no atomics, no locks). Every node's arithmetic
-//! is fixed by the band layout, not by the schedule, so results are bitwise identical for
-//! any thread count and with the `parallel` feature off. A step allocates nothing: the
-//! per-band buffers live in [`Workspace`].
+//! (split with `split_at_mut`: no `unsafe`, no atomics, no locks). Every node's arithmetic
+//! is fixed by the expression above, not by the schedule or the band height, so results
+//! are bitwise identical for any thread count and with the `parallel` feature off. A step
+//! allocates nothing: parked rows live in [`Workspace`], and each worker thread keeps its
+//! two rotating row buffers from step to step.
 
 use super::StepConfig;
-use crate::simd::{add_to, first_lanes, load, store_first, sub_from, Lane, LANES};
+use crate::simd::{first_lanes, get, lanes, lanes_mut, put, Lane, LANES};
 use crate::springs::Springs;
 use crate::state::State;
+use std::cell::RefCell;
 
-/// Offset of column 0 inside a row accumulator (room for the SW spring of column 0).
+/// Offset of column 0 in a row buffer: index `LEAD − 1` is a zero "column −1".
 const LEAD: usize = LANES;
 
-/// Per-band scratch: two row accumulators and one parked row, each `[x, y, z]`.
+/// A lane mask with every lane on.
+const ALL: Lane = Lane::new([f32::from_bits(u32::MAX); LANES]);
+
+/// Spring forces of one row, by family (E, S, SE, SW) and axis, on the row's origin nodes.
+/// Column `c` is at `LEAD + c`; the columns before 0 and after the row read as zero.
 #[derive(Debug, Clone)]
-pub(crate) struct BandScratch {
-    ring: [[Vec<f32>; 3]; 2],
-    boundary: [Vec<f32>; 3],
+pub(crate) struct RowForces {
+    cols: usize,
+    fam: [[Vec<f32>; 3]; 4],
 }
 
-/// The engine's reusable buffers: one [`BandScratch`] per band.
+impl RowForces {
+    fn new(cols: usize) -> Self {
+        let len = LEAD + crate::simd::round_up(cols) + LANES;
+        Self {
+            cols,
+            fam: std::array::from_fn(|_| std::array::from_fn(|_| vec![0.0; len])),
+        }
+    }
+
+    /// Copies the forces of the families in `families` from `other`.
+    fn copy_from(&mut self, other: &RowForces, families: std::ops::Range<usize>) {
+        for f in families {
+            for k in 0..3 {
+                self.fam[f][k].copy_from_slice(&other.fam[f][k]);
+            }
+        }
+    }
+
+    fn zero_down(&mut self) {
+        for f in 1..4 {
+            for c in &mut self.fam[f] {
+                c.fill(0.0);
+            }
+        }
+    }
+}
+
+/// The engine's reusable buffers: one parked [`RowForces`] per band.
 #[derive(Debug, Clone)]
 pub(crate) struct Workspace {
+    /// A band height fixed by the caller, or `None` to follow [`crate::springs::band_rows`].
+    fixed: Option<usize>,
     band_rows: usize,
-    bands: Vec<BandScratch>,
+    parked: Vec<RowForces>,
 }
 
 impl Workspace {
-    pub fn new(cols: usize, rows: usize, band_rows: usize) -> Self {
-        let band_rows = band_rows.max(1);
-        let len = cols + 2 * LANES + 1;
-        let row = || [vec![0.0; len], vec![0.0; len], vec![0.0; len]];
-        let bands = (0..rows.div_ceil(band_rows))
-            .map(|_| BandScratch { ring: [row(), row()], boundary: row() })
-            .collect();
-        Self { band_rows, bands }
+    pub fn new(fixed: Option<usize>) -> Self {
+        Self {
+            fixed: fixed.map(|h| h.max(1)),
+            band_rows: 0,
+            parked: Vec::new(),
+        }
     }
 
-    pub fn band_rows(&self) -> usize {
-        self.band_rows
+    /// The band height for this grid and the current thread count; rebuilds the parked
+    /// rows when it changes (only when the thread count does).
+    fn prepare(&mut self, cols: usize, rows: usize) -> usize {
+        let h = self.band_rows_for(rows);
+        if h != self.band_rows
+            || self.parked.first().is_some_and(|p| p.cols != cols)
+            || self.parked.is_empty()
+        {
+            self.band_rows = h;
+            self.parked = (0..rows.div_ceil(h))
+                .map(|_| RowForces::new(cols))
+                .collect();
+        }
+        h
     }
+
+    pub fn band_rows_for(&self, rows: usize) -> usize {
+        self.fixed
+            .unwrap_or_else(|| crate::springs::band_rows(rows, threads()))
+    }
+}
+
+#[cfg(feature = "parallel")]
+fn threads() -> usize {
+    rayon::current_num_threads()
+}
+
+#[cfg(not(feature = "parallel"))]
+fn threads() -> usize {
+    1
+}
+
+thread_local! {
+    /// Each worker's two rotating row buffers (previous row, current row), reused across
+    /// bands and steps; reallocated only when a wider grid comes along.
+    static RING: RefCell<[RowForces; 2]> = RefCell::new([RowForces::new(0), RowForces::new(0)]);
+}
+
+/// Runs `f` with this thread's row buffers sized and zeroed for `cols` columns.
+fn with_ring<T>(cols: usize, f: impl FnOnce(&mut [RowForces; 2]) -> T) -> T {
+    RING.with(|ring| {
+        let mut ring = ring.borrow_mut();
+        if ring[0].cols != cols {
+            *ring = [RowForces::new(cols), RowForces::new(cols)];
+        }
+        ring[0].zero_down();
+        f(&mut ring)
+    })
 }
 
 /// Everything a band reads: front buffers and tables, shared by all tasks.
@@ -90,14 +171,18 @@ struct Rows<'a> {
 }
 
 impl<'a> Rows<'a> {
-    /// Splits off rows `[first_row, row)`; `row` is clamped to the rows held.
+    /// Splits at `row` (clamped to the rows held): `(rows before, rows from)`.
     fn split_at_row(self, row: usize) -> (Rows<'a>, Rows<'a>) {
         let held = self.out[0].len() / self.cols;
-        let at = (row.saturating_sub(self.first_row)).min(held) * self.cols;
-        let [a, b, c, d, e, f] = self.out.map(|s| s.split_at_mut(at));
-        let head = Rows { first_row: self.first_row, cols: self.cols, out: [a.0, b.0, c.0, d.0, e.0, f.0] };
+        let at = row.saturating_sub(self.first_row).min(held);
+        let [a, b, c, d, e, f] = self.out.map(|s| s.split_at_mut(at * self.cols));
+        let head = Rows {
+            first_row: self.first_row,
+            cols: self.cols,
+            out: [a.0, b.0, c.0, d.0, e.0, f.0],
+        };
         let tail = Rows {
-            first_row: self.first_row + at / self.cols,
+            first_row: self.first_row + at,
             cols: self.cols,
             out: [a.1, b.1, c.1, d.1, e.1, f.1],
         };
@@ -115,7 +200,6 @@ pub(crate) fn step(
 ) -> Result<(), usize> {
     let grid = state.grid;
     let (cols, rows, n) = (grid.cols, grid.rows, grid.len());
-    let tail_count = cols - (cols - 1) / LANES * LANES;
     let inp = Inputs {
         cols,
         rows,
@@ -123,34 +207,57 @@ pub(crate) fn step(
         vel: [&state.vel[0], &state.vel[1], &state.vel[2]],
         inv_mass: &state.inv_mass,
         viscosity: &state.viscosity,
-        ext: state.ext_pending.then(|| [&state.ext[0][..], &state.ext[1][..], &state.ext[2][..]]),
+        ext: state
+            .ext_pending
+            .then(|| [&state.ext[0][..], &state.ext[1][..], &state.ext[2][..]]),
         springs,
         cfg,
-        tail: first_lanes(tail_count),
+        tail: first_lanes(cols - (cols - 1) / LANES * LANES),
     };
+    let h = ws.prepare(cols, rows);
+
+    // Colour 0: even bands, each paired with the odd band below it.
     let [px, py, pz] = &mut state.next_pos;
     let [vx, vy, vz] = &mut state.next_vel;
-    let all = [&mut px[..n], &mut py[..n], &mut pz[..n], &mut vx[..n], &mut vy[..n], &mut vz[..n]];
-    let h = ws.band_rows;
-
-    // Colour 0: even bands, each with the odd band below it (whose rows it does not write
-    // except through the parked buffer).
-    let rows_all = Rows { first_row: 0, cols, out: all };
-    let bad_even = for_each_pair(&mut ws.bands, 0, rows_all, h, &|b, pair, rows| {
+    let out = [
+        &mut px[..n],
+        &mut py[..n],
+        &mut pz[..n],
+        &mut vx[..n],
+        &mut vy[..n],
+        &mut vz[..n],
+    ];
+    let all = Rows {
+        first_row: 0,
+        cols,
+        out,
+    };
+    let bad_even = for_each_pair(&mut ws.parked, 0, all, h, &|b, pair, rows| {
         even_band(&inp, b, h, pair, rows)
     });
 
-    // Colour 1: odd bands, each with the even band below it (whose first row it finishes).
+    // Colour 1: odd bands, each paired with the even band below it.
     let [px, py, pz] = &mut state.next_pos;
     let [vx, vy, vz] = &mut state.next_vel;
-    let all = [&mut px[..n], &mut py[..n], &mut pz[..n], &mut vx[..n], &mut vy[..n], &mut vz[..n]];
-    let (_, rows_odd) = Rows { first_row: 0, cols, out: all }.split_at_row(h);
-    let bad_odd = if ws.bands.len() > 1 {
-        for_each_pair(&mut ws.bands[1..], 1, rows_odd, h, &|b, pair, rows| {
+    let out = [
+        &mut px[..n],
+        &mut py[..n],
+        &mut pz[..n],
+        &mut vx[..n],
+        &mut vy[..n],
+        &mut vz[..n],
+    ];
+    let (_, from_band_1) = Rows {
+        first_row: 0,
+        cols,
+        out,
+    }
+    .split_at_row(h);
+    let bad_odd = match ws.parked.get_mut(1..) {
+        Some(odd) if !odd.is_empty() => for_each_pair(odd, 1, from_band_1, h, &|b, pair, rows| {
             odd_band(&inp, b, h, pair, rows)
-        })
-    } else {
-        None
+        }),
+        _ => None,
     };
     match (bad_even, bad_odd) {
         (None, None) => Ok(()),
@@ -158,28 +265,28 @@ pub(crate) fn step(
     }
 }
 
-/// Runs `f` on consecutive pairs of bands (`bands[0..2]`, `bands[2..4]`, …), each with
-/// the rows of its pair, splitting recursively with `rayon::join` (sequentially without
-/// the `parallel` feature). Returns the smallest non-finite node reported.
+/// Runs `f` on consecutive pairs of bands (`parked[0..2]`, `parked[2..4]`, …) with the
+/// rows of each pair, splitting recursively with `rayon::join` (in order without the
+/// `parallel` feature). Returns the smallest non-finite node reported.
 fn for_each_pair<F>(
-    bands: &mut [BandScratch],
+    parked: &mut [RowForces],
     first_band: usize,
     rows: Rows<'_>,
     band_rows: usize,
     f: &F,
 ) -> Option<usize>
 where
-    F: Fn(usize, &mut [BandScratch], Rows<'_>) -> Option<usize> + Sync,
+    F: Fn(usize, &mut [RowForces], Rows<'_>) -> Option<usize> + Sync,
 {
-    if bands.len() <= 2 {
-        return f(first_band, bands, rows);
+    if parked.len() <= 2 {
+        return f(first_band, parked, rows);
     }
-    let left_pairs = bands.len().div_ceil(2) / 2;
-    let (bl, br) = bands.split_at_mut(2 * left_pairs);
-    let (rl, rr) = rows.split_at_row((first_band + 2 * left_pairs) * band_rows);
+    let left = 2 * (parked.len().div_ceil(2) / 2);
+    let (pl, pr) = parked.split_at_mut(left);
+    let (rl, rr) = rows.split_at_row((first_band + left) * band_rows);
     let (a, b) = join(
-        || for_each_pair(bl, first_band, rl, band_rows, f),
-        || for_each_pair(br, first_band + 2 * left_pairs, rr, band_rows, f),
+        || for_each_pair(pl, first_band, rl, band_rows, f),
+        || for_each_pair(pr, first_band + left, rr, band_rows, f),
     );
     match (a, b) {
         (Some(a), Some(b)) => Some(a.min(b)),
@@ -197,165 +304,247 @@ fn join<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
     (a(), b())
 }
 
-/// Colour 0: band `b` (even). `pair[0]` is its scratch, `pair.get(1)` the odd band below.
-fn even_band(inp: &Inputs, b: usize, h: usize, pair: &mut [BandScratch], mut rows: Rows) -> Option<usize> {
-    let (own, below) = pair.split_first_mut().expect("a pair holds its own band");
+/// Colour 0: band `b` (even). `pair[0]` is its parked row, `pair.get(1)` the odd band's.
+fn even_band(
+    inp: &Inputs,
+    b: usize,
+    h: usize,
+    pair: &mut [RowForces],
+    mut rows: Rows,
+) -> Option<usize> {
     let r0 = b * h;
     let r1 = ((b + 1) * h).min(inp.rows);
-    let [cur, next] = &mut own.ring;
-    let (mut cur, mut next) = (cur, next);
-    zero(cur);
-    let mut bad = None;
-    for r in r0..r1 {
-        zero(next);
-        row_springs(inp, r, cur, next);
-        if r == r0 && b > 0 {
-            copy(&mut own.boundary, cur);
-        } else {
-            bad = bad.or(integrate_row(inp, r, cur, &mut rows));
-        }
-        std::mem::swap(&mut cur, &mut next);
-    }
-    if let Some(odd) = below.first_mut() {
-        copy(&mut odd.boundary, cur);
-    }
-    bad
-}
-
-/// Colour 1: band `b` (odd). `pair[0]` is its scratch, `pair.get(1)` the even band below.
-fn odd_band(inp: &Inputs, b: usize, h: usize, pair: &mut [BandScratch], mut rows: Rows) -> Option<usize> {
-    let (own, below) = pair.split_first_mut().expect("a pair holds its own band");
-    let r0 = b * h;
-    let r1 = ((b + 1) * h).min(inp.rows);
-    let [cur, next] = &mut own.ring;
-    let (mut cur, mut next) = (cur, next);
-    copy(cur, &own.boundary);
-    let mut bad = None;
-    for r in r0..r1 {
-        zero(next);
-        row_springs(inp, r, cur, next);
-        bad = bad.or(integrate_row(inp, r, cur, &mut rows));
-        std::mem::swap(&mut cur, &mut next);
-    }
-    if let Some(even) = below.first() {
-        for (acc, parked) in cur.iter_mut().zip(&even.boundary) {
-            for (a, p) in acc.iter_mut().zip(parked) {
-                *a += *p;
+    with_ring(inp.cols, |ring| {
+        let [prev, cur] = ring;
+        let (mut prev, mut cur) = (prev, cur);
+        let mut bad = None;
+        for r in r0..r1 {
+            row_springs(inp, r, cur);
+            if r == r0 && b > 0 {
+                pair[0].copy_from(cur, 0..4); // finished by the odd band above
+            } else {
+                bad = bad.or(integrate_row(inp, r, cur, prev, &mut rows));
             }
+            std::mem::swap(&mut prev, &mut cur);
         }
-        bad = bad.or(integrate_row(inp, r1, cur, &mut rows));
-    }
-    bad
+        if let Some(odd) = pair.get_mut(1) {
+            odd.copy_from(prev, 1..4); // what the last row sends down
+        }
+        bad
+    })
 }
 
-fn zero(acc: &mut [Vec<f32>; 3]) {
-    for c in acc {
-        c.fill(0.0);
-    }
-}
-
-fn copy(dst: &mut [Vec<f32>; 3], src: &[Vec<f32>; 3]) {
-    for (d, s) in dst.iter_mut().zip(src) {
-        d.copy_from_slice(s);
-    }
+/// Colour 1: band `b` (odd). `pair[0]` is its parked row, `pair.get(1)` the even band's.
+fn odd_band(
+    inp: &Inputs,
+    b: usize,
+    h: usize,
+    pair: &mut [RowForces],
+    mut rows: Rows,
+) -> Option<usize> {
+    let r0 = b * h;
+    let r1 = ((b + 1) * h).min(inp.rows);
+    with_ring(inp.cols, |ring| {
+        let [prev, cur] = ring;
+        let (mut prev, mut cur) = (prev, cur);
+        prev.copy_from(&pair[0], 1..4);
+        let mut bad = None;
+        for r in r0..r1 {
+            row_springs(inp, r, cur);
+            bad = bad.or(integrate_row(inp, r, cur, prev, &mut rows));
+            std::mem::swap(&mut prev, &mut cur);
+        }
+        if let Some(even) = pair.get(1) {
+            bad = bad.or(integrate_row(inp, r1, even, prev, &mut rows));
+        }
+        bad
+    })
 }
 
 /// Force on the `i` lanes from springs `i → j`: `c (L − L0) d / L`, zero where `L = 0`.
+/// A spring that does not exist has `c = 0` and gives ±0, which sums like the reference's
+/// +0 in every case but an all-zero force, and the integrator adds `+0` (or `g`) to that.
 #[inline(always)]
 fn spring_force(pi: [Lane; 3], pj: [Lane; 3], coef: Lane, rest: Lane) -> [Lane; 3] {
     let d = [pj[0] - pi[0], pj[1] - pi[1], pj[2] - pi[2]];
     let l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     let l = l2.sqrt();
-    let s = l2.simd_gt(Lane::ZERO).select(coef * (l - rest) / l, Lane::ZERO);
+    let s = l2
+        .simd_gt(Lane::ZERO)
+        .select(coef * (l - rest) / l, Lane::ZERO);
     [s * d[0], s * d[1], s * d[2]]
 }
 
+/// Evaluates row `r`'s springs into `out`: E inside the row, S/SE/SW down to row r+1
+/// (zero on the last row).
 #[inline(always)]
-fn load3(s: [&[f32]; 3], at: usize) -> [Lane; 3] {
-    [load(s[0], at), load(s[1], at), load(s[2], at)]
-}
-
-/// Adds the forces of row `r`'s springs: E into `cur`, and S, SE, SW into `cur` (origin)
-/// and `next` (the other end, in row r+1).
-#[inline(always)]
-fn row_springs(inp: &Inputs, r: usize, cur: &mut [Vec<f32>; 3], next: &mut [Vec<f32>; 3]) {
+fn row_springs(inp: &Inputs, r: usize, out: &mut RowForces) {
     let cols = inp.cols;
+    let chunks = cols.div_ceil(LANES);
     let base = r * cols;
-    let down = base + cols;
-    let has_down = r + 1 < inp.rows;
-    let sp = inp.springs;
-    for c0 in (0..cols).step_by(LANES) {
-        let i = base + c0;
-        let live = if c0 + LANES > cols { inp.tail } else { first_lanes(LANES) };
-        let coef = |fam: usize| load(&sp.coef[fam], i) & live;
-        let rest = |fam: usize| load(&sp.rest[fam], i);
-        let pi = load3(inp.pos, i);
-        let a = LEAD + c0;
+    // Chunk views (see `crate::simd`): chunk k of `view(start)` holds the nodes
+    // `start + k·LANES ..`, so `view(base + 1)` is the east neighbour of `view(base)`.
+    let view = |start: usize| inp.pos.map(|p| lanes(p, start, chunks));
+    let table = |fam: usize| {
+        let sp = inp.springs;
+        (
+            lanes(&sp.coef[fam], base, chunks),
+            lanes(&sp.rest[fam], base, chunks),
+        )
+    };
+    let [e, s, se, sw] = &mut out.fam;
+    let here = view(base);
 
-        let f = spring_force(pi, load3(inp.pos, i + 1), coef(0), rest(0));
-        for k in 0..3 {
-            add_to(&mut cur[k], a, f[k]);
-            sub_from(&mut cur[k], a + 1, f[k]);
+    let (east, t_e) = (view(base + 1), table(0));
+    let mut e = e.each_mut().map(|c| lanes_mut(c, LEAD, chunks));
+    for k in 0..chunks {
+        let live = if k + 1 == chunks { inp.tail } else { ALL };
+        // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
+        unsafe { spring_lanes(load3(here, k), load3(east, k), t_e, live, &mut e, k) };
+    }
+
+    if r + 1 == inp.rows {
+        for c in [s, se, sw].into_iter().flatten() {
+            c.fill(0.0);
         }
-        if !has_down {
-            continue;
-        }
-        let j = down + c0;
-        let f = spring_force(pi, load3(inp.pos, j), coef(1), rest(1));
-        for k in 0..3 {
-            add_to(&mut cur[k], a, f[k]);
-            sub_from(&mut next[k], a, f[k]);
-        }
-        let f = spring_force(pi, load3(inp.pos, j + 1), coef(2), rest(2));
-        for k in 0..3 {
-            add_to(&mut cur[k], a, f[k]);
-            sub_from(&mut next[k], a + 1, f[k]);
-        }
-        let f = spring_force(pi, load3(inp.pos, j - 1), coef(3), rest(3));
-        for k in 0..3 {
-            add_to(&mut cur[k], a, f[k]);
-            sub_from(&mut next[k], a - 1, f[k]);
+        return;
+    }
+    let (south, south_east, south_west) = (
+        view(base + cols),
+        view(base + cols + 1),
+        view(base + cols - 1),
+    );
+    let (t_s, t_se, t_sw) = (table(1), table(2), table(3));
+    let [mut s, mut se, mut sw] =
+        [s, se, sw].map(|f| f.each_mut().map(|c| lanes_mut(c, LEAD, chunks)));
+    for k in 0..chunks {
+        let live = if k + 1 == chunks { inp.tail } else { ALL };
+        // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
+        unsafe {
+            let pi = load3(here, k);
+            spring_lanes(pi, load3(south, k), t_s, live, &mut s, k);
+            spring_lanes(pi, load3(south_east, k), t_se, live, &mut se, k);
+            spring_lanes(pi, load3(south_west, k), t_sw, live, &mut sw, k);
         }
     }
 }
 
-/// Symplectic Euler for row `r` with spring forces `acc`, into the back buffers.
-/// Returns the first node whose new state is not finite.
+/// One family's springs for chunk `k` (`table`: coefficient and rest-length views),
+/// stored into that family's row.
+///
+/// # Safety
+///
+/// `k` is below the length of `table`'s views and of `out`'s.
 #[inline(always)]
-fn integrate_row(inp: &Inputs, r: usize, acc: &[Vec<f32>; 3], rows: &mut Rows) -> Option<usize> {
+unsafe fn spring_lanes(
+    pi: [Lane; 3],
+    pj: [Lane; 3],
+    table: (&[[f32; LANES]], &[[f32; LANES]]),
+    live: Lane,
+    out: &mut [&mut [[f32; LANES]]; 3],
+    k: usize,
+) {
+    // SAFETY: the caller guarantees `k` is in range of every view.
+    unsafe {
+        let f = spring_force(pi, pj, get(table.0, k) & live, get(table.1, k));
+        for (o, fk) in out.iter_mut().zip(f) {
+            put(o, k, fk);
+        }
+    }
+}
+
+/// Chunk `k` of three views.
+///
+/// # Safety
+///
+/// `k` is below the length of every view.
+#[inline(always)]
+unsafe fn load3(v: [&[[f32; LANES]]; 3], k: usize) -> [Lane; 3] {
+    // SAFETY: the caller guarantees `k` is in range of every view.
+    unsafe { [get(v[0], k), get(v[1], k), get(v[2], k)] }
+}
+
+/// Sums row `r`'s spring forces (`cur`: its own springs, `prev`: the ones arriving from
+/// row r−1) and integrates the row into the back buffers. Returns the first node whose
+/// new state is not finite.
+#[inline(always)]
+fn integrate_row(
+    inp: &Inputs,
+    r: usize,
+    cur: &RowForces,
+    prev: &RowForces,
+    rows: &mut Rows,
+) -> Option<usize> {
     let cols = inp.cols;
+    let chunks = cols.div_ceil(LANES);
+    let full = cols / LANES;
     let base = r * cols;
     let out_base = (r - rows.first_row) * cols;
+    let node = |s| lanes(s, base, chunks);
+    let (inv_mass, viscosity) = (node(inp.inv_mass), node(inp.viscosity));
     let dt = Lane::splat(inp.cfg.dt);
-    let g = inp.cfg.accel.map(Lane::splat);
-    let mut finite = first_lanes(LANES);
-    for c0 in (0..cols).step_by(LANES) {
-        let i = base + c0;
-        let count = (cols - c0).min(LANES);
-        let inv_mass = load(inp.inv_mass, i);
-        let viscosity = load(inp.viscosity, i);
-        let free = inv_mass.simd_gt(Lane::ZERO);
-        for k in 0..3 {
-            let mut force = load(&acc[k], LEAD + c0);
-            if let Some(ext) = inp.ext {
-                force += load(ext[k], i);
+    let mut finite = Lane::ZERO;
+    let (xs, vs) = rows.out.split_at_mut(3);
+    for (axis, (x_out, v_out)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
+        let (pos, vel) = (node(inp.pos[axis]), node(inp.vel[axis]));
+        let ext = inp.ext.map(|e| node(e[axis]));
+        let g = Lane::splat(inp.cfg.accel[axis]);
+        fn family(
+            rf: &RowForces,
+            fam: usize,
+            axis: usize,
+            start: usize,
+            chunks: usize,
+        ) -> &[[f32; LANES]] {
+            lanes(&rf.fam[fam][axis], start, chunks)
+        }
+        let f = |rf, fam, start| family(rf, fam, axis, start, chunks);
+        // Leaving (this row's springs at this node) and arriving (the same family's spring
+        // from the west, north, north-west and north-east neighbour).
+        let (e, e_w) = (f(cur, 0, LEAD), f(cur, 0, LEAD - 1));
+        let (s, s_n) = (f(cur, 1, LEAD), f(prev, 1, LEAD));
+        let (se, se_nw) = (f(cur, 2, LEAD), f(prev, 2, LEAD - 1));
+        let (sw, sw_ne) = (f(cur, 3, LEAD), f(prev, 3, LEAD + 1));
+        let (x_full, x_tail) = x_out[out_base..out_base + cols].split_at_mut(full * LANES);
+        let (v_full, v_tail) = v_out[out_base..out_base + cols].split_at_mut(full * LANES);
+        let (x_full, v_full) = (
+            x_full.as_chunks_mut::<LANES>().0,
+            v_full.as_chunks_mut::<LANES>().0,
+        );
+        for k in 0..chunks {
+            // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
+            let l = |v: &[[f32; LANES]]| unsafe { get(v, k) };
+            // Same expression as `scalar::node_force`.
+            let mut force =
+                (l(e) - l(e_w)) + (l(s) - l(s_n)) + (l(se) - l(se_nw)) + (l(sw) - l(sw_ne));
+            if let Some(ext) = ext {
+                force += l(ext);
             }
-            let v = load(inp.vel[k], i);
-            let x = load(inp.pos[k], i);
-            let a = (force - viscosity * v) * inv_mass + free.select(g[k], Lane::ZERO);
-            let v1 = v + a * dt;
-            let x1 = x + v1 * dt;
-            let live = if count < LANES { inp.tail } else { first_lanes(LANES) };
-            finite &= (x1.is_finite() & v1.is_finite()) | !live;
-            store_first(rows.out[k], out_base + c0, x1, count);
-            store_first(rows.out[3 + k], out_base + c0, v1, count);
+            let inv_mass = l(inv_mass);
+            let v = l(vel);
+            let acc = (force - l(viscosity) * v) * inv_mass
+                + inv_mass.simd_gt(Lane::ZERO).select(g, Lane::ZERO);
+            let v1 = v + acc * dt;
+            let x1 = l(pos) + v1 * dt;
+            // Fused finiteness check: `x·0` is 0 for finite x and NaN otherwise, and x' is
+            // non-finite whenever v' is. Lanes past the row hold other rows' values or zero
+            // padding; a non-finite one there is reported when its own row is checked.
+            finite += x1 * Lane::ZERO;
+            if k < full {
+                x_full[k] = x1.to_array();
+                v_full[k] = v1.to_array();
+            } else {
+                x_tail.copy_from_slice(&x1.to_array()[..x_tail.len()]);
+                v_tail.copy_from_slice(&v1.to_array()[..v_tail.len()]);
+            }
         }
     }
-    if finite.all() {
+    if !finite.is_nan().any() {
         return None;
     }
     (0..cols).find_map(|c| {
-        let o = out_base + c;
-        (0..6).any(|k| !rows.out[k][o].is_finite()).then_some(base + c)
+        (0..6)
+            .any(|k| !rows.out[k][out_base + c].is_finite())
+            .then_some(base + c)
     })
 }

@@ -1,7 +1,7 @@
 //! `springwater bench`: time the engine step, and compare it in the same run with the
 //! scalar reference, the naive array-of-structs baseline and the memory floor.
 
-use crate::args::{next_flag, Flag, string, unexpected, value, CliResult, ModelArgs};
+use crate::args::{next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
 use lexopt::Parser;
 use springwater::baselines::{MemoryFloor, NaiveSurface};
 use springwater::simd::LANES;
@@ -30,6 +30,7 @@ impl Kernel {
 pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut model = ModelArgs::default();
     let mut repeats: usize = 5;
+    let mut band_rows: Option<usize> = None;
     let mut compare = vec![Kernel::Reference, Kernel::Naive, Kernel::Floor];
     while let Some(arg) = next_flag(p)? {
         if model.parse_flag(&arg, p)? {
@@ -42,6 +43,13 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                     return Err("--repeats must be at least 1".into());
                 }
             }
+            Flag::Long(l) if l == "band-rows" => {
+                let h: usize = value(p, "--band-rows")?;
+                if h == 0 {
+                    return Err("--band-rows must be at least 1".into());
+                }
+                band_rows = Some(h);
+            }
             Flag::Long(l) if l == "compare" => {
                 compare = string(p, "--compare")?
                     .split(',')
@@ -50,7 +58,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                         "reference" => Ok(Kernel::Reference),
                         "naive" => Ok(Kernel::Naive),
                         "floor" => Ok(Kernel::Floor),
-                        other => Err(format!("--compare: unknown kernel '{other}' (reference, naive, floor, none)")),
+                        other => Err(format!(
+                            "--compare: unknown kernel '{other}' (reference, naive, floor, none)"
+                        )),
                     })
                     .collect::<CliResult<_>>()?;
             }
@@ -61,6 +71,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         return Err("--steps must be at least 1 for bench".into());
     }
     let mut surface = model.surface()?;
+    if let Some(h) = band_rows {
+        surface.set_band_rows(h);
+    }
     if model.drops.is_empty() {
         let p = surface.params();
         surface
@@ -85,11 +98,21 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let samples = model.with_threads(|| -> CliResult<Vec<Vec<f64>>> {
         let mut naive = kernels.contains(&Kernel::Naive).then(|| {
             let mut n = NaiveSurface::new(&params);
-            n.drop_at(params.cols, params.cols as f32 / 2.0, params.rows as f32 / 2.0, 1.0, 4.0);
+            n.drop_at(
+                params.cols,
+                params.cols as f32 / 2.0,
+                params.rows as f32 / 2.0,
+                1.0,
+                4.0,
+            );
             n
         });
-        let mut reference = kernels.contains(&Kernel::Reference).then(|| surface.clone());
-        let mut floor = kernels.contains(&Kernel::Floor).then(|| MemoryFloor::new(nodes));
+        let mut reference = kernels
+            .contains(&Kernel::Reference)
+            .then(|| surface.clone());
+        let mut floor = kernels
+            .contains(&Kernel::Floor)
+            .then(|| MemoryFloor::new(nodes));
         let mut samples = vec![Vec::new(); kernels.len()];
         // One warm-up round, then `repeats` interleaved rounds so drift hits every kernel.
         for round in 0..=repeats {
@@ -134,10 +157,23 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     })??;
 
     let per_step: Vec<f64> = samples.iter().map(|s| median(s)).collect();
-    println!("{:<14}{:>16}{:>20}{:>18}", "kernel", "s/step (median)", "node updates/s", "engine speed-up");
+    println!(
+        "{:<14}{:>16}{:>20}{:>18}",
+        "kernel", "s/step (median)", "node updates/s", "engine speed-up"
+    );
     for (kernel, t) in kernels.iter().zip(&per_step) {
-        let ratio = if *kernel == Kernel::Engine { String::from("1.00x") } else { format!("{:.2}x", t / per_step[0]) };
-        println!("{:<14}{:>16.6e}{:>20.4e}{:>18}", kernel.name(), t, nodes as f64 / t, ratio);
+        let ratio = if *kernel == Kernel::Engine {
+            String::from("1.00x")
+        } else {
+            format!("{:.2}x", t / per_step[0])
+        };
+        println!(
+            "{:<14}{:>16.6e}{:>20.4e}{:>18}",
+            kernel.name(),
+            t,
+            nodes as f64 / t,
+            ratio
+        );
     }
     let seconds = per_step[0] * model.steps as f64;
     println!(

@@ -18,6 +18,7 @@ commands:
   simulate   run the steps and print a summary        [--csv FILE]
   bench      time the step against the scalar reference, a naive AoS
              baseline and a memory-bandwidth floor    [--repeats N] [--compare LIST]
+                                                      [--band-rows H]
   export     write the frame as a Wavefront OBJ (positions, normals, refraction UVs,
              LOD triangles)   --eye X,Y,Z --depth D [--ior N] --obj FILE
                               [--patch-cells N] [--first-range R] [--levels L]
