@@ -54,7 +54,7 @@
 
 use crate::error::{Error, Result};
 use crate::mesh::{MeshView, Normals};
-use crate::simd::{load, store, Lane, LANES};
+use crate::simd::{lanes, lanes_mut, Lane, LANES};
 use glam::Vec3;
 
 /// The bottom and the water's optics.
@@ -285,26 +285,34 @@ impl Kernel {
     }
 
     /// Nodes `start .. start + out[0].len()`: lanes, then the scalar twin for the tail.
-    fn chunk(&self, view: &MeshView<'_>, normals: &Normals, start: usize, out: [&mut [f32]; 3]) {
+    fn chunk<'a>(
+        &self,
+        view: &MeshView<'a>,
+        normals: &'a Normals,
+        start: usize,
+        out: [&mut [f32]; 3],
+    ) {
         let [ou, ov, of] = out;
         let len = ou.len();
         let c = Consts::new(self);
-        let (x, y, z) = (view.x(), view.y(), view.z());
-        let (nx, ny, nz) = (&normals.x, &normals.y, &normals.z);
-        let at = |i: usize| {
-            let p = [load(x, i), load(y, i), load(z, i)];
-            let n = [load(nx, i), load(ny, i), load(nz, i)];
-            (p, n)
-        };
-        let mut o = 0;
-        while o + LANES <= len {
-            let (p, n) = at(start + o);
-            let r = lanes(&c, p, n);
-            for (k, out) in [&mut *ou, &mut *ov, &mut *of].into_iter().enumerate() {
-                store(out, o, r[k]);
-            }
-            o += LANES;
+        // Chunk views cut to exactly `count` lanes: indexing them below needs no bounds
+        // check the compiler cannot prove.
+        let count = len / LANES;
+        let at = |s: &'a [f32]| lanes(s, start, count);
+        let (x, y, z) = (at(view.x()), at(view.y()), at(view.z()));
+        let (nx, ny, nz) = (at(&normals.x), at(&normals.y), at(&normals.z));
+        let (u, v, f) = (
+            lanes_mut(ou, 0, count),
+            lanes_mut(ov, 0, count),
+            lanes_mut(of, 0, count),
+        );
+        for k in 0..count {
+            let p = [Lane::new(x[k]), Lane::new(y[k]), Lane::new(z[k])];
+            let n = [Lane::new(nx[k]), Lane::new(ny[k]), Lane::new(nz[k])];
+            let [ru, rv, rf] = refract_lanes(&c, p, n);
+            (u[k], v[k], f[k]) = (ru.to_array(), rv.to_array(), rf.to_array());
         }
+        let o = count * LANES;
         for o in o..len {
             let i = start + o;
             let [u, v, f] = refract_node(
@@ -352,7 +360,7 @@ impl Consts {
 /// `[u, v, fresnel]` for [`LANES`] nodes at `[px, py, pz]` with normals `[nx, ny, nz]`:
 /// [`refract_node`] with masks for its branches.
 #[inline(always)]
-fn lanes(c: &Consts, [px, py, pz]: [Lane; 3], [nx, ny, nz]: [Lane; 3]) -> [Lane; 3] {
+fn refract_lanes(c: &Consts, [px, py, pz]: [Lane; 3], [nx, ny, nz]: [Lane; 3]) -> [Lane; 3] {
     let (zero, one) = (Lane::ZERO, Lane::ONE);
     let (eta, scale) = (c.eta, c.scale);
     let [ex, ey, ez] = c.eye;
@@ -376,13 +384,21 @@ fn lanes(c: &Consts, [px, py, pz]: [Lane; 3], [nx, ny, nz]: [Lane; 3]) -> [Lane;
     let valid = front & ty.simd_lt(zero) & s.simd_ge(zero) & s.simd_lt(c.max_travel);
     let (hx, hz) = (valid.select(px + s * tx, px), valid.select(pz + s * tz, pz));
 
-    let c_in = (-cosi).fast_min(one);
-    let sin2t = c.ior2 * (one - c_in * c_in);
-    let c_back = (one - sin2t).fast_max(zero).sqrt();
-    let cos = front.select(cosi.fast_min(one), c_back);
-    let m = one - cos;
-    let m2 = m * m;
-    let r = c.r0 + (one - c.r0) * (m2 * m2 * m);
-    let r = (!front & sin2t.simd_ge(one)).select(one, r);
+    let schlick = |cos: Lane| {
+        let m = one - cos;
+        let m2 = m * m;
+        c.r0 + (one - c.r0) * (m2 * m2 * m)
+    };
+    let r = if front.all() {
+        // The usual case, an eye above the water: no lane needs the transmitted angle, so
+        // skip its square root. Same arithmetic as the masked path for front lanes.
+        schlick(cosi.fast_min(one))
+    } else {
+        let c_in = (-cosi).fast_min(one);
+        let sin2t = c.ior2 * (one - c_in * c_in);
+        let c_back = (one - sin2t).fast_max(zero).sqrt();
+        let r = schlick(front.select(cosi.fast_min(one), c_back));
+        (!front & sin2t.simd_ge(one)).select(one, r)
+    };
     [hx * c.inv_extent[0], hz * c.inv_extent[1], r]
 }
