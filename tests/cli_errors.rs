@@ -289,3 +289,23 @@ fn drop_adds_to_a_loaded_snapshot() {
     assert_eq!(line(&without), "4,4,4,0,4");
     assert_eq!(line(&with), "4,4,4,0.5,4");
 }
+
+#[test]
+fn a_run_that_goes_non_finite_fails_in_one_line_and_leaves_no_outputs() {
+    let (snap, csv) = (scratch("nonfinite.snap"), scratch("nonfinite.csv"));
+    let args = [
+        "simulate",
+        "--size",
+        "20x20",
+        "--drop",
+        "10,10,1e30,2",
+        "--steps",
+        "5",
+        "--save",
+        snap.to_str().unwrap(),
+        "--csv",
+        csv.to_str().unwrap(),
+    ];
+    refused(&args, "non-finite");
+    assert!(!snap.exists() && !csv.exists());
+}

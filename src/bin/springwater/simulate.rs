@@ -69,7 +69,14 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         .map(|path| create(&path).map(|file| (path, file)))
         .transpose()?;
     let start = Instant::now();
-    model.with_threads(|| run_steps(&mut surface, model.steps))??;
+    let outcome = model.with_threads(|| run_steps(&mut surface, model.steps));
+    if let Err(e) | Ok(Err(e)) = outcome {
+        // Leave no empty output behind that a later --load would only call truncated.
+        for (path, _) in csv.iter().chain(&save) {
+            let _ = std::fs::remove_file(path);
+        }
+        return Err(e);
+    }
     let seconds = start.elapsed().as_secs_f64();
     print_summary(&surface, model.steps, seconds);
     if let Some((path, file)) = csv {
