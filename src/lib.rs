@@ -47,11 +47,15 @@
 #![forbid(unsafe_code)]
 
 pub mod baselines;
+pub mod disturb;
 pub mod error;
 mod forces;
 pub mod grid;
 pub mod mesh;
 pub mod params;
+pub mod refraction;
+#[cfg(feature = "render")]
+pub mod render;
 pub mod simd;
 pub mod springs;
 mod state;

@@ -1,0 +1,308 @@
+//! `springwater render`: the water as an animated GIF (and/or PNG frames).
+
+use crate::args::{list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
+use crate::image::{read_png, write_gif, write_png, Histogram, Palette};
+use crate::simulate::create;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use lexopt::Parser;
+use springwater::disturb::{Disturbance, Rain, Wake};
+use springwater::render::{Camera, RenderParams, Renderer, StageTimes, Texture};
+use springwater::Surface;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// The render command's options beyond the model flags.
+#[derive(Debug, Clone)]
+struct Options {
+    frames: usize,
+    substeps: usize,
+    fps: f32,
+    eye: Option<[f32; 3]>,
+    look_at: Option<[f32; 3]>,
+    fov: f32,
+    width: u32,
+    height: u32,
+    bottom: Option<PathBuf>,
+    depth: f32,
+    ior: f32,
+    caustics: f32,
+    rain: f32,
+    seed: u64,
+    wake: bool,
+    wireframe: bool,
+    out: Option<PathBuf>,
+    png: Option<PathBuf>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            frames: 72,
+            substeps: 3,
+            fps: 20.0,
+            eye: None,
+            look_at: None,
+            fov: 45.0,
+            width: 400,
+            height: 300,
+            bottom: None,
+            depth: 8.0,
+            ior: 1.333,
+            caustics: 0.9,
+            rain: 0.3,
+            seed: 1,
+            wake: false,
+            wireframe: false,
+            out: None,
+            png: None,
+        }
+    }
+}
+
+/// Steps run before the first frame when `--steps` is not given: the rain has started.
+const WARM_UP_STEPS: u64 = 60;
+
+pub fn run(p: &mut Parser) -> CliResult<()> {
+    let mut model = ModelArgs {
+        steps: WARM_UP_STEPS,
+        ..ModelArgs::default()
+    };
+    let mut o = Options::default();
+    while let Some(arg) = next_flag(p)? {
+        if model.parse_flag(&arg, p)? {
+            continue;
+        }
+        let Flag::Long(name) = &arg else {
+            return Err(unexpected(arg, "render"));
+        };
+        match name.as_str() {
+            "frames" => o.frames = ranged(value(p, "--frames")?, 1, 100_000, "--frames")?,
+            "substeps" => o.substeps = ranged(value(p, "--substeps")?, 0, 10_000, "--substeps")?,
+            "fps" => o.fps = positive(value(p, "--fps")?, "--fps")?,
+            "eye" => o.eye = Some(list(&string(p, "--eye")?, "--eye X,Y,Z")?),
+            "look-at" => o.look_at = Some(list(&string(p, "--look-at")?, "--look-at X,Y,Z")?),
+            "fov" => o.fov = value(p, "--fov")?,
+            "width" => o.width = ranged(value(p, "--width")?, 16, 4096, "--width")?,
+            "height" => o.height = ranged(value(p, "--height")?, 16, 4096, "--height")?,
+            "bottom" => o.bottom = Some(string(p, "--bottom")?.into()),
+            "depth" => o.depth = positive(value(p, "--depth")?, "--depth")?,
+            "ior" => o.ior = value(p, "--ior")?,
+            "caustics" => o.caustics = value(p, "--caustics")?,
+            "rain" => o.rain = value(p, "--rain")?,
+            "seed" => o.seed = value(p, "--seed")?,
+            "wake" => o.wake = true,
+            "wireframe" => o.wireframe = true,
+            "out" => o.out = Some(string(p, "--out")?.into()),
+            "png" => o.png = Some(string(p, "--png")?.into()),
+            _ => return Err(unexpected(arg, "render")),
+        }
+    }
+    if o.out.is_none() && o.png.is_none() {
+        return Err("render needs --out FILE.gif or --png DIR (or both)".into());
+    }
+    if !(o.rain.is_finite() && o.rain >= 0.0) {
+        return Err(format!(
+            "--rain: {} is not a rate >= 0 (drops per unit of model time)",
+            o.rain
+        ));
+    }
+    if !(o.ior.is_finite() && o.ior >= 1.0) {
+        return Err(format!(
+            "--ior: {} is not an index of refraction >= 1",
+            o.ior
+        ));
+    }
+    if !(o.caustics.is_finite() && o.caustics >= 0.0) {
+        return Err(format!("--caustics: {} is not a strength >= 0", o.caustics));
+    }
+
+    let mut surface = model.surface()?;
+    let params = *surface.params();
+    let mut camera = Camera::framing(params.cols, params.rows, params.spacing, o.width, o.height);
+    if let Some(e) = o.eye {
+        camera.eye = e.into();
+    }
+    if let Some(l) = o.look_at {
+        camera.look_at = l.into();
+    }
+    camera.fov_y_degrees = o.fov;
+    camera.validate().map_err(|e| format!("camera: {e}"))?;
+    let bottom = match &o.bottom {
+        Some(path) => read_png(path)?,
+        None => Texture::pool_tiles(1024),
+    };
+    let mut render_params = RenderParams {
+        wireframe: o.wireframe,
+        ..RenderParams::default()
+    };
+    render_params.refraction.depth = o.depth;
+    render_params.refraction.ior = o.ior;
+    render_params.look.caustics = o.caustics;
+    let mut renderer = Renderer::new(render_params, bottom).map_err(|e| e.to_string())?;
+
+    // Open every output before any work: an unwritable path fails at once.
+    let gif_file = o
+        .out
+        .as_ref()
+        .map(|path| create(path).map(|f| (path.clone(), f)))
+        .transpose()?;
+    if let Some(dir) = &o.png {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+        create(&frame_path(dir, 0))?;
+    }
+
+    let mut rain = Rain::new(o.rain, o.seed);
+    let mut wake = o
+        .wake
+        .then(|| Wake::circle(&surface, 0.3 * params.cols.min(params.rows) as f32));
+    let mut disturbances: Vec<&mut (dyn Disturbance + Send)> = vec![&mut rain];
+    if let Some(w) = wake.as_mut() {
+        disturbances.push(w);
+    }
+
+    let bar = progress(o.frames as u64);
+    let start = Instant::now();
+    let mut sim_time = Duration::ZERO;
+    let mut stages = StageTimes::default();
+    let mut frames: Vec<Vec<u8>> = Vec::new();
+    let mut histogram = Histogram::new();
+    let mut png_time = Duration::ZERO;
+    model.with_threads(|| -> CliResult<()> {
+        let t = Instant::now();
+        run_steps(&mut surface, &mut disturbances, model.steps)?;
+        sim_time += t.elapsed();
+        for k in 0..o.frames {
+            if k > 0 {
+                let t = Instant::now();
+                run_steps(&mut surface, &mut disturbances, o.substeps as u64)?;
+                sim_time += t.elapsed();
+            }
+            renderer
+                .render(&surface.mesh_view(), &camera)
+                .map_err(|e| e.to_string())?;
+            stages += renderer.times();
+            let frame = renderer.frame();
+            if let Some(dir) = &o.png {
+                let t = Instant::now();
+                let path = frame_path(dir, k);
+                let file = create(&path)?;
+                write_png(file, frame.width(), frame.height(), frame.rgb())
+                    .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                png_time += t.elapsed();
+            }
+            if gif_file.is_some() {
+                histogram.add(frame.rgb());
+                frames.push(frame.rgb().to_vec());
+            }
+            bar.inc(1);
+        }
+        Ok(())
+    })??;
+    let render_seconds = start.elapsed();
+
+    let mut gif_time = Duration::ZERO;
+    if let Some((path, file)) = gif_file {
+        bar.set_message("encoding GIF");
+        let t = Instant::now();
+        let palette = model.with_threads(|| Palette::median_cut(&histogram))?;
+        let delay = (100.0 / o.fps).round().clamp(2.0, 65535.0) as u16;
+        write_gif(
+            file,
+            o.width as usize,
+            o.height as usize,
+            &frames,
+            &palette,
+            delay,
+        )
+        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+        gif_time = t.elapsed();
+    }
+    bar.finish_and_clear();
+
+    let n = o.frames as f64;
+    let ms = |d: Duration| d.as_secs_f64() * 1e3 / n;
+    let total = start.elapsed();
+    println!(
+        "rendered {} frames of {}x{} pixels, a {}x{} surface, {} steps per frame after {} warm-up steps",
+        o.frames, o.width, o.height, params.cols, params.rows, o.substeps, model.steps
+    );
+    println!(
+        "disturbances: {} raindrops (rate {}, seed {}){}",
+        rain.fallen(),
+        o.rain,
+        o.seed,
+        if o.wake { ", a wake" } else { "" }
+    );
+    println!(
+        "per frame    simulation {:.2} ms, normals {:.2} ms, LOD {:.2} ms, refraction {:.2} ms, drawing {:.2} ms",
+        ms(sim_time),
+        ms(stages.normals),
+        ms(stages.lod),
+        ms(stages.refraction),
+        ms(stages.drawing)
+    );
+    println!(
+        "total        {:.2} s ({:.1} ms per frame); rendering {:.2} s, GIF palette + encoding {:.2} s, PNG writing {:.2} s",
+        total.as_secs_f64(),
+        total.as_secs_f64() * 1e3 / n,
+        render_seconds.as_secs_f64(),
+        gif_time.as_secs_f64(),
+        png_time.as_secs_f64()
+    );
+    if let Some(path) = &o.out {
+        let size = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
+        println!("wrote {} ({:.1} KiB)", path.display(), size as f64 / 1024.0);
+    }
+    if let Some(dir) = &o.png {
+        println!("wrote {} PNG frames to {}", o.frames, dir.display());
+    }
+    Ok(())
+}
+
+/// `steps` steps, each preceded by every disturbance.
+fn run_steps(
+    surface: &mut Surface,
+    disturbances: &mut [&mut (dyn Disturbance + Send)],
+    steps: u64,
+) -> CliResult<()> {
+    for _ in 0..steps {
+        let dt = surface.params().dt;
+        for d in disturbances.iter_mut() {
+            d.apply(surface, dt).map_err(|e| e.to_string())?;
+        }
+        surface.step().map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+fn frame_path(dir: &std::path::Path, k: usize) -> PathBuf {
+    dir.join(format!("frame_{k:04}.png"))
+}
+
+/// A progress bar on stderr; indicatif draws nothing when stderr is not a terminal.
+fn progress(frames: u64) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(Some(frames), ProgressDrawTarget::stderr());
+    if let Ok(style) = ProgressStyle::with_template(
+        "{bar:40.cyan/blue} {pos}/{len} frames {elapsed_precise} (eta {eta}) {msg}",
+    ) {
+        bar.set_style(style);
+    }
+    bar
+}
+
+fn ranged<T: PartialOrd + std::fmt::Display>(v: T, lo: T, hi: T, flag: &str) -> CliResult<T> {
+    if v < lo || v > hi {
+        Err(format!("{flag} must be between {lo} and {hi}, got {v}"))
+    } else {
+        Ok(v)
+    }
+}
+
+fn positive(v: f32, flag: &str) -> CliResult<f32> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("{flag} must be a finite number > 0, got {v}"))
+    }
+}
