@@ -42,8 +42,8 @@ impl Camera {
         let d = (rows.max(2) - 1) as f32 * spacing;
         let size = w.max(d);
         let centre = Vec3::new(w / 2.0, 0.0, d / 2.0);
-        let eye = centre + Vec3::new(0.0, 0.62, 0.98) * size;
-        let look_at = centre + Vec3::new(0.0, 0.0, 0.08) * size;
+        let eye = centre + Vec3::new(0.0, 0.39, 0.87) * size;
+        let look_at = centre + Vec3::new(0.0, -0.06, -0.03) * size;
         Self::new(eye, look_at, width, height)
     }
 

@@ -78,7 +78,7 @@ pub struct Look {
     pub sky_zenith: [f32; 3],
     /// Sky colour at the horizon (default: a pale blue).
     pub sky_horizon: [f32; 3],
-    /// Direction towards the sun (default: behind the pool, 50° up); normalised on use.
+    /// Direction towards the sun (default: behind the pool, 30° up); normalised on use.
     pub sun: Vec3,
     /// Brightness of the sun's glint on the water (default: `6.0`; 0 turns it off).
     pub glint: f32,
@@ -98,7 +98,7 @@ impl Default for Look {
         Self {
             sky_zenith: [0.045, 0.16, 0.48],
             sky_horizon: [0.62, 0.76, 0.90],
-            sun: Vec3::new(-0.25, 0.75, -0.6),
+            sun: Vec3::new(-0.2, 0.5, -0.85),
             glint: 6.0,
             absorption: [0.05, 0.016, 0.011],
             caustics: 0.9,
@@ -578,21 +578,34 @@ fn surroundings(look: &Look, rays: &Rays, footprint: (f32, f32), px: f32, py: f3
     let oz = (-hit.z).max(hit.z - d).max(0.0);
     let outside = ox.max(oz);
     let coping = 2.0;
+    // World size of the pixel's footprint along its longest side, to filter the paving
+    // pattern: sharp joints near the eye, their average colour where a slab shrinks to a
+    // few pixels (unfiltered, they alias into moiré bands towards the horizon).
+    let len = dir.length();
+    let footprint_px = s * len * rays.dx.length() / (dir.y.abs() / len).max(0.02);
     let base = if outside < coping {
         [0.80, 0.78, 0.72]
     } else {
-        // Slabs of 6 units with joints, each a slightly different shade.
-        let (gx, gz) = (hit.x / 6.0, hit.z / 6.0);
-        let joint = gx - gx.floor() < 0.03 || gz - gz.floor() < 0.03;
-        let cell = (gx.floor() as i32).wrapping_mul(73_856_093)
-            ^ (gz.floor() as i32).wrapping_mul(19_349_663);
-        let shade = 0.92 + 0.08 * ((cell as u32 >> 7) % 97) as f32 / 97.0;
-        let c = if joint {
-            [0.30, 0.27, 0.24]
-        } else {
-            [0.52, 0.45, 0.37]
+        const SLAB: f32 = 6.0;
+        const JOINT: f32 = 0.2;
+        let stone = [0.52, 0.45, 0.37];
+        let joint_colour = [0.30, 0.27, 0.24];
+        // Joint coverage of the pixel across each axis, box-filtered.
+        let cover = |g: f32| {
+            let d = (g / SLAB - (g / SLAB).round()).abs() * SLAB;
+            ((JOINT / 2.0 - d) / footprint_px + 0.5).clamp(0.0, 1.0)
         };
-        c.map(|x| x * shade)
+        let joint = cover(hit.x).max(cover(hit.z));
+        let cell = (((hit.x / SLAB).floor() as i32).wrapping_mul(73_856_093)
+            ^ ((hit.z / SLAB).floor() as i32).wrapping_mul(19_349_663)) as u32;
+        let shade = 0.92 + 0.08 * ((cell >> 7) % 97) as f32 / 97.0;
+        let sharp: [f32; 3] =
+            [0, 1, 2].map(|k| (stone[k] * shade) * (1.0 - joint) + joint_colour[k] * joint);
+        // The average over many slabs: joints cover about 2·JOINT/SLAB of the area.
+        let f = 2.0 * JOINT / SLAB;
+        let mean: [f32; 3] = [0, 1, 2].map(|k| stone[k] * 0.96 * (1.0 - f) + joint_colour[k] * f);
+        let t = ((footprint_px - 0.6) / 1.8).clamp(0.0, 1.0);
+        [0, 1, 2].map(|k| sharp[k] + (mean[k] - sharp[k]) * t)
     };
     // Sunlight on the deck, and haze towards the horizon.
     let sun = look.sun.normalize().y.max(0.2);

@@ -55,30 +55,35 @@ pub fn write_png(file: File, width: usize, height: usize, rgb: &[u8]) -> std::io
 }
 
 /// A palette of at most 256 colours chosen by median cut over the colours of frames,
-/// and a table mapping every colour (6 bits per channel) to its nearest entry.
+/// and a table mapping every colour seen (6 bits per channel) to its nearest entry.
 pub struct Palette {
     /// `[r, g, b]` per entry.
     pub colours: Vec<[u8; 3]>,
     lookup: Vec<u8>,
 }
 
-/// Counts of colours at 5 bits per channel.
+/// Counts of colours at 6 bits per channel.
 pub struct Histogram {
     counts: Vec<u32>,
+}
+
+/// The histogram bin of an 8-bit colour.
+#[inline]
+fn bin(p: &[u8]) -> usize {
+    ((p[0] as usize >> 2) << 12) | ((p[1] as usize >> 2) << 6) | (p[2] as usize >> 2)
 }
 
 impl Histogram {
     pub fn new() -> Self {
         Self {
-            counts: vec![0; 1 << 15],
+            counts: vec![0; 1 << 18],
         }
     }
 
     /// Adds every pixel of an RGB frame.
     pub fn add(&mut self, rgb: &[u8]) {
         for p in rgb.chunks_exact(3) {
-            let k =
-                ((p[0] as usize >> 3) << 10) | ((p[1] as usize >> 3) << 5) | (p[2] as usize >> 3);
+            let k = bin(p);
             self.counts[k] = self.counts[k].saturating_add(1);
         }
     }
@@ -95,7 +100,7 @@ impl Palette {
             .iter()
             .enumerate()
             .filter(|(_, &n)| n > 0)
-            .map(|(k, &n)| ([(k >> 10) as u8, ((k >> 5) & 31) as u8, (k & 31) as u8], n))
+            .map(|(k, &n)| ([(k >> 12) as u8, ((k >> 6) & 63) as u8, (k & 63) as u8], n))
             .collect();
         if colours.is_empty() {
             colours.push(([0; 3], 1));
@@ -144,15 +149,15 @@ impl Palette {
                 let mut n = 0u64;
                 for (c, w) in &colours[r.clone()] {
                     for k in 0..3 {
-                        // The middle of the 5-bit bin, in 8 bits.
-                        sum[k] += (c[k] as u64 * 8 + 4) * *w as u64;
+                        // The middle of the 6-bit bin, in 8 bits.
+                        sum[k] += (c[k] as u64 * 4 + 2) * *w as u64;
                     }
                     n += *w as u64;
                 }
                 sum.map(|s| ((s + n / 2) / n.max(1)).min(255) as u8)
             })
             .collect();
-        let lookup = nearest_table(&entries);
+        let lookup = nearest_table(&entries, &hist.counts);
         Self {
             colours: entries,
             lookup,
@@ -162,8 +167,7 @@ impl Palette {
     /// The palette index of an 8-bit colour.
     #[inline]
     pub fn index(&self, p: &[u8]) -> u8 {
-        self.lookup
-            [((p[0] as usize >> 2) << 12) | ((p[1] as usize >> 2) << 6) | (p[2] as usize >> 2)]
+        self.lookup[bin(p)]
     }
 
     /// The palette as `r, g, b, r, g, b, …`, padded to a power of two entries.
@@ -191,8 +195,9 @@ fn widest(colours: &[([u8; 3], u32)]) -> (usize, u8) {
         .unwrap_or((0, 0))
 }
 
-/// For every colour at 6 bits per channel, the nearest palette entry (first on ties).
-fn nearest_table(entries: &[[u8; 3]]) -> Vec<u8> {
+/// For every colour bin with pixels in it, the nearest palette entry (first on ties);
+/// entry 0 for empty bins.
+fn nearest_table(entries: &[[u8; 3]], counts: &[u32]) -> Vec<u8> {
     use rayon::prelude::*;
     let mut table = vec![0u8; 1 << 18];
     table
@@ -200,6 +205,9 @@ fn nearest_table(entries: &[[u8; 3]]) -> Vec<u8> {
         .enumerate()
         .for_each(|(r, chunk)| {
             for (gb, out) in chunk.iter_mut().enumerate() {
+                if counts[(r << 12) | gb] == 0 {
+                    continue;
+                }
                 let c = [
                     r as i32 * 4 + 2,
                     (gb >> 6) as i32 * 4 + 2,
