@@ -87,6 +87,36 @@ pub enum Error {
         expected: usize,
     },
 
+    /// A query point is outside the surface's rest footprint.
+    #[error(
+        "point (x {x}, z {z}) is outside the water's footprint [0, {width}] x [0, {length}]; \
+         check Surface::contains first or clamp the point into the footprint"
+    )]
+    OutsideGrid {
+        /// The point's x.
+        x: f32,
+        /// The point's z.
+        z: f32,
+        /// `(cols − 1)·h`, the footprint's size along x.
+        width: f32,
+        /// `(rows − 1)·h`, the footprint's size along z.
+        length: f32,
+    },
+
+    /// The LOD level count does not fit the patch size.
+    #[error(
+        "{levels} LOD levels do not fit {patch_cells}-cell patches: use 1 to {max} levels, \
+         or larger patches (the coarsest level draws a patch as 2 triangles)"
+    )]
+    LodLevels {
+        /// The level count asked for.
+        levels: u32,
+        /// The patch size in cells.
+        patch_cells: usize,
+        /// `log2(patch_cells) + 1`.
+        max: u32,
+    },
+
     /// A snapshot could not be read: truncated, corrupted, or from another format version.
     #[error("snapshot refused: {0}")]
     Snapshot(String),

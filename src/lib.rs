@@ -25,6 +25,9 @@
 //!                       │ step(): forces (colour batches, SIMD, rayon) + integrate
 //!                       ▼
 //!                    MeshView<'_>  (borrows the SoA arrays: zero copy)
+//!                       ├─▶ normals      (per node)
+//!                       ├─▶ LOD indices  (view-dependent, crack-free, cached per camera)
+//!                       └─▶ refraction   (per node bottom UV, Fresnel)
 //! ```
 //!
 //! * [`params`]: the model's parameters, their defaults and the stability limits.
@@ -32,7 +35,10 @@
 //! * [`springs`]: per-spring tables and the colour batches (bands of rows).
 //! * `forces`: the scalar reference step and the SIMD + rayon engine step.
 //! * [`surface`]: [`Surface`], what a game owns.
-//! * [`mesh`]: the zero-copy [`MeshView`] for render-side stages.
+//! * [`mesh`]: the zero-copy [`MeshView`] and the render-side stages: normals, the LOD
+//!   index buffer ([`mesh::LodMesh`]), point queries ([`Surface::height_at`] and friends).
+//!   Its docs show a renderer's frame.
+//! * [`refraction`]: per-node bottom texture coordinates through the surface, Fresnel.
 //! * [`baselines`]: comparison kernels for benchmarks (naive AoS, memory floor).
 //!
 //! ## Features

@@ -1,40 +1,140 @@
-//! STAND-IN for the `mesh` branch's refraction stage, written against the agreed
-//! signatures so `render` compiles before that branch lands. Deleted at the merge.
+//! Refraction: which point of the bottom each node shows, and how much it reflects.
+//!
+//! # Method (DESIGN.md §2)
+//!
+//! The pool has a flat bottom at `y = −depth` carrying a texture that spans the grid's rest
+//! footprint `[0, (cols−1)h] × [0, (rows−1)h]`. For node `P` with unit normal `n` and the
+//! eye at `E` (both in the water's local space):
+//!
+//! ```text
+//! d    = normalize(P − E)                       the view ray
+//! cosi = −n·d                                   > 0 when the eye is on the normal's side
+//! η    = 1 / ior
+//! t    = η d + (η cosi − sqrt(1 − η²(1 − cosi²))) n      Snell's law, vector form
+//! s    = (−depth − P.y) / t.y                   the ray P + s t meets the bottom plane
+//! uv   = ((P.x + s t.x) / ((cols−1)h), (P.z + s t.z) / ((rows−1)h))
+//! ```
+//!
+//! UVs outside `[0, 1]` are bottom points outside the footprint (wrap or clamp the texture
+//! as the scene wants).
+//!
+//! **When the ray does not reach the bottom**, the node's coordinate is the point of the
+//! bottom texture straight below it, `(P.x / ((cols−1)h), P.z / ((rows−1)h))`, as if the
+//! water were still there. That happens when
+//!
+//! * the eye is on the back side of the surface at that node (`cosi ≤ 0`): an eye under the
+//!   water, or a node on the far slope of a steep crest;
+//! * the refracted ray does not go down (`t.y ≥ 0`: a normal tilted more than the
+//!   refraction angle away from vertical);
+//! * the node lies below the bottom (`P.y < −depth`);
+//! * the hit point is not a finite `f32` (a ray within about 10⁻³⁸ of horizontal).
+//!
+//! The eye sitting exactly on a node counts as looking straight down there.
+//!
+//! # Fresnel
+//!
+//! Schlick's approximation, `R = R0 + (1 − R0)(1 − cos θ)⁵` with `R0 = ((ior − 1)/(ior + 1))²`:
+//! `cos θ = cosi` when the eye is above the surface (`R = R0` looking straight down, → 1 at
+//! grazing). From below (`cosi < 0`) light leaves the water, so `θ` is the angle of the ray
+//! transmitted into the air, `sin θt = ior·sin θi`, and beyond the critical angle
+//! (`sin θt ≥ 1`) the reflection is total: `R = 1`. The two sides meet at `R = 1` for
+//! `cosi = 0`. `R` is always in `[R0, 1]`.
+//!
+//! # Lane code
+//!
+//! [`refract`] runs [`LANES`] nodes at a time on the flat arrays (and chunks of nodes in
+//! parallel with the `parallel` feature). Every case above is a mask and a `select`, never a
+//! branch. [`refract_node`] is the scalar twin, with the same operations in the same order;
+//! it computes the tail of the arrays and is compared with the lane code in tests.
 
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::mesh::{MeshView, Normals};
+use crate::simd::{load, store, Lane, LANES};
 use glam::Vec3;
 
-/// Bottom depth and index of refraction.
+/// The bottom and the water's optics.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct RefractionParams {
-    /// Depth of the bottom below y = 0.
+    /// Depth of the flat bottom below the rest surface `y = 0`, in world units
+    /// (default: `4.0`). Finite and ≥ 0.
     pub depth: f32,
-    /// Index of refraction of the water.
+    /// Index of refraction of the water relative to the air above it (default: `1.333`).
+    /// Finite, from 1 to 10.
     pub ior: f32,
 }
 
 impl Default for RefractionParams {
     fn default() -> Self {
         Self {
-            depth: 8.0,
+            depth: 4.0,
             ior: 1.333,
         }
     }
 }
 
-/// Per-node bottom UV and Fresnel reflectance.
-#[derive(Debug, Clone, Default)]
+impl RefractionParams {
+    /// Checks both fields.
+    pub fn validate(&self) -> Result<()> {
+        if !(self.depth.is_finite() && self.depth >= 0.0) {
+            return Err(Error::InvalidParam {
+                name: "depth",
+                value: self.depth as f64,
+                expected: "a finite depth >= 0 below the rest surface (for example 4)",
+            });
+        }
+        if !(self.ior.is_finite() && (1.0..=10.0).contains(&self.ior)) {
+            return Err(Error::InvalidParam {
+                name: "ior",
+                value: self.ior as f64,
+                expected: "an index of refraction from 1 to 10 (water: 1.333)",
+            });
+        }
+        Ok(())
+    }
+
+    /// Schlick's `R0 = ((ior − 1)/(ior + 1))²`, the reflectance at normal incidence.
+    pub fn r0(&self) -> f32 {
+        let r = (self.ior - 1.0) / (self.ior + 1.0);
+        r * r
+    }
+}
+
+/// Per-node bottom texture coordinates and Fresnel reflectance, row-major.
+///
+/// Caller-owned and reused between frames: [`refract`] resizes the buffers to the node
+/// count and keeps their capacity.
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct Refraction {
-    /// u per node.
+    /// Bottom texture u (x direction), 0 at `x = 0`, 1 at `x = (cols−1)h`.
     pub u: Vec<f32>,
-    /// v per node.
+    /// Bottom texture v (z direction), 0 at `z = 0`, 1 at `z = (rows−1)h`.
     pub v: Vec<f32>,
-    /// Fresnel reflectance per node.
+    /// Schlick reflectance in `[R0, 1]`: blend `reflection·R + refraction·(1 − R)`.
     pub fresnel: Vec<f32>,
 }
 
-/// Snell to the bottom plane, Schlick's Fresnel.
+impl Refraction {
+    /// Number of nodes held.
+    pub fn len(&self) -> usize {
+        self.u.len()
+    }
+
+    /// True before the first [`refract`].
+    pub fn is_empty(&self) -> bool {
+        self.u.is_empty()
+    }
+}
+
+/// Nodes per parallel task (a multiple of any lane width).
+const CHUNK: usize = 4096;
+
+/// Computes every node's bottom texture coordinate and Fresnel reflectance (see the
+/// [module docs](self)) into `out`.
+///
+/// Errors (and leaves `out` unchanged) if `normals` does not have one normal per node
+/// (call [`compute_normals`](crate::mesh::compute_normals) on the same view first), if the
+/// eye is not finite or if `params` is invalid. Finite positions and normals always give
+/// finite results, for any eye.
 pub fn refract(
     view: &MeshView<'_>,
     normals: &Normals,
@@ -42,30 +142,198 @@ pub fn refract(
     params: &RefractionParams,
     out: &mut Refraction,
 ) -> Result<()> {
-    let n = view.cols() * view.rows();
-    out.u.resize(n, 0.0);
-    out.v.resize(n, 0.0);
-    out.fresnel.resize(n, 0.0);
-    let eta = 1.0 / params.ior;
-    let w = (view.cols() - 1) as f32 * view.spacing();
-    let d_ = (view.rows() - 1) as f32 * view.spacing();
-    let r0 = ((1.0 - params.ior) / (1.0 + params.ior)).powi(2);
+    let k = Kernel::new(view, normals, eye, params)?;
+    resize(out, view.grid().len());
+    crate::mesh::for_each_chunk3(
+        [&mut out.u, &mut out.v, &mut out.fresnel],
+        CHUNK,
+        |chunk, out| k.chunk(view, normals, chunk * CHUNK, out),
+    );
+    Ok(())
+}
+
+/// The scalar twin of [`refract`]: one [`refract_node`] per node, same checks, same
+/// results.
+pub fn refract_scalar(
+    view: &MeshView<'_>,
+    normals: &Normals,
+    eye: Vec3,
+    params: &RefractionParams,
+    out: &mut Refraction,
+) -> Result<()> {
+    Kernel::new(view, normals, eye, params)?;
+    let n = view.grid().len();
+    resize(out, n);
+    let extent = extent(view);
     for i in 0..n {
-        let p = view.position(i);
-        let nrm = Vec3::new(normals.x[i], normals.y[i], normals.z[i]);
-        let d = (p - eye).normalize_or(Vec3::NEG_Y);
-        let cosi = (-nrm.dot(d)).clamp(0.0, 1.0);
-        let k = (1.0 - eta * eta * (1.0 - cosi * cosi)).max(0.0);
-        let t = eta * d + (eta * cosi - k.sqrt()) * nrm;
-        let s = if t.y < -1e-6 {
-            (-params.depth - p.y) / t.y
-        } else {
-            0.0
-        };
-        let hit = p + s.max(0.0) * t;
-        out.u[i] = hit.x / w;
-        out.v[i] = hit.z / d_;
-        out.fresnel[i] = r0 + (1.0 - r0) * (1.0 - cosi).powi(5);
+        let [u, v, f] = refract_node(view.position(i), normals.get(i), eye, params, extent);
+        (out.u[i], out.v[i], out.fresnel[i]) = (u, v, f);
     }
     Ok(())
+}
+
+/// The size of the bottom texture in world units, `((cols−1)h, (rows−1)h)`.
+pub fn extent(view: &MeshView<'_>) -> [f32; 2] {
+    let h = view.spacing();
+    [(view.cols() - 1) as f32 * h, (view.rows() - 1) as f32 * h]
+}
+
+/// `[u, v, fresnel]` for one node at `p` with normal `n`, the bottom texture spanning
+/// `extent` (see [`extent`]). The scalar twin of the lane code in [`refract`].
+pub fn refract_node(
+    p: Vec3,
+    n: Vec3,
+    eye: Vec3,
+    params: &RefractionParams,
+    extent: [f32; 2],
+) -> [f32; 3] {
+    let eta = 1.0 / params.ior;
+    let (dx, dy, dz) = (p.x - eye.x, p.y - eye.y, p.z - eye.z);
+    let l2 = dx * dx + dy * dy + dz * dz;
+    let inv = 1.0 / l2.sqrt();
+    let (dx, dy, dz) = if l2 > f32::MIN_POSITIVE && l2.is_finite() {
+        (dx * inv, dy * inv, dz * inv)
+    } else {
+        (0.0, -1.0, 0.0)
+    };
+    let cosi = -(n.x * dx + n.y * dy + n.z * dz);
+    let k = 1.0 - eta * eta * (1.0 - cosi * cosi);
+    let root = k.max(0.0).sqrt();
+    let f = eta * cosi - root;
+    let (tx, ty, tz) = (eta * dx + f * n.x, eta * dy + f * n.y, eta * dz + f * n.z);
+    let s = (-params.depth - p.y) / ty;
+    let (hx, hz) = (p.x + s * tx, p.z + s * tz);
+    let valid = cosi > 0.0 && ty < 0.0 && s >= 0.0 && k >= 0.0 && hx.is_finite() && hz.is_finite();
+    let (hx, hz) = if valid { (hx, hz) } else { (p.x, p.z) };
+
+    let r0 = params.r0();
+    let c_in = (-cosi).min(1.0);
+    let sin2t = params.ior * params.ior * (1.0 - c_in * c_in);
+    let c_back = (1.0 - sin2t).max(0.0).sqrt();
+    let front = cosi > 0.0;
+    let c = if front { cosi.min(1.0) } else { c_back };
+    let m = 1.0 - c;
+    let m2 = m * m;
+    let r = r0 + (1.0 - r0) * (m2 * m2 * m);
+    let total = !front && sin2t >= 1.0;
+    let r = if total || !r.is_finite() { 1.0 } else { r };
+    [hx / extent[0], hz / extent[1], r]
+}
+
+fn resize(out: &mut Refraction, n: usize) {
+    for c in [&mut out.u, &mut out.v, &mut out.fresnel] {
+        c.resize(n, 0.0);
+    }
+}
+
+/// Checked inputs and per-call constants of the lane kernel.
+struct Kernel {
+    eye: Vec3,
+    params: RefractionParams,
+    extent: [f32; 2],
+}
+
+impl Kernel {
+    fn new(
+        view: &MeshView<'_>,
+        normals: &Normals,
+        eye: Vec3,
+        params: &RefractionParams,
+    ) -> Result<Self> {
+        params.validate()?;
+        for (name, c) in [("eye x", eye.x), ("eye y", eye.y), ("eye z", eye.z)] {
+            crate::params::finite(name, c)?;
+        }
+        let n = view.grid().len();
+        for (what, s) in [
+            ("normals.x", &normals.x),
+            ("normals.y", &normals.y),
+            ("normals.z", &normals.z),
+        ] {
+            if s.len() != n {
+                return Err(Error::LengthMismatch {
+                    what,
+                    got: s.len(),
+                    expected: n,
+                });
+            }
+        }
+        Ok(Self {
+            eye,
+            params: *params,
+            extent: extent(view),
+        })
+    }
+
+    /// Nodes `start .. start + out[0].len()`: lanes, then the scalar twin for the tail.
+    fn chunk(&self, view: &MeshView<'_>, normals: &Normals, start: usize, out: [&mut [f32]; 3]) {
+        let [ou, ov, of] = out;
+        let len = ou.len();
+        let splat = Lane::splat;
+        let (ex, ey, ez) = (splat(self.eye.x), splat(self.eye.y), splat(self.eye.z));
+        let ior = self.params.ior;
+        let eta = splat(1.0 / ior);
+        let depth = splat(self.params.depth);
+        let r0 = splat(self.params.r0());
+        let ior2 = splat(ior * ior);
+        let (width, length) = (splat(self.extent[0]), splat(self.extent[1]));
+        let (zero, one) = (Lane::ZERO, Lane::ONE);
+        let (x, y, z) = (view.x(), view.y(), view.z());
+        let (nx, ny, nz) = (&normals.x, &normals.y, &normals.z);
+        let mut o = 0;
+        while o + LANES <= len {
+            let i = start + o;
+            let (px, py, pz) = (load(x, i), load(y, i), load(z, i));
+            let (nx, ny, nz) = (load(nx, i), load(ny, i), load(nz, i));
+            let (dx, dy, dz) = (px - ex, py - ey, pz - ez);
+            let l2 = dx * dx + dy * dy + dz * dz;
+            let inv = one / l2.sqrt();
+            let has_dir = l2.simd_gt(splat(f32::MIN_POSITIVE)) & l2.is_finite();
+            let (dx, dy, dz) = (
+                has_dir.select(dx * inv, zero),
+                has_dir.select(dy * inv, -one),
+                has_dir.select(dz * inv, zero),
+            );
+            let cosi = -(nx * dx + ny * dy + nz * dz);
+            let k = one - eta * eta * (one - cosi * cosi);
+            let root = k.max(zero).sqrt();
+            let f = eta * cosi - root;
+            let (tx, ty, tz) = (eta * dx + f * nx, eta * dy + f * ny, eta * dz + f * nz);
+            let s = (-depth - py) / ty;
+            let (hx, hz) = (px + s * tx, pz + s * tz);
+            let front = cosi.simd_gt(zero);
+            let valid = front
+                & ty.simd_lt(zero)
+                & s.simd_ge(zero)
+                & k.simd_ge(zero)
+                & hx.is_finite()
+                & hz.is_finite();
+            let (hx, hz) = (valid.select(hx, px), valid.select(hz, pz));
+
+            let c_in = (-cosi).min(one);
+            let sin2t = ior2 * (one - c_in * c_in);
+            let c_back = (one - sin2t).max(zero).sqrt();
+            let c = front.select(cosi.min(one), c_back);
+            let m = one - c;
+            let m2 = m * m;
+            let r = r0 + (one - r0) * (m2 * m2 * m);
+            let total = !front & sin2t.simd_ge(one);
+            let r = (total | !r.is_finite()).select(one, r);
+            store(ou, o, hx / width);
+            store(ov, o, hz / length);
+            store(of, o, r);
+            o += LANES;
+        }
+        for o in o..len {
+            let i = start + o;
+            let [u, v, f] = refract_node(
+                view.position(i),
+                normals.get(i),
+                self.eye,
+                &self.params,
+                self.extent,
+            );
+            (ou[o], ov[o], of[o]) = (u, v, f);
+        }
+    }
 }

@@ -4,6 +4,7 @@
 
 mod args;
 mod bench;
+mod export;
 mod image;
 mod render;
 mod simulate;
@@ -21,6 +22,9 @@ commands:
   bench      time the step against the scalar reference, a naive AoS
              baseline and a memory-bandwidth floor    [--repeats N] [--compare LIST]
                                                       [--band-rows H]
+  export     write the frame as a Wavefront OBJ (positions, normals, refraction UVs,
+             LOD triangles)   --eye X,Y,Z --depth D [--ior N] --obj FILE
+                              [--patch-cells N] [--first-range R] [--levels L]
 
 model flags (seed defaults):
   --size COLSxROWS     grid size (128x128)
@@ -50,6 +54,7 @@ render flags (defaults in brackets):
   --depth D            depth of the bottom below the surface (8)
   --ior N              index of refraction of the water (1.333)
   --caustics S         caustic strength, 0 for none (0.9)
+  --lod-pixels P       on-screen size of a cell where the LOD starts to coarsen (1.5)
   --rain RATE          raindrops per unit of model time, 0 for none (0.3)
   --seed S             random seed of the rain (1); same seed, same file
   --wake               a boat circling the pool, leaving a wake
@@ -84,12 +89,13 @@ fn run() -> args::CliResult<()> {
         "simulate" => simulate::run(&mut p),
         "bench" => bench::run(&mut p),
         "render" => render::run(&mut p),
+        "export" => export::run(&mut p),
         "help" => {
             print!("{USAGE}");
             Ok(())
         }
         other => Err(format!(
-            "unknown command '{other}' (render, simulate, bench; see springwater --help)"
+            "unknown command '{other}' (render, simulate, bench, export; see springwater --help)"
         )),
     }
 }

@@ -1,0 +1,109 @@
+//! `springwater export`: run the steps, then write the frame a renderer would draw as a
+//! Wavefront OBJ (DESIGN.md §3): one `v`, `vn` and `vt` (refraction UV) per node, row-major,
+//! and the LOD triangles for the eye as `f a/a/a b/b/b c/c/c` (1-based, counter-clockwise
+//! seen from +y).
+
+use crate::args::{list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
+use crate::simulate::{create, run_steps};
+use lexopt::Parser;
+use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
+use springwater::refraction::{refract, Refraction, RefractionParams};
+use springwater::Surface;
+use std::io::Write;
+use std::path::PathBuf;
+
+pub fn run(p: &mut Parser) -> CliResult<()> {
+    let mut model = ModelArgs::default();
+    let mut eye: Option<[f32; 3]> = None;
+    let mut depth: Option<f32> = None;
+    let mut optics = RefractionParams::default();
+    let mut lod = LodParams::default();
+    let mut obj: Option<PathBuf> = None;
+    while let Some(arg) = next_flag(p)? {
+        if model.parse_flag(&arg, p)? {
+            continue;
+        }
+        match arg {
+            Flag::Long(l) => match l.as_str() {
+                "eye" => eye = Some(list(&string(p, "--eye")?, "--eye X,Y,Z")?),
+                "depth" => depth = Some(value(p, "--depth")?),
+                "ior" => optics.ior = value(p, "--ior")?,
+                "obj" => obj = Some(string(p, "--obj")?.into()),
+                "patch-cells" => lod.patch_cells = value(p, "--patch-cells")?,
+                "first-range" => lod.first_range = value(p, "--first-range")?,
+                "levels" => lod.levels = value(p, "--levels")?,
+                _ => return Err(unexpected(Flag::Long(l), "export")),
+            },
+            other => return Err(unexpected(other, "export")),
+        }
+    }
+    let eye = glam::Vec3::from(
+        eye.ok_or("export: --eye X,Y,Z is required (the camera in the water's space)")?,
+    );
+    optics.depth =
+        depth.ok_or("export: --depth D is required (the bottom's depth below the rest surface)")?;
+    let obj = obj.ok_or("export: --obj FILE is required")?;
+    optics.validate().map_err(|e| format!("export: {e}"))?;
+    let mut lod = LodMesh::new(lod).map_err(|e| format!("export: {e}"))?;
+    let mut surface = model.surface()?;
+    // Open the output first: an unwritable path fails before any work is done.
+    let file = create(&obj)?;
+    model.with_threads(|| run_steps(&mut surface, model.steps))??;
+
+    let view = surface.mesh_view();
+    let mut normals = Normals::new();
+    compute_normals(&view, &mut normals);
+    let mut uv = Refraction::default();
+    refract(&view, &normals, eye, &optics, &mut uv).map_err(|e| format!("export: {e}"))?;
+    lod.update(&view, eye);
+    write_obj(&surface, &normals, &uv, &lod, eye, &optics, file)
+        .map_err(|e| format!("cannot write {}: {e}", obj.display()))?;
+    println!(
+        "wrote {}: {} vertices, {} triangles (full grid: {})",
+        obj.display(),
+        surface.len(),
+        lod.triangle_count(),
+        2 * (surface.grid().cols - 1) * (surface.grid().rows - 1)
+    );
+    Ok(())
+}
+
+fn write_obj(
+    s: &Surface,
+    normals: &Normals,
+    uv: &Refraction,
+    lod: &LodMesh,
+    eye: glam::Vec3,
+    optics: &RefractionParams,
+    file: std::fs::File,
+) -> std::io::Result<()> {
+    let mut w = std::io::BufWriter::new(file);
+    let g = s.grid();
+    writeln!(
+        w,
+        "# springwater export: {}x{} nodes after {} steps, eye {},{},{}, depth {}, ior {}",
+        g.cols,
+        g.rows,
+        s.steps(),
+        eye.x,
+        eye.y,
+        eye.z,
+        optics.depth,
+        optics.ior
+    )?;
+    let [x, y, z] = s.positions();
+    for i in 0..g.len() {
+        writeln!(w, "v {} {} {}", x[i], y[i], z[i])?;
+    }
+    for i in 0..g.len() {
+        writeln!(w, "vn {} {} {}", normals.x[i], normals.y[i], normals.z[i])?;
+    }
+    for i in 0..g.len() {
+        writeln!(w, "vt {} {}", uv.u[i], uv.v[i])?;
+    }
+    for t in lod.indices().chunks_exact(3) {
+        let (a, b, c) = (t[0] + 1, t[1] + 1, t[2] + 1);
+        writeln!(w, "f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}")?;
+    }
+    w.flush()
+}

@@ -1,0 +1,184 @@
+//! Point queries for game code: height, normal and velocity of the water at a world
+//! `(x, z)`, sampled from the full-resolution simulation (never from the LOD mesh).
+//!
+//! # Method
+//!
+//! A point `(x, z)` of the water's local space is mapped to fractional grid coordinates
+//! `col = x / h`, `row = z / h` (the node positions *at rest*), and the four nodes of the
+//! cell it falls in are blended bilinearly:
+//!
+//! ```text
+//! f(col, row) = (1−fx)(1−fz) f00 + fx(1−fz) f10 + (1−fx) fz f01 + fx fz f11
+//! ```
+//!
+//! So a query at a node's rest position returns that node's value, and values vary
+//! continuously between nodes. Heights are the nodes' current `y`; velocities the nodes'
+//! current velocities; normals the per-node normals of
+//! [`node_normal`](crate::mesh::node_normal) blended the same way and renormalised.
+//! The lattice also moves sideways a little; the queries follow the nodes (the surface
+//! point whose rest position is `(x, z)`), which is what a floating object riding the
+//! water feels.
+//!
+//! Points must lie in the rest footprint `[0, (cols−1)h] × [0, (rows−1)h]` (edges
+//! included) and be finite; anything else is an error, and a batched query that errors
+//! has written nothing. [`Surface::contains`] tells in advance.
+
+use crate::error::{Error, Result};
+use crate::mesh::{node_normal, MeshView};
+use crate::surface::Surface;
+use glam::Vec3;
+
+/// The cell and the bilinear weights of one query point.
+#[derive(Debug, Clone, Copy)]
+struct Sample {
+    /// Index of the cell's top-left node `(c, r)`; the others are `+1`, `+cols`, `+cols+1`.
+    c: usize,
+    r: usize,
+    fx: f32,
+    fz: f32,
+}
+
+impl Sample {
+    fn at(view: &MeshView<'_>, x: f32, z: f32) -> Result<Self> {
+        crate::params::finite("query x", x)?;
+        crate::params::finite("query z", z)?;
+        let [width, length] = crate::refraction::extent(view);
+        if !((0.0..=width).contains(&x) && (0.0..=length).contains(&z)) {
+            return Err(Error::OutsideGrid {
+                x,
+                z,
+                width,
+                length,
+            });
+        }
+        let h = view.spacing();
+        let (cells_x, cells_z) = (view.cols() - 1, view.rows() - 1);
+        let (col, row) = ((x / h).min(cells_x as f32), (z / h).min(cells_z as f32));
+        let c = (col as usize).min(cells_x - 1);
+        let r = (row as usize).min(cells_z - 1);
+        let fx = (col - c as f32).clamp(0.0, 1.0);
+        let fz = (row - r as f32).clamp(0.0, 1.0);
+        Ok(Self { c, r, fx, fz })
+    }
+
+    fn weights(&self) -> [f32; 4] {
+        let (fx, fz) = (self.fx, self.fz);
+        [
+            (1.0 - fx) * (1.0 - fz),
+            fx * (1.0 - fz),
+            (1.0 - fx) * fz,
+            fx * fz,
+        ]
+    }
+
+    fn corners(&self, cols: usize) -> [usize; 4] {
+        let i = self.r * cols + self.c;
+        [i, i + 1, i + cols, i + cols + 1]
+    }
+
+    fn blend(&self, cols: usize, s: &[f32]) -> f32 {
+        let w = self.weights();
+        let i = self.corners(cols);
+        w[0] * s[i[0]] + w[1] * s[i[1]] + w[2] * s[i[2]] + w[3] * s[i[3]]
+    }
+
+    fn blend3(&self, cols: usize, s: [&[f32]; 3]) -> Vec3 {
+        Vec3::new(
+            self.blend(cols, s[0]),
+            self.blend(cols, s[1]),
+            self.blend(cols, s[2]),
+        )
+    }
+
+    fn normal(&self, view: &MeshView<'_>) -> Vec3 {
+        let w = self.weights();
+        let (c, r) = (self.c, self.r);
+        let n = w[0] * node_normal(view, c, r)
+            + w[1] * node_normal(view, c + 1, r)
+            + w[2] * node_normal(view, c, r + 1)
+            + w[3] * node_normal(view, c + 1, r + 1);
+        n.try_normalize().unwrap_or(Vec3::Y)
+    }
+}
+
+/// Checks every point, then fills `out` with `f` of each: all or nothing.
+fn batch<T>(
+    view: &MeshView<'_>,
+    points: &[[f32; 2]],
+    out: &mut Vec<T>,
+    f: impl Fn(&Sample) -> T,
+) -> Result<()> {
+    for &[x, z] in points {
+        Sample::at(view, x, z)?;
+    }
+    out.clear();
+    out.extend(
+        points
+            .iter()
+            .map(|&[x, z]| f(&Sample::at(view, x, z).expect("checked above"))),
+    );
+    Ok(())
+}
+
+/// # Queries
+///
+/// Sampled from the simulation at full resolution; see [`crate::mesh::query`](self) for the
+/// method. Batched forms take `[x, z]` pairs and fill a caller-owned `Vec` (cleared first,
+/// capacity kept).
+impl Surface {
+    /// True if `(x, z)` is finite and inside the rest footprint
+    /// `[0, (cols−1)h] × [0, (rows−1)h]`, where the queries answer.
+    pub fn contains(&self, x: f32, z: f32) -> bool {
+        Sample::at(&self.mesh_view(), x, z).is_ok()
+    }
+
+    /// Height (y) of the water at world `(x, z)`, interpolated bilinearly between nodes.
+    ///
+    /// ```
+    /// use springwater::{Params, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(33, 33))?;
+    /// water.drop_at(16.0, 16.0, 1.0, 3.0)?;
+    /// assert_eq!(water.height_at(16.0, 16.0)?, 1.0);           // the crest, at a node
+    /// let between = water.height_at(16.5, 16.0)?;
+    /// assert!(between < 1.0 && between > water.height_at(17.0, 16.0)?);
+    /// assert!(water.height_at(40.0, 0.0).is_err());            // outside the pool
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn height_at(&self, x: f32, z: f32) -> Result<f32> {
+        let view = self.mesh_view();
+        Ok(Sample::at(&view, x, z)?.blend(view.cols(), view.y()))
+    }
+
+    /// Unit normal of the water at world `(x, z)`: node normals blended bilinearly and
+    /// renormalised.
+    pub fn normal_at(&self, x: f32, z: f32) -> Result<Vec3> {
+        let view = self.mesh_view();
+        Ok(Sample::at(&view, x, z)?.normal(&view))
+    }
+
+    /// Velocity of the water at world `(x, z)`, interpolated bilinearly between nodes.
+    pub fn velocity_at(&self, x: f32, z: f32) -> Result<Vec3> {
+        let view = self.mesh_view();
+        Ok(Sample::at(&view, x, z)?.blend3(view.cols(), self.velocities()))
+    }
+
+    /// [`Surface::height_at`] for every `[x, z]` of `points`, into `out`.
+    pub fn heights_at(&self, points: &[[f32; 2]], out: &mut Vec<f32>) -> Result<()> {
+        let view = self.mesh_view();
+        batch(&view, points, out, |s| s.blend(view.cols(), view.y()))
+    }
+
+    /// [`Surface::normal_at`] for every `[x, z]` of `points`, into `out`.
+    pub fn normals_at(&self, points: &[[f32; 2]], out: &mut Vec<Vec3>) -> Result<()> {
+        let view = self.mesh_view();
+        batch(&view, points, out, |s| s.normal(&view))
+    }
+
+    /// [`Surface::velocity_at`] for every `[x, z]` of `points`, into `out`.
+    pub fn velocities_at(&self, points: &[[f32; 2]], out: &mut Vec<Vec3>) -> Result<()> {
+        let view = self.mesh_view();
+        let vel = self.velocities();
+        batch(&view, points, out, |s| s.blend3(view.cols(), vel))
+    }
+}
