@@ -105,6 +105,20 @@ impl Camera {
         Ok(())
     }
 
+    /// Pixels per world unit at distance 1 in the middle of the image: the focal length
+    /// in pixels.
+    pub fn focal_pixels(&self) -> f32 {
+        self.height as f32 / 2.0 / (self.fov_y_degrees.to_radians() / 2.0).tan()
+    }
+
+    /// The [`LodParams::first_range`](crate::mesh::LodParams::first_range) at which a
+    /// cell of size `spacing` facing the camera shrinks to `pixels` pixels. Beyond it the
+    /// LOD halves the detail, and each further level's range is twice the previous one's,
+    /// which keeps every triangle's side about `pixels` pixels or more on screen.
+    pub fn lod_first_range(&self, spacing: f32, pixels: f32) -> f32 {
+        self.focal_pixels() * spacing / pixels
+    }
+
     /// World → clip space (right-handed, depth in [0, 1], w = distance along the view).
     pub fn view_projection(&self) -> Mat4 {
         let forward = (self.look_at - self.eye).normalize();

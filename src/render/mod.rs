@@ -108,16 +108,35 @@ impl Default for Look {
 }
 
 /// Everything that sets up a [`Renderer`].
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy)]
 pub struct RenderParams {
     /// Bottom depth and index of refraction.
     pub refraction: RefractionParams,
-    /// Level-of-detail ranges.
+    /// Level-of-detail parameters. With [`RenderParams::lod_pixels`] set, its
+    /// `first_range` is replaced by the camera's.
     pub lod: LodParams,
+    /// On-screen size in pixels of a cell at the first LOD range (default: `Some(1.5)`):
+    /// the renderer sets `lod.first_range` from the camera with
+    /// [`Camera::lod_first_range`], so triangles stay at least this big on screen and
+    /// the ripples keep full detail wherever the grid is coarser than the pixels.
+    /// `None` uses `lod.first_range` as given.
+    pub lod_pixels: Option<f32>,
     /// Colours, sun, absorption, caustics.
     pub look: Look,
     /// Overlay the triangle edges, coloured by LOD level (default: `false`).
     pub wireframe: bool,
+}
+
+impl Default for RenderParams {
+    fn default() -> Self {
+        Self {
+            refraction: RefractionParams::default(),
+            lod: LodParams::default(),
+            lod_pixels: Some(1.5),
+            look: Look::default(),
+            wireframe: false,
+        }
+    }
 }
 
 /// Wall time the last frame spent in each stage.
@@ -200,8 +219,10 @@ impl Renderer {
     /// A renderer with `params`, showing `bottom` on the pool floor (the texture spans
     /// the grid's rest footprint).
     pub fn new(params: RenderParams, bottom: Texture) -> Result<Self> {
-        crate::params::positive("depth", params.refraction.depth)?;
-        crate::params::positive("ior", params.refraction.ior)?;
+        params.refraction.validate()?;
+        if let Some(p) = params.lod_pixels {
+            crate::params::positive("lod pixels", p)?;
+        }
         let look = &params.look;
         for c in look
             .sky_zenith
@@ -276,6 +297,17 @@ impl Renderer {
         let t_normals = t.elapsed();
 
         let t = Instant::now();
+        if let Some(pixels) = self.params.lod_pixels {
+            let first_range = camera.lod_first_range(view.spacing(), pixels);
+            if self.lod.params().first_range != first_range {
+                let lod = LodParams {
+                    first_range,
+                    ..self.params.lod
+                };
+                self.lod = LodMesh::new(lod)?;
+                self.params.lod = lod;
+            }
+        }
         self.lod.update(view, camera.eye);
         let t_lod = t.elapsed();
 
@@ -475,7 +507,7 @@ impl Renderer {
             colour: &mut self.linear,
         };
         if self.params.wireframe {
-            self.raster.draw(target, &shade, Some((&wire_colour, 0.9)));
+            self.raster.draw(target, &shade, Some((&wire_colour, 0.7)));
         } else {
             self.raster
                 .draw(target, &shade, None::<(&fn(u8) -> [f32; 3], f32)>);

@@ -26,6 +26,7 @@ struct Options {
     depth: f32,
     ior: f32,
     caustics: f32,
+    lod_pixels: f32,
     rain: f32,
     seed: u64,
     wake: bool,
@@ -49,6 +50,7 @@ impl Default for Options {
             depth: 8.0,
             ior: 1.333,
             caustics: 0.9,
+            lod_pixels: 1.5,
             rain: 0.3,
             seed: 1,
             wake: false,
@@ -88,6 +90,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             "depth" => o.depth = positive(value(p, "--depth")?, "--depth")?,
             "ior" => o.ior = value(p, "--ior")?,
             "caustics" => o.caustics = value(p, "--caustics")?,
+            "lod-pixels" => o.lod_pixels = positive(value(p, "--lod-pixels")?, "--lod-pixels")?,
             "rain" => o.rain = value(p, "--rain")?,
             "seed" => o.seed = value(p, "--seed")?,
             "wake" => o.wake = true,
@@ -129,7 +132,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     camera.validate().map_err(|e| format!("camera: {e}"))?;
     let bottom = match &o.bottom {
         Some(path) => read_png(path)?,
-        None => Texture::pool_tiles(1024),
+        None => Texture::pool_tiles(512),
     };
     let mut render_params = RenderParams {
         wireframe: o.wireframe,
@@ -138,6 +141,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     render_params.refraction.depth = o.depth;
     render_params.refraction.ior = o.ior;
     render_params.look.caustics = o.caustics;
+    render_params.lod_pixels = Some(o.lod_pixels);
     let mut renderer = Renderer::new(render_params, bottom).map_err(|e| e.to_string())?;
 
     // Open every output before any work: an unwritable path fails at once.
