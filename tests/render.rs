@@ -247,6 +247,38 @@ fn the_same_seed_gives_the_same_file_and_another_seed_another() {
         std::fs::read(one).unwrap(),
         "one thread gave different bytes"
     );
+    // Nor does drawing the animation twice (once for the palette, once to encode), the
+    // way animations too large to keep in memory are written.
+    let twice = dir.join("twice.gif");
+    let o = Command::new(env!("CARGO_BIN_EXE_springwater"))
+        .env("SPRINGWATER_KEEP_FRAMES_BYTES", "1000")
+        .args([
+            "render",
+            "--size",
+            "48x48",
+            "--frames",
+            "6",
+            "--width",
+            "96",
+            "--height",
+            "72",
+            "--rain",
+            "2",
+            "--seed",
+            "5",
+            "--wake",
+            "--out",
+            twice.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("twice"));
+    assert_eq!(
+        a,
+        std::fs::read(twice).unwrap(),
+        "two passes gave different bytes"
+    );
 }
 
 #[test]

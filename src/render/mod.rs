@@ -49,10 +49,11 @@
 //! crate: what it draws is one kind of primitive (triangles with nine interpolated
 //! values over a depth buffer), and writing it lets it split the image into bands of
 //! rows that rayon shades in parallel while the picture stays bit-identical for any
-//! thread count, with no `unsafe` (the crate forbids it). The crates looked at either
-//! draw 2-D vector paths without per-vertex values (tiny-skia) or bring their own
-//! pipeline traits and threading with no determinism promise (euc); either would cost
-//! more glue than the rasteriser itself.
+//! thread count, with no `unsafe` (the crate forbids it). Of the crates looked at,
+//! tiny-skia draws 2-D paths with no per-vertex values to interpolate, and euc (shaders
+//! behind its own `Pipeline` trait, maths in `vek` types) would mean converting our data
+//! to its types and leaving the parallel split, and whether the picture depends on it,
+//! to a dependency; the glue would be about as long as the rasteriser.
 
 pub mod camera;
 pub mod raster;
@@ -86,7 +87,7 @@ pub struct Look {
     /// `[0.05, 0.016, 0.011]`, a blue-green tint that deepens with depth and slant).
     pub absorption: [f32; 3],
     /// Strength of the caustics: light on the bottom is `1 + caustics × (ratio − 1)`
-    /// (default: `0.9`; 0 turns them off, and a flat surface is lit by exactly 1).
+    /// (default: `1.3`; 0 turns them off, and a flat surface is lit by exactly 1).
     pub caustics: f32,
     /// Draw the deck and sky around the water; off, pixels no triangle covers are black
     /// (default: `true`).
@@ -101,7 +102,7 @@ impl Default for Look {
             sun: Vec3::new(-0.2, 0.5, -0.85),
             glint: 6.0,
             absorption: [0.05, 0.016, 0.011],
-            caustics: 0.9,
+            caustics: 1.3,
             surroundings: true,
         }
     }

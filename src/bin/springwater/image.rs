@@ -231,36 +231,58 @@ fn nearest_table(entries: &[[u8; 3]], counts: &[u32]) -> Vec<u8> {
     table
 }
 
-/// Writes the frames as a looping GIF with a global palette.
-pub fn write_gif(
-    file: File,
-    width: usize,
-    height: usize,
-    frames: &[Vec<u8>],
-    palette: &Palette,
+/// A looping GIF written frame by frame with one global palette.
+pub struct GifWriter<'p> {
+    encoder: gif::Encoder<BufWriter<File>>,
+    palette: &'p Palette,
+    indices: Vec<u8>,
+    width: u16,
+    height: u16,
     delay_cs: u16,
-) -> Result<(), String> {
-    let mut enc = gif::Encoder::new(
-        BufWriter::new(file),
-        width as u16,
-        height as u16,
-        &palette.flat(),
-    )
-    .map_err(|e| e.to_string())?;
-    enc.set_repeat(gif::Repeat::Infinite)
-        .map_err(|e| e.to_string())?;
-    let mut indices = vec![0u8; width * height];
-    for rgb in frames {
-        for (out, p) in indices.iter_mut().zip(rgb.chunks_exact(3)) {
-            *out = palette.index(p);
+}
+
+impl<'p> GifWriter<'p> {
+    /// Starts the file: header, palette, loop forever. `delay_cs` is the time each frame
+    /// shows, in hundredths of a second.
+    pub fn new(
+        file: File,
+        width: usize,
+        height: usize,
+        palette: &'p Palette,
+        delay_cs: u16,
+    ) -> Result<Self, String> {
+        let (w, h) = (width as u16, height as u16);
+        let mut encoder = gif::Encoder::new(BufWriter::new(file), w, h, &palette.flat())
+            .map_err(|e| e.to_string())?;
+        encoder
+            .set_repeat(gif::Repeat::Infinite)
+            .map_err(|e| e.to_string())?;
+        Ok(Self {
+            encoder,
+            palette,
+            indices: vec![0; width * height],
+            width: w,
+            height: h,
+            delay_cs,
+        })
+    }
+
+    /// Appends one RGB frame of the size given to [`GifWriter::new`].
+    pub fn frame(&mut self, rgb: &[u8]) -> Result<(), String> {
+        for (out, p) in self.indices.iter_mut().zip(rgb.chunks_exact(3)) {
+            *out = self.palette.index(p);
         }
         let mut frame =
-            gif::Frame::from_indexed_pixels(width as u16, height as u16, indices.as_slice(), None);
-        frame.delay = delay_cs;
-        enc.write_frame(&frame).map_err(|e| e.to_string())?;
+            gif::Frame::from_indexed_pixels(self.width, self.height, self.indices.as_slice(), None);
+        frame.delay = self.delay_cs;
+        self.encoder.write_frame(&frame).map_err(|e| e.to_string())
     }
-    let mut w = enc.into_inner().map_err(|e| e.to_string())?;
-    w.flush().map_err(|e| e.to_string())
+
+    /// Writes the trailer and flushes the file.
+    pub fn finish(self) -> Result<(), String> {
+        let mut w = self.encoder.into_inner().map_err(|e| e.to_string())?;
+        w.flush().map_err(|e| e.to_string())
+    }
 }
 
 #[cfg(test)]

@@ -53,7 +53,7 @@ render flags (defaults in brackets):
   --bottom FILE.png    pool bottom texture (built-in tiles)
   --depth D            depth of the bottom below the surface (8)
   --ior N              index of refraction of the water (1.333)
-  --caustics S         caustic strength, 0 for none (0.9)
+  --caustics S         caustic strength, 0 for none (1.3)
   --lod-pixels P       on-screen size of a cell where the LOD starts to coarsen (1.5)
   --rain RATE          raindrops per unit of model time, 0 for none (0.3)
   --seed S             random seed of the rain (1); same seed, same file

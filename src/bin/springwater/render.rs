@@ -1,12 +1,12 @@
 //! `springwater render`: the water as an animated GIF (and/or PNG frames).
 
 use crate::args::{list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
-use crate::image::{read_png, write_gif, write_png, Histogram, Palette};
+use crate::image::{read_png, write_png, GifWriter, Histogram, Palette};
 use crate::simulate::create;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lexopt::Parser;
 use springwater::disturb::{Disturbance, Rain, Wake};
-use springwater::render::{Camera, RenderParams, Renderer, StageTimes, Texture};
+use springwater::render::{Camera, Frame, RenderParams, Renderer, StageTimes, Texture};
 use springwater::Surface;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -49,7 +49,7 @@ impl Default for Options {
             bottom: None,
             depth: 8.0,
             ior: 1.333,
-            caustics: 0.9,
+            caustics: 1.3,
             lod_pixels: 1.5,
             rain: 0.3,
             seed: 1,
@@ -119,7 +119,8 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         return Err(format!("--caustics: {} is not a strength >= 0", o.caustics));
     }
 
-    let mut surface = model.surface()?;
+    // Validates the model and the drops before anything is opened.
+    let surface = model.surface()?;
     let params = *surface.params();
     let mut camera = Camera::framing(params.cols, params.rows, params.spacing, o.width, o.height);
     if let Some(e) = o.eye {
@@ -156,101 +157,130 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         create(&frame_path(dir, 0))?;
     }
 
-    let mut rain = Rain::new(o.rain, o.seed);
-    let mut wake = o
-        .wake
-        .then(|| Wake::circle(&surface, 0.3 * params.cols.min(params.rows) as f32));
-    let mut disturbances: Vec<&mut (dyn Disturbance + Send)> = vec![&mut rain];
-    if let Some(w) = wake.as_mut() {
-        disturbances.push(w);
-    }
-
-    let bar = progress(o.frames as u64);
+    // A GIF needs its palette before its first frame. Frames that fit in memory are kept
+    // and encoded after one pass; larger animations are simulated and drawn twice (the
+    // run is deterministic, so both passes see the same frames): once for the palette,
+    // once to encode.
+    let frame_bytes = o.width as u64 * o.height as u64 * 3;
+    let keep = std::env::var("SPRINGWATER_KEEP_FRAMES_BYTES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(KEEP_FRAMES_BYTES);
+    let two_pass = gif_file.is_some() && frame_bytes * o.frames as u64 > keep;
+    let passes = if two_pass { 2 } else { 1 };
+    let bar = progress(o.frames as u64 * passes);
     let start = Instant::now();
-    let mut sim_time = Duration::ZERO;
-    let mut stages = StageTimes::default();
+    let mut clock = Clock::default();
     let mut frames: Vec<Vec<u8>> = Vec::new();
     let mut histogram = Histogram::new();
     let mut png_time = Duration::ZERO;
-    model.with_threads(|| -> CliResult<()> {
-        let t = Instant::now();
-        run_steps(&mut surface, &mut disturbances, model.steps)?;
-        sim_time += t.elapsed();
-        for k in 0..o.frames {
-            if k > 0 {
-                let t = Instant::now();
-                run_steps(&mut surface, &mut disturbances, o.substeps as u64)?;
-                sim_time += t.elapsed();
-            }
-            renderer
-                .render(&surface.mesh_view(), &camera)
-                .map_err(|e| e.to_string())?;
-            stages += renderer.times();
-            let frame = renderer.frame();
-            if let Some(dir) = &o.png {
-                let t = Instant::now();
-                let path = frame_path(dir, k);
-                let file = create(&path)?;
-                write_png(file, frame.width(), frame.height(), frame.rgb())
-                    .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-                png_time += t.elapsed();
-            }
-            if gif_file.is_some() {
-                histogram.add(frame.rgb());
-                frames.push(frame.rgb().to_vec());
-            }
-            bar.inc(1);
-        }
-        Ok(())
+    let raindrops = model.with_threads(|| {
+        animate(
+            &model,
+            &o,
+            &mut renderer,
+            &camera,
+            &mut clock,
+            |k, frame| {
+                if let Some(dir) = &o.png {
+                    let t = Instant::now();
+                    let path = frame_path(dir, k);
+                    let file = create(&path)?;
+                    write_png(file, frame.width(), frame.height(), frame.rgb())
+                        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                    png_time += t.elapsed();
+                }
+                if gif_file.is_some() {
+                    histogram.add(frame.rgb());
+                    if !two_pass {
+                        frames.push(frame.rgb().to_vec());
+                    }
+                }
+                bar.inc(1);
+                Ok(())
+            },
+        )
     })??;
-    let render_seconds = start.elapsed();
 
     let mut gif_time = Duration::ZERO;
     if let Some((path, file)) = gif_file {
-        bar.set_message("encoding GIF");
+        let fail = |e: String| format!("cannot write {}: {e}", path.display());
         let t = Instant::now();
         let palette = model.with_threads(|| Palette::median_cut(&histogram))?;
         let delay = (100.0 / o.fps).round().clamp(2.0, 65535.0) as u16;
-        write_gif(
-            file,
-            o.width as usize,
-            o.height as usize,
-            &frames,
-            &palette,
-            delay,
-        )
-        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        gif_time = t.elapsed();
+        let mut gif = GifWriter::new(file, o.width as usize, o.height as usize, &palette, delay)
+            .map_err(fail)?;
+        if two_pass {
+            gif_time += t.elapsed();
+            model.with_threads(|| {
+                animate(
+                    &model,
+                    &o,
+                    &mut renderer,
+                    &camera,
+                    &mut clock,
+                    |_, frame| {
+                        let t = Instant::now();
+                        gif.frame(frame.rgb()).map_err(fail)?;
+                        gif_time += t.elapsed();
+                        bar.inc(1);
+                        Ok(())
+                    },
+                )
+            })??;
+        } else {
+            bar.set_message("encoding GIF");
+            for rgb in &frames {
+                gif.frame(rgb).map_err(fail)?;
+            }
+            gif_time += t.elapsed();
+        }
+        gif.finish().map_err(fail)?;
     }
     bar.finish_and_clear();
 
-    let n = o.frames as f64;
-    let ms = |d: Duration| d.as_secs_f64() * 1e3 / n;
+    let drawn = (o.frames as u64 * passes) as f64;
+    let ms = |d: Duration| d.as_secs_f64() * 1e3 / drawn;
     let total = start.elapsed();
     println!(
-        "rendered {} frames of {}x{} pixels, a {}x{} surface, {} steps per frame after {} warm-up steps",
-        o.frames, o.width, o.height, params.cols, params.rows, o.substeps, model.steps
+        "rendered {} frames of {}x{} pixels, a {}x{} surface, {} steps per frame after {} warm-up steps{}",
+        o.frames,
+        o.width,
+        o.height,
+        params.cols,
+        params.rows,
+        o.substeps,
+        model.steps,
+        if two_pass { " (twice: too large to keep for the GIF palette)" } else { "" }
+    );
+    let lod = renderer.lod();
+    let levels = lod.patch_levels();
+    let (lo, hi) = levels
+        .iter()
+        .fold((u8::MAX, 0), |(lo, hi), &l| (lo.min(l), hi.max(l)));
+    println!(
+        "mesh         {} LOD triangles in the last frame ({} at full detail), levels {lo} to {hi}",
+        lod.triangle_count(),
+        2 * (params.cols - 1) * (params.rows - 1),
     );
     println!(
-        "disturbances: {} raindrops (rate {}, seed {}){}",
-        rain.fallen(),
+        "disturbances: {raindrops} raindrops (rate {}, seed {}){}",
         o.rain,
         o.seed,
         if o.wake { ", a wake" } else { "" }
     );
     println!(
         "per frame    simulation {:.2} ms, normals {:.2} ms, LOD {:.2} ms, refraction {:.2} ms, drawing {:.2} ms",
-        ms(sim_time),
-        ms(stages.normals),
-        ms(stages.lod),
-        ms(stages.refraction),
-        ms(stages.drawing)
+        ms(clock.simulation),
+        ms(clock.stages.normals),
+        ms(clock.stages.lod),
+        ms(clock.stages.refraction),
+        ms(clock.stages.drawing)
     );
     println!(
-        "total        {:.2} s ({:.1} ms per frame); rendering {:.2} s, GIF palette + encoding {:.2} s, PNG writing {:.2} s",
+        "total        {:.2} s ({:.1} ms per frame); GIF palette + encoding {:.2} s, PNG writing {:.2} s",
         total.as_secs_f64(),
-        total.as_secs_f64() * 1e3 / n,
-        render_seconds.as_secs_f64(),
+        total.as_secs_f64() * 1e3 / o.frames as f64,
         gif_time.as_secs_f64(),
         png_time.as_secs_f64()
     );
@@ -264,10 +294,58 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     Ok(())
 }
 
+/// Frames kept in memory for the GIF palette before `render` switches to two passes
+/// (the environment variable `SPRINGWATER_KEEP_FRAMES_BYTES` overrides it, for tests).
+const KEEP_FRAMES_BYTES: u64 = 768 << 20;
+
+/// Time spent simulating and in each render stage.
+#[derive(Debug, Default)]
+struct Clock {
+    simulation: Duration,
+    stages: StageTimes,
+}
+
+/// Builds the surface and its disturbances, runs the warm-up steps, then simulates and
+/// draws every frame in order, handing each to `each`. Returns the raindrops that fell.
+fn animate(
+    model: &ModelArgs,
+    o: &Options,
+    renderer: &mut Renderer,
+    camera: &Camera,
+    clock: &mut Clock,
+    mut each: impl FnMut(usize, &Frame) -> CliResult<()>,
+) -> CliResult<u64> {
+    let mut surface = model.surface()?;
+    let mut rain = Rain::new(o.rain, o.seed);
+    let cols_rows = surface.params().cols.min(surface.params().rows) as f32;
+    let mut wake = o.wake.then(|| Wake::circle(&surface, 0.3 * cols_rows));
+    let mut disturbances: Vec<&mut dyn Disturbance> = vec![&mut rain];
+    if let Some(w) = wake.as_mut() {
+        disturbances.push(w);
+    }
+    for k in 0..o.frames {
+        let t = Instant::now();
+        let steps = if k == 0 {
+            model.steps
+        } else {
+            o.substeps as u64
+        };
+        run_steps(&mut surface, &mut disturbances, steps)?;
+        clock.simulation += t.elapsed();
+        renderer
+            .render(&surface.mesh_view(), camera)
+            .map_err(|e| e.to_string())?;
+        clock.stages += renderer.times();
+        each(k, renderer.frame())?;
+    }
+    drop(disturbances);
+    Ok(rain.fallen())
+}
+
 /// `steps` steps, each preceded by every disturbance.
 fn run_steps(
     surface: &mut Surface,
-    disturbances: &mut [&mut (dyn Disturbance + Send)],
+    disturbances: &mut [&mut dyn Disturbance],
     steps: u64,
 ) -> CliResult<()> {
     for _ in 0..steps {
