@@ -27,9 +27,13 @@
 //! * the refracted ray does not go down (`t.y ≥ 0`: a normal tilted more than the
 //!   refraction angle away from vertical);
 //! * the node lies below the bottom (`P.y < −depth`);
-//! * the hit point is not a finite `f32` (a ray within about 10⁻³⁸ of horizontal).
+//! * the ray would travel more than 10³⁰ units to get there (it is horizontal to within
+//!   about 10⁻³⁰).
 //!
-//! The eye sitting exactly on a node counts as looking straight down there.
+//! The eye sitting on a node (closer than about 10⁻¹⁹ units) counts as looking straight
+//! down there. View vectors are computed in units of the eye's largest coordinate when
+//! that exceeds 1 (`σ·P − σ·E`, σ = 1/max(1, |E|∞)), so any finite eye works, however far
+//! away, without overflow.
 //!
 //! # Fresnel
 //!
@@ -188,10 +192,11 @@ pub fn refract_node(
     extent: [f32; 2],
 ) -> [f32; 3] {
     let eta = 1.0 / params.ior;
-    let (dx, dy, dz) = (p.x - eye.x, p.y - eye.y, p.z - eye.z);
+    let (scale, es) = eye_scale(eye);
+    let (dx, dy, dz) = (p.x * scale - es.x, p.y * scale - es.y, p.z * scale - es.z);
     let l2 = dx * dx + dy * dy + dz * dz;
     let inv = 1.0 / l2.sqrt();
-    let (dx, dy, dz) = if l2 > f32::MIN_POSITIVE && l2.is_finite() {
+    let (dx, dy, dz) = if l2 > f32::MIN_POSITIVE && l2 < f32::INFINITY {
         (dx * inv, dy * inv, dz * inv)
     } else {
         (0.0, -1.0, 0.0)
@@ -202,22 +207,35 @@ pub fn refract_node(
     let f = eta * cosi - root;
     let (tx, ty, tz) = (eta * dx + f * n.x, eta * dy + f * n.y, eta * dz + f * n.z);
     let s = (-params.depth - p.y) / ty;
-    let (hx, hz) = (p.x + s * tx, p.z + s * tz);
-    let valid = cosi > 0.0 && ty < 0.0 && s >= 0.0 && k >= 0.0 && hx.is_finite() && hz.is_finite();
-    let (hx, hz) = if valid { (hx, hz) } else { (p.x, p.z) };
+    let front = cosi > 0.0;
+    let valid = front && ty < 0.0 && (0.0..MAX_TRAVEL).contains(&s);
+    let (hx, hz) = if valid {
+        (p.x + s * tx, p.z + s * tz)
+    } else {
+        (p.x, p.z)
+    };
 
     let r0 = params.r0();
     let c_in = (-cosi).min(1.0);
     let sin2t = params.ior * params.ior * (1.0 - c_in * c_in);
     let c_back = (1.0 - sin2t).max(0.0).sqrt();
-    let front = cosi > 0.0;
     let c = if front { cosi.min(1.0) } else { c_back };
     let m = 1.0 - c;
     let m2 = m * m;
     let r = r0 + (1.0 - r0) * (m2 * m2 * m);
-    let total = !front && sin2t >= 1.0;
-    let r = if total || !r.is_finite() { 1.0 } else { r };
-    [hx / extent[0], hz / extent[1], r]
+    let r = if !front && sin2t >= 1.0 { 1.0 } else { r };
+    [hx * (1.0 / extent[0]), hz * (1.0 / extent[1]), r]
+}
+
+/// Longest ray, in world units, that still counts as reaching the bottom.
+const MAX_TRAVEL: f32 = 1e30;
+
+/// `(σ, σ·eye)` with `σ = 1 / max(1, largest |eye component|)`: view vectors are computed
+/// as `σ·P − σ·E`, which cannot overflow for any finite eye, and equal `P − E` (σ = 1) for
+/// every eye within a unit cube of the origin's scale.
+fn eye_scale(eye: Vec3) -> (f32, Vec3) {
+    let scale = 1.0 / eye.abs().max_element().max(1.0);
+    (scale, eye * scale)
 }
 
 fn resize(out: &mut Refraction, n: usize) {
@@ -270,13 +288,15 @@ impl Kernel {
         let [ou, ov, of] = out;
         let len = ou.len();
         let splat = Lane::splat;
-        let (ex, ey, ez) = (splat(self.eye.x), splat(self.eye.y), splat(self.eye.z));
+        let (scale, es) = eye_scale(self.eye);
+        let (scale, ex, ey, ez) = (splat(scale), splat(es.x), splat(es.y), splat(es.z));
+        let max_travel = splat(MAX_TRAVEL);
         let ior = self.params.ior;
         let eta = splat(1.0 / ior);
         let depth = splat(self.params.depth);
         let r0 = splat(self.params.r0());
         let ior2 = splat(ior * ior);
-        let (width, length) = (splat(self.extent[0]), splat(self.extent[1]));
+        let (inv_width, inv_length) = (splat(1.0 / self.extent[0]), splat(1.0 / self.extent[1]));
         let (zero, one) = (Lane::ZERO, Lane::ONE);
         let (x, y, z) = (view.x(), view.y(), view.z());
         let (nx, ny, nz) = (&normals.x, &normals.y, &normals.z);
@@ -285,10 +305,10 @@ impl Kernel {
             let i = start + o;
             let (px, py, pz) = (load(x, i), load(y, i), load(z, i));
             let (nx, ny, nz) = (load(nx, i), load(ny, i), load(nz, i));
-            let (dx, dy, dz) = (px - ex, py - ey, pz - ez);
+            let (dx, dy, dz) = (px * scale - ex, py * scale - ey, pz * scale - ez);
             let l2 = dx * dx + dy * dy + dz * dz;
             let inv = one / l2.sqrt();
-            let has_dir = l2.simd_gt(splat(f32::MIN_POSITIVE)) & l2.is_finite();
+            let has_dir = l2.simd_gt(splat(f32::MIN_POSITIVE)) & l2.simd_lt(splat(f32::INFINITY));
             let (dx, dy, dz) = (
                 has_dir.select(dx * inv, zero),
                 has_dir.select(dy * inv, -one),
@@ -300,15 +320,9 @@ impl Kernel {
             let f = eta * cosi - root;
             let (tx, ty, tz) = (eta * dx + f * nx, eta * dy + f * ny, eta * dz + f * nz);
             let s = (-depth - py) / ty;
-            let (hx, hz) = (px + s * tx, pz + s * tz);
             let front = cosi.simd_gt(zero);
-            let valid = front
-                & ty.simd_lt(zero)
-                & s.simd_ge(zero)
-                & k.simd_ge(zero)
-                & hx.is_finite()
-                & hz.is_finite();
-            let (hx, hz) = (valid.select(hx, px), valid.select(hz, pz));
+            let valid = front & ty.simd_lt(zero) & s.simd_ge(zero) & s.simd_lt(max_travel);
+            let (hx, hz) = (valid.select(px + s * tx, px), valid.select(pz + s * tz, pz));
 
             let c_in = (-cosi).min(one);
             let sin2t = ior2 * (one - c_in * c_in);
@@ -317,10 +331,9 @@ impl Kernel {
             let m = one - c;
             let m2 = m * m;
             let r = r0 + (one - r0) * (m2 * m2 * m);
-            let total = !front & sin2t.simd_ge(one);
-            let r = (total | !r.is_finite()).select(one, r);
-            store(ou, o, hx / width);
-            store(ov, o, hz / length);
+            let r = (!front & sin2t.simd_ge(one)).select(one, r);
+            store(ou, o, hx * inv_width);
+            store(ov, o, hz * inv_length);
             store(of, o, r);
             o += LANES;
         }

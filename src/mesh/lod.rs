@@ -184,6 +184,8 @@ pub struct LodMesh {
     /// Per patch: the balanced level the index buffer was built with.
     levels: Vec<u8>,
     next: Vec<u8>,
+    /// Per patch column: squared x distance from the eye to its footprint.
+    gap_x: Vec<f32>,
     indices: Vec<u32>,
     triangle_levels: Vec<u8>,
     scratch: Scratch,
@@ -200,6 +202,7 @@ impl LodMesh {
             raw: Vec::new(),
             levels: Vec::new(),
             next: Vec::new(),
+            gap_x: Vec::new(),
             indices: Vec::new(),
             triangle_levels: Vec::new(),
             scratch: Scratch::default(),
@@ -327,32 +330,38 @@ impl LodMesh {
     /// against the previous `raw` unless `fresh`.
     fn distance_levels(&mut self, shape: Shape, eye: Vec3, fresh: bool) {
         let p = self.params.patch_cells;
-        let [across, _] = self.patches;
+        let [across, down] = self.patches;
         let (cols, rows, h) = (shape.grid.cols, shape.grid.rows, shape.spacing);
         let grow = 1.0 + self.params.hysteresis;
-        for (i, raw) in self.raw.iter_mut().enumerate() {
-            let (pc, pr) = (i % across, i / across);
-            let (c0, r0) = (pc * p, pr * p);
-            let (c1, r1) = ((c0 + p).min(cols - 1), (r0 + p).min(rows - 1));
-            let gap = |e: f32, lo: usize, hi: usize| {
-                let (lo, hi) = (lo as f32 * h, hi as f32 * h);
-                (lo - e).max(e - hi).max(0.0)
-            };
-            let (dx, dz) = (gap(eye.x, c0, c1), gap(eye.z, r0, r1));
-            let d = (dx * dx + eye.y * eye.y + dz * dz).sqrt();
-            *raw = if fresh {
-                self.params.level_for_distance(d)
-            } else {
-                let coarser = self.params.level_for_distance(d / grow);
-                let finer = self.params.level_for_distance(d * grow);
-                if coarser > *raw {
-                    coarser
-                } else if finer < *raw {
-                    finer
+        let shrink = 1.0 / grow;
+        // Squared distance from the eye to a patch's footprint, split by axis.
+        let gap2 = |e: f32, patch: usize, last: usize| {
+            let (lo, hi) = (patch * p, ((patch + 1) * p).min(last));
+            let gap = (lo as f32 * h - e).max(e - hi as f32 * h).max(0.0);
+            gap * gap
+        };
+        self.gap_x.clear();
+        self.gap_x
+            .extend((0..across).map(|pc| gap2(eye.x, pc, cols - 1)));
+        for pr in 0..down {
+            let yz2 = eye.y * eye.y + gap2(eye.z, pr, rows - 1);
+            let row = &mut self.raw[pr * across..(pr + 1) * across];
+            for (raw, gx2) in row.iter_mut().zip(&self.gap_x) {
+                let d = (gx2 + yz2).sqrt();
+                *raw = if fresh {
+                    self.params.level_for_distance(d)
                 } else {
-                    *raw
-                }
-            };
+                    let coarser = self.params.level_for_distance(d * shrink);
+                    let finer = self.params.level_for_distance(d * grow);
+                    if coarser > *raw {
+                        coarser
+                    } else if finer < *raw {
+                        finer
+                    } else {
+                        *raw
+                    }
+                };
+            }
         }
     }
 

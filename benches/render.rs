@@ -1,0 +1,98 @@
+//! Render-side stages against one simulation step of the same grid, in one group so the
+//! ratios come from one run: `render/{stage}/{n}x{n}`, throughput in nodes.
+//!
+//! * `step`: one engine step (the reference cost);
+//! * `normals`, `refraction`, `normals+refraction`: per-node stages for all nodes;
+//! * `lod_rebuild`: an index buffer rebuild for an eye 20 units above the water, moving
+//!   between two spots three patches apart (every update rebuilds);
+//! * `lod_rebuild_full`: a rebuild at full detail (level 0 everywhere: the largest buffer);
+//! * `lod_cached`: an update that finds nothing changed (the usual per-frame cost).
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use glam::Vec3;
+use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
+use springwater::refraction::{refract, Refraction, RefractionParams};
+use springwater::{Params, Surface};
+use std::hint::black_box;
+use std::time::Duration;
+
+fn surface(n: usize) -> Surface {
+    let mut s = Surface::new(Params::with_size(n, n)).unwrap();
+    let c = n as f32 / 2.0;
+    s.drop_at(c, c, 1.0, 4.0).unwrap();
+    for _ in 0..5 {
+        s.step().unwrap();
+    }
+    s
+}
+
+fn render(c: &mut Criterion) {
+    let mut g = c.benchmark_group("render");
+    g.sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    for n in [257usize, 513, 1025] {
+        let size = format!("{n}x{n}");
+        g.throughput(Throughput::Elements((n * n) as u64));
+        let mut water = surface(n);
+        g.bench_function(BenchmarkId::new("step", &size), |b| {
+            b.iter(|| water.step().unwrap())
+        });
+
+        let water = surface(n);
+        let view = water.mesh_view();
+        let centre = n as f32 / 2.0;
+        let eye = Vec3::new(centre, 20.0, centre);
+        let optics = RefractionParams::default();
+        let mut normals = Normals::new();
+        let mut uv = Refraction::default();
+        compute_normals(&view, &mut normals);
+        g.bench_function(BenchmarkId::new("normals", &size), |b| {
+            b.iter(|| compute_normals(black_box(&view), &mut normals))
+        });
+        g.bench_function(BenchmarkId::new("refraction", &size), |b| {
+            b.iter(|| refract(black_box(&view), &normals, eye, &optics, &mut uv).unwrap())
+        });
+        g.bench_function(BenchmarkId::new("normals+refraction", &size), |b| {
+            b.iter(|| {
+                compute_normals(black_box(&view), &mut normals);
+                refract(&view, &normals, eye, &optics, &mut uv).unwrap()
+            })
+        });
+
+        let mut lod = LodMesh::new(LodParams::default()).unwrap();
+        let other = eye + Vec3::new(48.0, 0.0, 0.0);
+        let mut flip = false;
+        g.bench_function(BenchmarkId::new("lod_rebuild", &size), |b| {
+            b.iter(|| {
+                flip = !flip;
+                assert!(lod.update(&view, if flip { eye } else { other }));
+            })
+        });
+        let patches = lod.patch_grid();
+        let all_zero = vec![0u8; patches[0] * patches[1]];
+        let mut one_coarse = all_zero.clone();
+        one_coarse[0] = 1;
+        g.bench_function(BenchmarkId::new("lod_rebuild_full", &size), |b| {
+            b.iter(|| {
+                flip = !flip;
+                assert!(lod
+                    .set_levels(&view, if flip { &all_zero } else { &one_coarse })
+                    .unwrap());
+            })
+        });
+        lod.update(&view, eye);
+        g.bench_function(BenchmarkId::new("lod_cached", &size), |b| {
+            b.iter(|| assert!(!lod.update(black_box(&view), eye)))
+        });
+        println!(
+            "{size}: {} triangles at eye {eye} (full grid {})",
+            lod.triangle_count(),
+            2 * (n - 1) * (n - 1)
+        );
+    }
+    g.finish();
+}
+
+criterion_group!(benches, render);
+criterion_main!(benches);
