@@ -1,1 +1,84 @@
-fn main() {}
+//! Criterion benches of one simulation step, reported in nodes per second.
+//!
+//! `step/<kernel>/<cols>x<rows>` for the scalar reference, the engine on 1 and 2 threads,
+//! the naive array-of-structs baseline and the memory-floor kernel; `band_rows/<h>` sweeps
+//! the colour granularity. Run: `cargo bench --bench step` (add
+//! `RUSTFLAGS="-C target-cpu=native"` for the AVX-512 build).
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use springwater::baselines::{MemoryFloor, NaiveSurface};
+use springwater::{Params, Stepper, Surface};
+use std::hint::black_box;
+use std::time::Duration;
+
+const SIZES: [usize; 4] = [64, 256, 1024, 2048];
+
+fn surface(n: usize) -> Surface {
+    let mut s = Surface::new(Params::with_size(n, n)).unwrap();
+    s.drop_at(n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0).unwrap();
+    s
+}
+
+fn pool(threads: usize) -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+}
+
+fn step(c: &mut Criterion) {
+    let mut group = c.benchmark_group("step");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(500))
+        .measurement_time(Duration::from_secs(2));
+    for n in SIZES {
+        let id = format!("{n}x{n}");
+        group.throughput(Throughput::Elements((n * n) as u64));
+        let mut s = surface(n);
+        group.bench_function(BenchmarkId::new("reference", &id), |b| {
+            b.iter(|| s.step_with(Stepper::Reference).unwrap())
+        });
+        for threads in [1, 2] {
+            let mut s = surface(n);
+            let pool = pool(threads);
+            group.bench_function(BenchmarkId::new(format!("engine_{threads}t"), &id), |b| {
+                pool.install(|| b.iter(|| s.step().unwrap()))
+            });
+        }
+        let mut naive = NaiveSurface::new(&Params::with_size(n, n));
+        naive.drop_at(n, n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0);
+        group.bench_function(BenchmarkId::new("naive_aos", &id), |b| {
+            b.iter(|| naive.step())
+        });
+        let mut floor = MemoryFloor::new(n * n);
+        let pool2 = pool(2);
+        group.bench_function(BenchmarkId::new("memory_floor_2t", &id), |b| {
+            pool2.install(|| b.iter(|| floor.pass(0.4, black_box(0.999))))
+        });
+    }
+    group.finish();
+}
+
+fn band_rows(c: &mut Criterion) {
+    let mut group = c.benchmark_group("band_rows");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(1));
+    let pool = pool(2);
+    for n in [256, 1024] {
+        group.throughput(Throughput::Elements((n * n) as u64));
+        for h in [2, 4, 8, 16, 32, 64] {
+            let mut s = surface(n);
+            s.set_band_rows(h);
+            group.bench_function(BenchmarkId::new(format!("{n}x{n}"), h), |b| {
+                pool.install(|| b.iter(|| s.step().unwrap()))
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, step, band_rows);
+criterion_main!(benches);

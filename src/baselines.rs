@@ -77,7 +77,11 @@ impl NaiveSurface {
                 coef: params.stiffness,
             })
             .collect();
-        Self { nodes, springs, dt: params.dt }
+        Self {
+            nodes,
+            springs,
+            dt: params.dt,
+        }
     }
 
     /// Adds a drop like [`Surface::drop_at`](crate::Surface::drop_at).
@@ -123,7 +127,10 @@ impl MemoryFloor {
     /// Buffers for `nodes` nodes.
     pub fn new(nodes: usize) -> Self {
         let v = || vec![0.5f32; nodes];
-        Self { pos: [v(), v(), v()], vel: [v(), v(), v()] }
+        Self {
+            pos: [v(), v(), v()],
+            vel: [v(), v(), v()],
+        }
     }
 
     /// One pass: `v ← v·k; x ← x + v·dt` for every node and component (reads and writes
@@ -140,10 +147,14 @@ impl MemoryFloor {
             #[cfg(feature = "parallel")]
             {
                 use rayon::prelude::*;
-                x.par_chunks_mut(CHUNK).zip(v.par_chunks_mut(CHUNK)).for_each(kernel);
+                x.par_chunks_mut(CHUNK)
+                    .zip(v.par_chunks_mut(CHUNK))
+                    .for_each(kernel);
             }
             #[cfg(not(feature = "parallel"))]
-            x.chunks_mut(CHUNK).zip(v.chunks_mut(CHUNK)).for_each(kernel);
+            x.chunks_mut(CHUNK)
+                .zip(v.chunks_mut(CHUNK))
+                .for_each(kernel);
         }
     }
 

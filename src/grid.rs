@@ -99,7 +99,8 @@ impl Grid {
     pub fn springs(&self) -> impl Iterator<Item = (SpringId, usize)> + '_ {
         Family::ALL.into_iter().flat_map(move |family| {
             (0..self.len()).filter_map(move |origin| {
-                self.spring_end(family, origin).map(|end| (SpringId { family, origin }, end))
+                self.spring_end(family, origin)
+                    .map(|end| (SpringId { family, origin }, end))
             })
         })
     }

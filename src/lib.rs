@@ -55,7 +55,8 @@
 //! * `serde`: derive `Serialize`/`Deserialize` for [`Params`].
 
 #![warn(missing_docs)]
-#![forbid(unsafe_code)]
+#![deny(unsafe_op_in_unsafe_fn)]
+#![warn(clippy::undocumented_unsafe_blocks)]
 
 pub mod baselines;
 pub mod disturb;
@@ -77,3 +78,8 @@ pub use grid::{Family, Grid, SpringId};
 pub use mesh::MeshView;
 pub use params::{Boundary, Params};
 pub use surface::{Energy, Stepper, Surface};
+
+/// The README's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

@@ -92,7 +92,11 @@ pub(crate) const BYTES_PER_NODE: u128 = 4 * (12 + 3 + 2 + 8 + 1);
 impl Params {
     /// The seed's parameters on a `cols × rows` grid.
     pub fn with_size(cols: usize, rows: usize) -> Self {
-        Self { cols, rows, ..Self::default() }
+        Self {
+            cols,
+            rows,
+            ..Self::default()
+        }
     }
 
     /// Number of nodes, `cols × rows`.
@@ -119,7 +123,10 @@ impl Params {
     /// Checks every field except the timestep limit (`dt` must still be finite and > 0).
     pub fn validate_except_dt(&self) -> Result<()> {
         if self.cols < 2 || self.rows < 2 {
-            return Err(Error::GridTooSmall { cols: self.cols, rows: self.rows });
+            return Err(Error::GridTooSmall {
+                cols: self.cols,
+                rows: self.rows,
+            });
         }
         let nodes = self.cols.checked_mul(self.rows);
         if nodes.is_none_or(|n| n > MAX_NODES) {
@@ -164,7 +171,11 @@ pub(crate) fn check_dt(dt: f32, critical: f32) -> Result<()> {
     if dt < critical {
         Ok(())
     } else {
-        Err(Error::TimestepTooLarge { dt, critical, suggest: 0.95 * critical })
+        Err(Error::TimestepTooLarge {
+            dt,
+            critical,
+            suggest: 0.95 * critical,
+        })
     }
 }
 
@@ -172,7 +183,11 @@ pub(crate) fn positive(name: &'static str, v: f32) -> Result<()> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        Err(Error::InvalidParam { name, value: v as f64, expected: "a finite number > 0" })
+        Err(Error::InvalidParam {
+            name,
+            value: v as f64,
+            expected: "a finite number > 0",
+        })
     }
 }
 
@@ -180,7 +195,11 @@ pub(crate) fn non_negative(name: &'static str, v: f32) -> Result<()> {
     if v.is_finite() && v >= 0.0 {
         Ok(())
     } else {
-        Err(Error::InvalidParam { name, value: v as f64, expected: "a finite number >= 0" })
+        Err(Error::InvalidParam {
+            name,
+            value: v as f64,
+            expected: "a finite number >= 0",
+        })
     }
 }
 
@@ -188,6 +207,10 @@ pub(crate) fn finite(name: &'static str, v: f32) -> Result<()> {
     if v.is_finite() {
         Ok(())
     } else {
-        Err(Error::InvalidParam { name, value: v as f64, expected: "a finite number" })
+        Err(Error::InvalidParam {
+            name,
+            value: v as f64,
+            expected: "a finite number",
+        })
     }
 }

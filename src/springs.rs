@@ -19,17 +19,33 @@
 //! Why bands rather than single springs by family and parity (8 colours)? A colour pass
 //! over single springs is a full sweep over memory, so 8 colours read the state 8 times
 //! per step; a band streams its rows once and keeps the forces of the two rows in flight
-//! in cache. The band height trades locality (tall bands) against load balance on small
-//! grids (many bands); `benches/step.rs` sweeps it, and [`BAND_ROWS`] is the measured
-//! choice.
+//! in cache.
+//!
+//! The band height trades per-band overhead (each band parks and restores one row of
+//! forces, about 1/height of its work) against load balance (each colour needs a few
+//! bands per thread). The `band_rows` group of `benches/step.rs` and
+//! `springwater bench --band-rows H` measure it: on 256² with 2 threads the step got
+//! 8-12% faster from height 8 to 32-64, and heights below 8 lose 10% or more. So the
+//! engine picks, per step, [`band_rows`]`(rows, threads)`: about 4 bands per thread,
+//! clamped to 8..=64 rows. The choice never changes a bit of the result (the per-node
+//! arithmetic does not depend on it), so it may follow the thread count.
 
 use crate::grid::{Family, Grid, SpringId};
 use crate::params::Params;
 use crate::state::padded_len;
 use std::ops::Range;
 
-/// Rows per band (the colour granularity), chosen by the `band_rows` benchmark.
-pub const BAND_ROWS: usize = 8;
+/// Fewest rows per band the engine picks.
+pub const MIN_BAND_ROWS: usize = 8;
+/// Most rows per band the engine picks.
+pub const MAX_BAND_ROWS: usize = 64;
+
+/// The band height the engine uses for `rows` rows on `threads` threads: about 4 bands
+/// (2 per colour) per thread, clamped to `MIN_BAND_ROWS..=MAX_BAND_ROWS`.
+pub fn band_rows(rows: usize, threads: usize) -> usize {
+    rows.div_ceil(4 * threads.max(1))
+        .clamp(MIN_BAND_ROWS, MAX_BAND_ROWS)
+}
 
 /// Rest length and coefficient of every spring, one buffer per family.
 #[derive(Debug, Clone)]

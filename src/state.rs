@@ -59,10 +59,11 @@ impl State {
         let n = grid.len();
         let len = padded_len(n);
         let mut pos = zeros3(len);
-        for i in 0..n {
+        let [x, _, z] = &mut pos;
+        for (i, (x, z)) in x.iter_mut().zip(z.iter_mut()).take(n).enumerate() {
             let (c, r) = grid.coords(i);
-            pos[0][i] = c as f32 * params.spacing;
-            pos[2][i] = r as f32 * params.spacing;
+            *x = c as f32 * params.spacing;
+            *z = r as f32 * params.spacing;
         }
         let mut mass = vec![0.0; len];
         mass[..n].fill(params.mass);
@@ -96,7 +97,11 @@ impl State {
     /// Recomputes `inv_mass` from `mass` and `pinned`.
     pub fn refresh_inv_mass(&mut self) {
         for i in 0..self.len() {
-            self.inv_mass[i] = if self.pinned[i] { 0.0 } else { 1.0 / self.mass[i] };
+            self.inv_mass[i] = if self.pinned[i] {
+                0.0
+            } else {
+                1.0 / self.mass[i]
+            };
         }
     }
 

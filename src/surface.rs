@@ -5,7 +5,7 @@ use crate::forces::{self, simd::Workspace, StepConfig};
 use crate::grid::{Family, Grid, SpringId};
 use crate::mesh::MeshView;
 use crate::params::{self, Params};
-use crate::springs::{self, Band, Springs, BAND_ROWS};
+use crate::springs::{self, Band, Springs};
 use crate::state::State;
 
 /// Most substeps one [`Surface::advance`] call may take.
@@ -81,7 +81,7 @@ impl Surface {
         Self {
             state: State::new(&params),
             springs: Springs::new(&params),
-            workspace: Workspace::new(params.cols, params.rows, BAND_ROWS),
+            workspace: Workspace::new(None),
             reference: Default::default(),
             min_mass: params.mass,
             max_stiffness: params.stiffness,
@@ -91,12 +91,11 @@ impl Surface {
         }
     }
 
-    /// Sets the band height (colour granularity) of the engine. Results depend on it in
-    /// the last bits, never on the thread count. For benchmarks; the default is
-    /// [`BAND_ROWS`].
+    /// Fixes the band height (colour granularity) of the engine instead of
+    /// [`springs::band_rows`]. Results do not change by a bit; for benchmarks and tests.
     #[doc(hidden)]
     pub fn set_band_rows(&mut self, band_rows: usize) {
-        self.workspace = Workspace::new(self.params.cols, self.params.rows, band_rows);
+        self.workspace = Workspace::new(Some(band_rows));
     }
 
     /// The parameters the surface was built with.
@@ -137,13 +136,21 @@ impl Surface {
     /// Positions `[x, y, z]`, one value per node, row-major.
     pub fn positions(&self) -> [&[f32]; 3] {
         let n = self.len();
-        [&self.state.pos[0][..n], &self.state.pos[1][..n], &self.state.pos[2][..n]]
+        [
+            &self.state.pos[0][..n],
+            &self.state.pos[1][..n],
+            &self.state.pos[2][..n],
+        ]
     }
 
     /// Velocities `[vx, vy, vz]`, one value per node, row-major.
     pub fn velocities(&self) -> [&[f32]; 3] {
         let n = self.len();
-        [&self.state.vel[0][..n], &self.state.vel[1][..n], &self.state.vel[2][..n]]
+        [
+            &self.state.vel[0][..n],
+            &self.state.vel[1][..n],
+            &self.state.vel[2][..n],
+        ]
     }
 
     /// A borrowed view of the positions and grid shape for the render-side stages.
@@ -172,7 +179,10 @@ impl Surface {
     fn step_dt(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
         // `+ 0.0` turns a −0 acceleration into +0, which keeps a zero force's sign from
         // reaching the state (see `forces::simd::spring_force`).
-        let cfg = StepConfig { dt, accel: self.params.acceleration.map(|a| a + 0.0) };
+        let cfg = StepConfig {
+            dt,
+            accel: self.params.acceleration.map(|a| a + 0.0),
+        };
         let outcome = match stepper {
             Stepper::Engine => {
                 forces::simd::step(&mut self.state, &self.springs, &mut self.workspace, cfg)
@@ -189,7 +199,10 @@ impl Surface {
                 self.time += dt as f64;
                 Ok(())
             }
-            Err(node) => Err(Error::NonFinite { step: self.steps, node }),
+            Err(node) => Err(Error::NonFinite {
+                step: self.steps,
+                node,
+            }),
         }
     }
 
@@ -277,10 +290,18 @@ impl Surface {
         let n = self.len();
         for c in force {
             if c.len() != n {
-                return Err(Error::LengthMismatch { what: "force buffer", got: c.len(), expected: n });
+                return Err(Error::LengthMismatch {
+                    what: "force buffer",
+                    got: c.len(),
+                    expected: n,
+                });
             }
             if let Some(&bad) = c.iter().find(|v| !v.is_finite()) {
-                return Err(Error::InvalidParam { name: "force", value: bad as f64, expected: "finite values" });
+                return Err(Error::InvalidParam {
+                    name: "force",
+                    value: bad as f64,
+                    expected: "finite values",
+                });
             }
         }
         for (dst, src) in self.state.ext.iter_mut().zip(force) {
@@ -293,7 +314,11 @@ impl Surface {
     /// Pending external forces `[fx, fy, fz]` for the next step.
     pub fn forces(&self) -> [&[f32]; 3] {
         let n = self.len();
-        [&self.state.ext[0][..n], &self.state.ext[1][..n], &self.state.ext[2][..n]]
+        [
+            &self.state.ext[0][..n],
+            &self.state.ext[1][..n],
+            &self.state.ext[2][..n],
+        ]
     }
 
     /// Sets the uniform acceleration applied to every free node (gravity, wind).
@@ -314,7 +339,11 @@ impl Surface {
                 v[node] = 0.0;
             }
         }
-        self.state.inv_mass[node] = if pinned { 0.0 } else { 1.0 / self.state.mass[node] };
+        self.state.inv_mass[node] = if pinned {
+            0.0
+        } else {
+            1.0 / self.state.mass[node]
+        };
         Ok(())
     }
 
@@ -330,7 +359,10 @@ impl Surface {
         self.check_node(node)?;
         params::positive("mass", mass)?;
         let min_mass = self.min_mass.min(mass);
-        params::check_dt(self.params.dt, params::critical_dt(min_mass, self.max_stiffness))?;
+        params::check_dt(
+            self.params.dt,
+            params::critical_dt(min_mass, self.max_stiffness),
+        )?;
         self.min_mass = min_mass;
         self.state.mass[node] = mass;
         if !self.state.pinned[node] {
@@ -364,10 +396,15 @@ impl Surface {
 
     /// `(rest length, coefficient)` of a spring; `None` if the grid has no such spring.
     pub fn spring(&self, id: SpringId) -> Option<(f32, f32)> {
-        (id.origin < self.len() && self.grid().spring_end(id.family, id.origin).is_some()).then(|| {
-            let f = id.family as usize;
-            (self.springs.rest[f][id.origin], self.springs.coef[f][id.origin])
-        })
+        (id.origin < self.len() && self.grid().spring_end(id.family, id.origin).is_some()).then(
+            || {
+                let f = id.family as usize;
+                (
+                    self.springs.rest[f][id.origin],
+                    self.springs.coef[f][id.origin],
+                )
+            },
+        )
     }
 
     /// Sets a spring's rest length (≥ 0) and coefficient (> 0). Refused if the spring does
@@ -375,12 +412,19 @@ impl Surface {
     pub fn set_spring(&mut self, id: SpringId, rest: f32, coef: f32) -> Result<()> {
         self.check_node(id.origin)?;
         if self.grid().spring_end(id.family, id.origin).is_none() {
-            return Err(Error::OutOfRange { what: "spring origin", index: id.origin, len: self.len() });
+            return Err(Error::OutOfRange {
+                what: "spring origin",
+                index: id.origin,
+                len: self.len(),
+            });
         }
         params::non_negative("rest length", rest)?;
         params::positive("stiffness", coef)?;
         let max_stiffness = self.max_stiffness.max(coef);
-        params::check_dt(self.params.dt, params::critical_dt(self.min_mass, max_stiffness))?;
+        params::check_dt(
+            self.params.dt,
+            params::critical_dt(self.min_mass, max_stiffness),
+        )?;
         self.max_stiffness = max_stiffness;
         let f = id.family as usize;
         self.springs.rest[f][id.origin] = rest;
@@ -388,10 +432,13 @@ impl Surface {
         Ok(())
     }
 
-    /// The colour batches of the engine: bands of rows, even bands colour 0, odd bands
-    /// colour 1 (see [`crate::springs`]).
+    /// The colour batches the engine uses on the current thread pool: bands of rows, even
+    /// bands colour 0, odd bands colour 1 (see [`crate::springs`]).
     pub fn bands(&self) -> impl Iterator<Item = Band> {
-        springs::bands(self.params.rows, self.workspace.band_rows())
+        springs::bands(
+            self.params.rows,
+            self.workspace.band_rows_for(self.params.rows),
+        )
     }
 
     /// Kinetic plus spring potential energy, a diagnostic (`O(nodes)`).
@@ -406,7 +453,10 @@ impl Surface {
         let mut potential = 0.0;
         for (id, j) in self.grid().springs() {
             let i = id.origin;
-            let l = (0..3).map(|k| (s.pos[k][j] as f64 - s.pos[k][i] as f64).powi(2)).sum::<f64>().sqrt();
+            let l = (0..3)
+                .map(|k| (s.pos[k][j] as f64 - s.pos[k][i] as f64).powi(2))
+                .sum::<f64>()
+                .sqrt();
             let f = id.family as usize;
             let stretch = l - self.springs.rest[f][i] as f64;
             potential += 0.5 * self.springs.coef[f][i] as f64 * stretch * stretch;
@@ -418,7 +468,11 @@ impl Surface {
         if node < self.len() {
             Ok(())
         } else {
-            Err(Error::OutOfRange { what: "node", index: node, len: self.len() })
+            Err(Error::OutOfRange {
+                what: "node",
+                index: node,
+                len: self.len(),
+            })
         }
     }
 }

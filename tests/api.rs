@@ -10,14 +10,56 @@ fn every_invalid_parameter_is_refused_with_its_name() {
     let base = Params::default();
     let cases: Vec<(Params, &str)> = vec![
         (Params { mass: 0.0, ..base }, "mass"),
-        (Params { mass: f32::NAN, ..base }, "mass"),
-        (Params { stiffness: -1.0, ..base }, "stiffness"),
-        (Params { spacing: f32::INFINITY, ..base }, "spacing"),
-        (Params { viscosity: -0.1, ..base }, "viscosity"),
+        (
+            Params {
+                mass: f32::NAN,
+                ..base
+            },
+            "mass",
+        ),
+        (
+            Params {
+                stiffness: -1.0,
+                ..base
+            },
+            "stiffness",
+        ),
+        (
+            Params {
+                spacing: f32::INFINITY,
+                ..base
+            },
+            "spacing",
+        ),
+        (
+            Params {
+                viscosity: -0.1,
+                ..base
+            },
+            "viscosity",
+        ),
         (Params { dt: 0.0, ..base }, "dt"),
-        (Params { rest_ratio: 1.5, ..base }, "rest-ratio"),
-        (Params { rest_ratio: f32::NAN, ..base }, "rest-ratio"),
-        (Params { acceleration: [0.0, f32::NAN, 0.0], ..base }, "acceleration"),
+        (
+            Params {
+                rest_ratio: 1.5,
+                ..base
+            },
+            "rest-ratio",
+        ),
+        (
+            Params {
+                rest_ratio: f32::NAN,
+                ..base
+            },
+            "rest-ratio",
+        ),
+        (
+            Params {
+                acceleration: [0.0, f32::NAN, 0.0],
+                ..base
+            },
+            "acceleration",
+        ),
     ];
     for (p, name) in cases {
         match Surface::new(p) {
@@ -26,19 +68,34 @@ fn every_invalid_parameter_is_refused_with_its_name() {
         }
     }
     for (c, r) in [(1, 5), (5, 1), (0, 0)] {
-        assert!(matches!(Surface::new(Params::with_size(c, r)), Err(Error::GridTooSmall { .. })));
+        assert!(matches!(
+            Surface::new(Params::with_size(c, r)),
+            Err(Error::GridTooSmall { .. })
+        ));
     }
-    assert!(matches!(Surface::new(Params::with_size(1 << 20, 1 << 20)), Err(Error::GridTooLarge { .. })));
-    assert!(matches!(Surface::new(Params::with_size(usize::MAX, 3)), Err(Error::GridTooLarge { .. })));
+    assert!(matches!(
+        Surface::new(Params::with_size(1 << 20, 1 << 20)),
+        Err(Error::GridTooLarge { .. })
+    ));
+    assert!(matches!(
+        Surface::new(Params::with_size(usize::MAX, 3)),
+        Err(Error::GridTooLarge { .. })
+    ));
 }
 
 #[test]
 fn a_timestep_at_or_past_critical_names_the_critical_value() {
-    let p = Params { dt: 0.5, ..Params::default() };
+    let p = Params {
+        dt: 0.5,
+        ..Params::default()
+    };
     let err = Surface::new(p).unwrap_err();
     assert!(matches!(err, Error::TimestepTooLarge { .. }));
     assert!(err.to_string().contains("0.4364"), "{err}");
-    let at = Params { dt: Params::default().critical_dt(), ..Params::default() };
+    let at = Params {
+        dt: Params::default().critical_dt(),
+        ..Params::default()
+    };
     assert!(Surface::new(at).is_err());
     assert!(Surface::new_unchecked_dt(p).is_ok());
 }
@@ -63,19 +120,37 @@ fn bad_edits_are_refused_and_change_nothing() {
     let mut s = Surface::new(Params::with_size(6, 5)).unwrap();
     s.drop_at(2.0, 2.0, 0.5, 1.0).unwrap();
     let before = state_bits(&s);
-    assert!(matches!(s.add_force(30, [0.0; 3]), Err(Error::OutOfRange { .. })));
+    assert!(matches!(
+        s.add_force(30, [0.0; 3]),
+        Err(Error::OutOfRange { .. })
+    ));
     assert!(s.add_force(3, [f32::NAN, 0.0, 0.0]).is_err());
     assert!(s.add_velocity(7, [0.0, f32::INFINITY, 0.0]).is_err());
     assert!(s.drop_at(1.0, 1.0, 1.0, 0.0).is_err());
     assert!(s.drop_at(f32::NAN, 1.0, 1.0, 1.0).is_err());
     assert!(s.set_forces([&[0.0; 29], &[0.0; 30], &[0.0; 30]]).is_err());
     assert!(s.set_mass(3, -1.0).is_err());
-    assert!(s.set_mass(3, 0.1).is_err(), "a tiny mass puts dt past the critical timestep");
+    assert!(
+        s.set_mass(3, 0.1).is_err(),
+        "a tiny mass puts dt past the critical timestep"
+    );
     assert!(s.set_viscosity(3, f32::NAN).is_err());
-    let east_of_last_column = SpringId { family: Family::E, origin: 5 };
+    let east_of_last_column = SpringId {
+        family: Family::E,
+        origin: 5,
+    };
     assert!(s.spring(east_of_last_column).is_none());
     assert!(s.set_spring(east_of_last_column, 1.0, 7.0).is_err());
-    assert!(s.set_spring(SpringId { family: Family::S, origin: 0 }, 0.5, 100.0).is_err());
+    assert!(s
+        .set_spring(
+            SpringId {
+                family: Family::S,
+                origin: 0
+            },
+            0.5,
+            100.0
+        )
+        .is_err());
     assert!(state_bits(&s) == before);
     assert!(s.forces().iter().all(|c| c.iter().all(|&f| f == 0.0)));
 }
@@ -83,7 +158,10 @@ fn bad_edits_are_refused_and_change_nothing() {
 #[test]
 fn edits_take_effect() {
     let mut s = Surface::new(Params::with_size(6, 5)).unwrap();
-    let id = SpringId { family: Family::SE, origin: 7 };
+    let id = SpringId {
+        family: Family::SE,
+        origin: 7,
+    };
     assert_eq!(s.spring(id), Some((0.5 * std::f32::consts::SQRT_2, 7.0)));
     s.set_spring(id, 1.0, 6.0).unwrap();
     assert_eq!(s.spring(id), Some((1.0, 6.0)));
@@ -94,7 +172,10 @@ fn edits_take_effect() {
     s.step().unwrap();
     assert!(s.positions()[1][8] > 0.0, "the force lifted the node");
     assert_eq!(s.positions()[1][7], 0.0, "a pinned node never moves");
-    assert!(s.forces()[1].iter().all(|&f| f == 0.0), "forces apply for one step");
+    assert!(
+        s.forces()[1].iter().all(|&f| f == 0.0),
+        "forces apply for one step"
+    );
 }
 
 #[test]
@@ -104,16 +185,24 @@ fn an_overflowing_step_leaves_the_state_bitwise_unchanged() {
     s.step().unwrap();
     s.add_velocity(41, [0.0, 3.3e38, 0.0]).unwrap();
     s.add_force(40, [0.0, f32::MAX, 0.0]).unwrap();
-    assert!(s.add_force(40, [0.0, f32::MAX, 0.0]).is_err(), "the sum would overflow");
+    assert!(
+        s.add_force(40, [0.0, f32::MAX, 0.0]).is_err(),
+        "the sum would overflow"
+    );
     let before = state_bits(&s);
     // Every value is finite, but v + F/m·dt overflows at node 41.
     let mut big = vec![0.0f32; 81];
     big[41] = f32::MAX;
-    s.set_forces([&vec![0.0; 81], &big, &vec![0.0; 81]]).unwrap();
+    s.set_forces([&vec![0.0; 81], &big, &vec![0.0; 81]])
+        .unwrap();
     let steps = s.steps();
     let err = s.step().unwrap_err();
     assert!(matches!(err, Error::NonFinite { node: 41, .. }), "{err}");
     assert!(state_bits(&s) == before);
     assert_eq!(s.steps(), steps);
-    assert_eq!(s.forces()[1][41], f32::MAX, "a refused step keeps the pending forces");
+    assert_eq!(
+        s.forces()[1][41],
+        f32::MAX,
+        "a refused step keeps the pending forces"
+    );
 }

@@ -17,7 +17,12 @@ fn check(cols: usize, rows: usize, band_rows: usize) -> Result<(), TestCaseError
     }
     prop_assert_eq!(seen.len(), grid.spring_count());
     for (id, _) in grid.springs() {
-        prop_assert_eq!(seen.get(&id), Some(&1), "spring {:?} not in exactly one band", id);
+        prop_assert_eq!(
+            seen.get(&id),
+            Some(&1),
+            "spring {:?} not in exactly one band",
+            id
+        );
     }
     for colour in 0..2 {
         let mut owner: HashMap<usize, usize> = HashMap::new();
@@ -28,7 +33,14 @@ fn check(cols: usize, rows: usize, band_rows: usize) -> Result<(), TestCaseError
                 .collect();
             for n in nodes {
                 if let Some(other) = owner.insert(n, b) {
-                    prop_assert!(false, "node {} touched by bands {} and {} of colour {}", n, other, b, colour);
+                    prop_assert!(
+                        false,
+                        "node {} touched by bands {} and {} of colour {}",
+                        n,
+                        other,
+                        b,
+                        colour
+                    );
                 }
             }
         }

@@ -24,7 +24,11 @@ fn run() -> Surface {
 }
 
 fn in_pool<T: Send>(threads: usize, f: impl FnOnce() -> T + Send) -> T {
-    rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(f)
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap()
+        .install(f)
 }
 
 #[test]
@@ -40,11 +44,20 @@ fn one_to_four_threads_give_identical_bits() {
 fn parallel_feature_on_and_off_give_identical_bits() {
     let dir = std::path::Path::new(env!("CARGO_TARGET_TMPDIR"));
     let mine = format!("{:016x}", fingerprint(&in_pool(2, run)));
-    let name = |parallel: bool| dir.join(format!("determinism-{}.txt", if parallel { "parallel" } else { "serial" }));
+    let name = |parallel: bool| {
+        dir.join(format!(
+            "determinism-{}.txt",
+            if parallel { "parallel" } else { "serial" }
+        ))
+    };
     let parallel = cfg!(feature = "parallel");
     std::fs::write(name(parallel), &mine).unwrap();
     match std::fs::read_to_string(name(!parallel)) {
-        Ok(other) => assert_eq!(mine, other.trim(), "parallel={parallel} differs from the other build"),
+        Ok(other) => assert_eq!(
+            mine,
+            other.trim(),
+            "parallel={parallel} differs from the other build"
+        ),
         Err(_) if std::env::var_os("SPRINGWATER_CROSS_BUILD").is_some() && !parallel => {
             panic!("no fingerprint from the parallel build to compare with")
         }

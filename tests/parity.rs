@@ -23,7 +23,13 @@ fn case() -> impl Strategy<Value = Case> {
     (
         2usize..70,
         2usize..50,
-        (1.0f32..8.0, 1.0f32..12.0, 0.0f32..0.3, 0.0f32..=1.0, 0.5f32..2.0),
+        (
+            1.0f32..8.0,
+            1.0f32..12.0,
+            0.0f32..0.3,
+            0.0f32..=1.0,
+            0.5f32..2.0,
+        ),
         any::<bool>(),
         0.05f32..0.99,
         prop::collection::vec((0.0f32..1.0, 0.0f32..1.0, -1.0f32..1.0, 1.0f32..4.0), 0..4),
@@ -31,26 +37,51 @@ fn case() -> impl Strategy<Value = Case> {
         prop::option::of(any::<u32>()),
         1usize..20,
     )
-        .prop_map(|(cols, rows, (mass, stiffness, viscosity, rest_ratio, spacing), free, dt_frac, drops, pins, force_seed, band_rows)| {
-            let mut params = Params {
+        .prop_map(
+            |(
                 cols,
                 rows,
-                mass,
-                stiffness,
-                viscosity,
-                rest_ratio,
-                spacing,
-                boundary: if free { Boundary::Free } else { Boundary::Pinned },
-                ..Params::default()
-            };
-            params.dt = params.critical_dt() * dt_frac;
-            let drops = drops
-                .into_iter()
-                .map(|(c, r, h, rad)| (c * cols as f32, r * rows as f32, h * rad, rad))
-                .collect();
-            let pins = pins.into_iter().map(|(i, p)| (i.index(cols * rows), p)).collect();
-            Case { params, drops, pins, force_seed: force_seed.map(|s| s | 1), band_rows }
-        })
+                (mass, stiffness, viscosity, rest_ratio, spacing),
+                free,
+                dt_frac,
+                drops,
+                pins,
+                force_seed,
+                band_rows,
+            )| {
+                let mut params = Params {
+                    cols,
+                    rows,
+                    mass,
+                    stiffness,
+                    viscosity,
+                    rest_ratio,
+                    spacing,
+                    boundary: if free {
+                        Boundary::Free
+                    } else {
+                        Boundary::Pinned
+                    },
+                    ..Params::default()
+                };
+                params.dt = params.critical_dt() * dt_frac;
+                let drops = drops
+                    .into_iter()
+                    .map(|(c, r, h, rad)| (c * cols as f32, r * rows as f32, h * rad, rad))
+                    .collect();
+                let pins = pins
+                    .into_iter()
+                    .map(|(i, p)| (i.index(cols * rows), p))
+                    .collect();
+                Case {
+                    params,
+                    drops,
+                    pins,
+                    force_seed: force_seed.map(|s| s | 1),
+                    band_rows,
+                }
+            },
+        )
 }
 
 fn build(case: &Case) -> Surface {
@@ -69,7 +100,9 @@ fn add_forces(s: &mut Surface, seed: Option<u32>) {
     if let Some(seed) = seed {
         let mut rng = Rng(seed);
         let n = s.len();
-        let f: Vec<Vec<f32>> = (0..3).map(|_| (0..n).map(|_| rng.next()).collect()).collect();
+        let f: Vec<Vec<f32>> = (0..3)
+            .map(|_| (0..n).map(|_| rng.next()).collect())
+            .collect();
         s.set_forces([&f[0], &f[1], &f[2]]).unwrap();
     }
 }

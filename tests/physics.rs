@@ -7,7 +7,10 @@ use proptest::prelude::*;
 use springwater::{Params, Surface};
 
 fn undamped(cols: usize, rows: usize) -> Params {
-    Params { viscosity: 0.0, ..Params::with_size(cols, rows) }
+    Params {
+        viscosity: 0.0,
+        ..Params::with_size(cols, rows)
+    }
 }
 
 #[test]
@@ -46,15 +49,24 @@ fn without_viscosity_energy_stays_bounded_for_10000_steps() {
     }
     let mean = |s: &[f64]| s.iter().sum::<f64>() / s.len() as f64;
     let (first, last) = (mean(&trace[..100]), mean(&trace[trace.len() - 100..]));
-    assert!((last - first).abs() < 0.05 * e0, "energy drifted from {first} to {last}");
+    assert!(
+        (last - first).abs() < 0.05 * e0,
+        "energy drifted from {first} to {last}"
+    );
 }
 
 #[test]
 fn with_viscosity_energy_decays() {
     let (e0, trace) = disturbance_energy(Params::with_size(40, 40), 3000);
     let chunk = trace.len() / 6;
-    let means: Vec<f64> = trace.chunks(chunk).map(|c| c.iter().sum::<f64>() / c.len() as f64).collect();
-    assert!(means.windows(2).all(|w| w[1] < w[0]), "energy does not decay: {means:?}");
+    let means: Vec<f64> = trace
+        .chunks(chunk)
+        .map(|c| c.iter().sum::<f64>() / c.len() as f64)
+        .collect();
+    assert!(
+        means.windows(2).all(|w| w[1] < w[0]),
+        "energy does not decay: {means:?}"
+    );
     assert!(*trace.last().unwrap() < 0.5 * e0);
 }
 
@@ -78,8 +90,14 @@ fn a_symmetric_drop_stays_mirror_symmetric() {
             let (i, m) = (g.index(c, r), g.index(cols - 1 - c, rows - 1 - r));
             let n = g.index(cols - 1 - c, r);
             // Mirror in x (col → cols−1−col) and in z (row → rows−1−row).
-            assert!((y[i] - y[n]).abs() <= 1e-4 * scale, "x-mirror broken at ({c},{r})");
-            assert!((y[i] - y[m]).abs() <= 1e-4 * scale, "point mirror broken at ({c},{r})");
+            assert!(
+                (y[i] - y[n]).abs() <= 1e-4 * scale,
+                "x-mirror broken at ({c},{r})"
+            );
+            assert!(
+                (y[i] - y[m]).abs() <= 1e-4 * scale,
+                "point mirror broken at ({c},{r})"
+            );
             assert!(((x[i] - c as f32) + (x[n] - (cols - 1 - c) as f32)).abs() <= tol_xz);
             assert!(((z[i] - r as f32) + (z[m] - (rows - 1 - r) as f32)).abs() <= tol_xz);
         }
@@ -106,32 +124,46 @@ fn a_drops_wavefront_travels_at_the_predicted_speed() {
             }
         }
     }
-    let [Some(t_near), Some(t_far)] = arrival else { panic!("the wave never arrived: {arrival:?}") };
+    let [Some(t_near), Some(t_far)] = arrival else {
+        panic!("the wave never arrived: {arrival:?}")
+    };
     let measured = (far - near) as f32 / (t_far - t_near);
-    assert!((measured / speed - 1.0).abs() < 0.15, "wave speed {measured}, predicted {speed}");
+    assert!(
+        (measured / speed - 1.0).abs() < 0.15,
+        "wave speed {measured}, predicted {speed}"
+    );
 }
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 12, ..ProptestConfig::default() })]
 
-    /// Just below `critical_dt`, drops with |height| ≤ radius stay bounded for 5,000
-    /// undamped steps.
+    /// Just below `critical_dt`, drops with |height| ≤ radius (away from the pinned rim, which
+    /// would cut a drop into a steeper cliff) stay bounded for 5,000 undamped steps: the
+    /// state stays finite and the displacement does not grow (an unstable mode grows
+    /// exponentially). Energy is no measure here: so close to the limit the energy that
+    /// symplectic Euler conserves differs from the physical one by up to ~1/(1 − (ωΔt/2)²).
     #[test]
     fn drops_in_the_stable_regime_stay_bounded_below_critical_dt(
-        drops in prop::collection::vec((2.0f32..22.0, 2.0f32..22.0, -1.0f32..=1.0, 1.0f32..4.0), 1..4),
+        drops in prop::collection::vec((10.0f32..22.0, 10.0f32..22.0, -1.0f32..=1.0, 1.0f32..4.0), 1..4),
         rest_ratio in 0.0f32..0.9,
     ) {
-        let mut p = undamped(24, 24);
+        let mut p = undamped(32, 32);
         p.rest_ratio = rest_ratio;
         p.dt = 0.99 * p.critical_dt();
         let mut s = Surface::new(p).unwrap();
-        for (c, r, h, rad) in drops {
+        for &(c, r, h, rad) in &drops {
             s.drop_at(c, r, h * rad, rad).unwrap();
         }
+        let (mut early, mut late) = (0.0f32, 0.0f32);
         for step in 0..5000 {
             prop_assert!(s.step().is_ok(), "non-finite at step {}", step);
+            match step {
+                0..500 => early = early.max(max_displacement(&s)),
+                4500.. => late = late.max(max_displacement(&s)),
+                _ => {}
+            }
         }
-        prop_assert!(max_displacement(&s) < 10.0, "displacement {}", max_displacement(&s));
+        prop_assert!(late <= 2.0 * early + 1e-3, "displacement grew from {} to {}", early, late);
     }
 }
 
@@ -141,7 +173,8 @@ fn small_disturbance_growth(dt_factor: f32) -> (f32, bool) {
     let mut s = Surface::new_unchecked_dt(p).unwrap();
     let mut rng = Rng(12345);
     for i in 0..s.len() {
-        s.add_velocity(i, [rng.next() * 1e-3, rng.next() * 1e-3, rng.next() * 1e-3]).unwrap();
+        s.add_velocity(i, [rng.next() * 1e-3, rng.next() * 1e-3, rng.next() * 1e-3])
+            .unwrap();
     }
     for _ in 0..3000 {
         if s.step().is_err() {
@@ -160,5 +193,8 @@ fn small_disturbances_are_bounded_just_below_the_linear_limit_and_grow_just_abov
     assert!(below < 0.01, "unstable below the linear limit: {below}");
     let (above, reported) = small_disturbance_growth(1.01);
     assert!(above > 1.0, "did not grow above the linear limit: {above}");
-    assert!(reported, "growth past f32 range must be reported as an error");
+    assert!(
+        reported,
+        "growth past f32 range must be reported as an error"
+    );
 }

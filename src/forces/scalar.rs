@@ -3,6 +3,9 @@
 //! It evaluates every spring once into per-family force buffers, then gives every node
 //! the sum of its springs in the fixed order of [`node_force`], then integrates.
 
+// Index loops read like the equations here; that is the point of the oracle.
+#![allow(clippy::needless_range_loop)]
+
 use super::StepConfig;
 use crate::grid::Family;
 use crate::springs::Springs;
@@ -30,12 +33,23 @@ pub(crate) fn spring_force(pi: [f32; 3], pj: [f32; 3], coef: f32, rest: f32) -> 
 /// same expression in lanes, which makes the two steps bitwise equal.
 #[inline(always)]
 pub(crate) fn node_force(out: [f32; 4], arriving: [f32; 4]) -> f32 {
-    (out[0] - arriving[0]) + (out[1] - arriving[1]) + (out[2] - arriving[2]) + (out[3] - arriving[3])
+    (out[0] - arriving[0])
+        + (out[1] - arriving[1])
+        + (out[2] - arriving[2])
+        + (out[3] - arriving[3])
 }
 
 /// Symplectic Euler for one component: returns `(x', v')`.
 #[inline(always)]
-pub(crate) fn integrate(x: f32, v: f32, force: f32, inv_mass: f32, viscosity: f32, accel: f32, dt: f32) -> (f32, f32) {
+pub(crate) fn integrate(
+    x: f32,
+    v: f32,
+    force: f32,
+    inv_mass: f32,
+    viscosity: f32,
+    accel: f32,
+    dt: f32,
+) -> (f32, f32) {
     let a = (force - viscosity * v) * inv_mass + accel;
     let v1 = v + a * dt;
     (x + v1 * dt, v1)
@@ -49,7 +63,12 @@ pub(crate) struct Scratch {
 }
 
 /// One step into the back buffers. Returns the first node whose new state is not finite.
-pub(crate) fn step(state: &mut State, springs: &Springs, scratch: &mut Scratch, cfg: StepConfig) -> Result<(), usize> {
+pub(crate) fn step(
+    state: &mut State,
+    springs: &Springs,
+    scratch: &mut Scratch,
+    cfg: StepConfig,
+) -> Result<(), usize> {
     let grid = state.grid;
     let n = grid.len();
     if scratch.forces.len() != 4 || scratch.forces[0][0].len() != n {
@@ -86,13 +105,22 @@ pub(crate) fn step(state: &mut State, springs: &Springs, scratch: &mut Scratch, 
         let mut finite = true;
         for k in 0..3 {
             let leaving = Family::ALL.map(|f| forces[f as usize][k][i]);
-            let arriving = Family::ALL.map(|f| from(f, i).map_or(0.0, |j| forces[f as usize][k][j]));
+            let arriving =
+                Family::ALL.map(|f| from(f, i).map_or(0.0, |j| forces[f as usize][k][j]));
             let mut force = node_force(leaving, arriving);
             if state.ext_pending {
                 force += state.ext[k][i];
             }
             let accel = if free { cfg.accel[k] } else { 0.0 };
-            let (x, v) = integrate(state.pos[k][i], state.vel[k][i], force, state.inv_mass[i], state.viscosity[i], accel, cfg.dt);
+            let (x, v) = integrate(
+                state.pos[k][i],
+                state.vel[k][i],
+                force,
+                state.inv_mass[i],
+                state.viscosity[i],
+                accel,
+                cfg.dt,
+            );
             state.next_pos[k][i] = x;
             state.next_vel[k][i] = v;
             finite &= x.is_finite() && v.is_finite();

@@ -34,7 +34,7 @@
 //! two rotating row buffers from step to step.
 
 use super::StepConfig;
-use crate::simd::{first_lanes, load, store, store_first, Lane, LANES};
+use crate::simd::{first_lanes, get, lanes, lanes_mut, put, Lane, LANES};
 use crate::springs::Springs;
 use crate::state::State;
 use std::cell::RefCell;
@@ -56,7 +56,10 @@ pub(crate) struct RowForces {
 impl RowForces {
     fn new(cols: usize) -> Self {
         let len = LEAD + crate::simd::round_up(cols) + LANES;
-        Self { cols, fam: std::array::from_fn(|_| std::array::from_fn(|_| vec![0.0; len])) }
+        Self {
+            cols,
+            fam: std::array::from_fn(|_| std::array::from_fn(|_| vec![0.0; len])),
+        }
     }
 
     /// Copies the forces of the families in `families` from `other`.
@@ -80,20 +83,51 @@ impl RowForces {
 /// The engine's reusable buffers: one parked [`RowForces`] per band.
 #[derive(Debug, Clone)]
 pub(crate) struct Workspace {
+    /// A band height fixed by the caller, or `None` to follow [`crate::springs::band_rows`].
+    fixed: Option<usize>,
     band_rows: usize,
     parked: Vec<RowForces>,
 }
 
 impl Workspace {
-    pub fn new(cols: usize, rows: usize, band_rows: usize) -> Self {
-        let band_rows = band_rows.max(1);
-        let parked = (0..rows.div_ceil(band_rows)).map(|_| RowForces::new(cols)).collect();
-        Self { band_rows, parked }
+    pub fn new(fixed: Option<usize>) -> Self {
+        Self {
+            fixed: fixed.map(|h| h.max(1)),
+            band_rows: 0,
+            parked: Vec::new(),
+        }
     }
 
-    pub fn band_rows(&self) -> usize {
-        self.band_rows
+    /// The band height for this grid and the current thread count; rebuilds the parked
+    /// rows when it changes (only when the thread count does).
+    fn prepare(&mut self, cols: usize, rows: usize) -> usize {
+        let h = self.band_rows_for(rows);
+        if h != self.band_rows
+            || self.parked.first().is_some_and(|p| p.cols != cols)
+            || self.parked.is_empty()
+        {
+            self.band_rows = h;
+            self.parked = (0..rows.div_ceil(h))
+                .map(|_| RowForces::new(cols))
+                .collect();
+        }
+        h
     }
+
+    pub fn band_rows_for(&self, rows: usize) -> usize {
+        self.fixed
+            .unwrap_or_else(|| crate::springs::band_rows(rows, threads()))
+    }
+}
+
+#[cfg(feature = "parallel")]
+fn threads() -> usize {
+    rayon::current_num_threads()
+}
+
+#[cfg(not(feature = "parallel"))]
+fn threads() -> usize {
+    1
 }
 
 thread_local! {
@@ -142,15 +176,28 @@ impl<'a> Rows<'a> {
         let held = self.out[0].len() / self.cols;
         let at = row.saturating_sub(self.first_row).min(held);
         let [a, b, c, d, e, f] = self.out.map(|s| s.split_at_mut(at * self.cols));
-        let head = Rows { first_row: self.first_row, cols: self.cols, out: [a.0, b.0, c.0, d.0, e.0, f.0] };
-        let tail = Rows { first_row: self.first_row + at, cols: self.cols, out: [a.1, b.1, c.1, d.1, e.1, f.1] };
+        let head = Rows {
+            first_row: self.first_row,
+            cols: self.cols,
+            out: [a.0, b.0, c.0, d.0, e.0, f.0],
+        };
+        let tail = Rows {
+            first_row: self.first_row + at,
+            cols: self.cols,
+            out: [a.1, b.1, c.1, d.1, e.1, f.1],
+        };
         (head, tail)
     }
 }
 
 /// One engine step from the front into the back buffers. Returns the first non-finite
 /// node, if any.
-pub(crate) fn step(state: &mut State, springs: &Springs, ws: &mut Workspace, cfg: StepConfig) -> Result<(), usize> {
+pub(crate) fn step(
+    state: &mut State,
+    springs: &Springs,
+    ws: &mut Workspace,
+    cfg: StepConfig,
+) -> Result<(), usize> {
     let grid = state.grid;
     let (cols, rows, n) = (grid.cols, grid.rows, grid.len());
     let inp = Inputs {
@@ -160,29 +207,56 @@ pub(crate) fn step(state: &mut State, springs: &Springs, ws: &mut Workspace, cfg
         vel: [&state.vel[0], &state.vel[1], &state.vel[2]],
         inv_mass: &state.inv_mass,
         viscosity: &state.viscosity,
-        ext: state.ext_pending.then(|| [&state.ext[0][..], &state.ext[1][..], &state.ext[2][..]]),
+        ext: state
+            .ext_pending
+            .then(|| [&state.ext[0][..], &state.ext[1][..], &state.ext[2][..]]),
         springs,
         cfg,
         tail: first_lanes(cols - (cols - 1) / LANES * LANES),
     };
-    let h = ws.band_rows;
+    let h = ws.prepare(cols, rows);
 
     // Colour 0: even bands, each paired with the odd band below it.
     let [px, py, pz] = &mut state.next_pos;
     let [vx, vy, vz] = &mut state.next_vel;
-    let out = [&mut px[..n], &mut py[..n], &mut pz[..n], &mut vx[..n], &mut vy[..n], &mut vz[..n]];
-    let all = Rows { first_row: 0, cols, out };
-    let bad_even = for_each_pair(&mut ws.parked, 0, all, h, &|b, pair, rows| even_band(&inp, b, h, pair, rows));
+    let out = [
+        &mut px[..n],
+        &mut py[..n],
+        &mut pz[..n],
+        &mut vx[..n],
+        &mut vy[..n],
+        &mut vz[..n],
+    ];
+    let all = Rows {
+        first_row: 0,
+        cols,
+        out,
+    };
+    let bad_even = for_each_pair(&mut ws.parked, 0, all, h, &|b, pair, rows| {
+        even_band(&inp, b, h, pair, rows)
+    });
 
     // Colour 1: odd bands, each paired with the even band below it.
     let [px, py, pz] = &mut state.next_pos;
     let [vx, vy, vz] = &mut state.next_vel;
-    let out = [&mut px[..n], &mut py[..n], &mut pz[..n], &mut vx[..n], &mut vy[..n], &mut vz[..n]];
-    let (_, from_band_1) = Rows { first_row: 0, cols, out }.split_at_row(h);
+    let out = [
+        &mut px[..n],
+        &mut py[..n],
+        &mut pz[..n],
+        &mut vx[..n],
+        &mut vy[..n],
+        &mut vz[..n],
+    ];
+    let (_, from_band_1) = Rows {
+        first_row: 0,
+        cols,
+        out,
+    }
+    .split_at_row(h);
     let bad_odd = match ws.parked.get_mut(1..) {
-        Some(odd) if !odd.is_empty() => {
-            for_each_pair(odd, 1, from_band_1, h, &|b, pair, rows| odd_band(&inp, b, h, pair, rows))
-        }
+        Some(odd) if !odd.is_empty() => for_each_pair(odd, 1, from_band_1, h, &|b, pair, rows| {
+            odd_band(&inp, b, h, pair, rows)
+        }),
         _ => None,
     };
     match (bad_even, bad_odd) {
@@ -194,7 +268,13 @@ pub(crate) fn step(state: &mut State, springs: &Springs, ws: &mut Workspace, cfg
 /// Runs `f` on consecutive pairs of bands (`parked[0..2]`, `parked[2..4]`, …) with the
 /// rows of each pair, splitting recursively with `rayon::join` (in order without the
 /// `parallel` feature). Returns the smallest non-finite node reported.
-fn for_each_pair<F>(parked: &mut [RowForces], first_band: usize, rows: Rows<'_>, band_rows: usize, f: &F) -> Option<usize>
+fn for_each_pair<F>(
+    parked: &mut [RowForces],
+    first_band: usize,
+    rows: Rows<'_>,
+    band_rows: usize,
+    f: &F,
+) -> Option<usize>
 where
     F: Fn(usize, &mut [RowForces], Rows<'_>) -> Option<usize> + Sync,
 {
@@ -225,7 +305,13 @@ fn join<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
 }
 
 /// Colour 0: band `b` (even). `pair[0]` is its parked row, `pair.get(1)` the odd band's.
-fn even_band(inp: &Inputs, b: usize, h: usize, pair: &mut [RowForces], mut rows: Rows) -> Option<usize> {
+fn even_band(
+    inp: &Inputs,
+    b: usize,
+    h: usize,
+    pair: &mut [RowForces],
+    mut rows: Rows,
+) -> Option<usize> {
     let r0 = b * h;
     let r1 = ((b + 1) * h).min(inp.rows);
     with_ring(inp.cols, |ring| {
@@ -249,7 +335,13 @@ fn even_band(inp: &Inputs, b: usize, h: usize, pair: &mut [RowForces], mut rows:
 }
 
 /// Colour 1: band `b` (odd). `pair[0]` is its parked row, `pair.get(1)` the even band's.
-fn odd_band(inp: &Inputs, b: usize, h: usize, pair: &mut [RowForces], mut rows: Rows) -> Option<usize> {
+fn odd_band(
+    inp: &Inputs,
+    b: usize,
+    h: usize,
+    pair: &mut [RowForces],
+    mut rows: Rows,
+) -> Option<usize> {
     let r0 = b * h;
     let r1 = ((b + 1) * h).min(inp.rows);
     with_ring(inp.cols, |ring| {
@@ -277,13 +369,10 @@ fn spring_force(pi: [Lane; 3], pj: [Lane; 3], coef: Lane, rest: Lane) -> [Lane; 
     let d = [pj[0] - pi[0], pj[1] - pi[1], pj[2] - pi[2]];
     let l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     let l = l2.sqrt();
-    let s = l2.simd_gt(Lane::ZERO).select(coef * (l - rest) / l, Lane::ZERO);
+    let s = l2
+        .simd_gt(Lane::ZERO)
+        .select(coef * (l - rest) / l, Lane::ZERO);
     [s * d[0], s * d[1], s * d[2]]
-}
-
-#[inline(always)]
-fn load3(s: [&[f32]; 3], at: usize) -> [Lane; 3] {
-    [load(s[0], at), load(s[1], at), load(s[2], at)]
 }
 
 /// Evaluates row `r`'s springs into `out`: E inside the row, S/SE/SW down to row r+1
@@ -291,101 +380,171 @@ fn load3(s: [&[f32]; 3], at: usize) -> [Lane; 3] {
 #[inline(always)]
 fn row_springs(inp: &Inputs, r: usize, out: &mut RowForces) {
     let cols = inp.cols;
+    let chunks = cols.div_ceil(LANES);
     let base = r * cols;
-    let span = cols + LANES + 1;
-    // Row slices, taken once: `here` starts at column 0 of row r, `down` at column −1 of
-    // row r+1, so the other ends of E, SW, S, SE sit at offsets +1, 0, +1, +2.
-    let here = inp.pos.map(|p| &p[base..base + span]);
-    let sp = inp.springs;
-    let coef: [&[f32]; 4] = std::array::from_fn(|f| &sp.coef[f][base..base + span]);
-    let rest: [&[f32]; 4] = std::array::from_fn(|f| &sp.rest[f][base..base + span]);
+    // Chunk views (see `crate::simd`): chunk k of `view(start)` holds the nodes
+    // `start + k·LANES ..`, so `view(base + 1)` is the east neighbour of `view(base)`.
+    let view = |start: usize| inp.pos.map(|p| lanes(p, start, chunks));
+    let table = |fam: usize| {
+        let sp = inp.springs;
+        (
+            lanes(&sp.coef[fam], base, chunks),
+            lanes(&sp.rest[fam], base, chunks),
+        )
+    };
     let [e, s, se, sw] = &mut out.fam;
-    let has_down = r + 1 < inp.rows;
-    let down = if has_down { inp.pos.map(|p| &p[base + cols - 1..base + cols - 1 + span + 1]) } else { here };
-    if !has_down {
-        for fam in [&mut *s, &mut *se, &mut *sw] {
-            for c in fam {
-                c.fill(0.0);
-            }
-        }
+    let here = view(base);
+
+    let (east, t_e) = (view(base + 1), table(0));
+    let mut e = e.each_mut().map(|c| lanes_mut(c, LEAD, chunks));
+    for k in 0..chunks {
+        let live = if k + 1 == chunks { inp.tail } else { ALL };
+        // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
+        unsafe { spring_lanes(load3(here, k), load3(east, k), t_e, live, &mut e, k) };
     }
-    for c0 in (0..cols).step_by(LANES) {
-        let live = if c0 + LANES > cols { inp.tail } else { ALL };
-        let pi = load3(here, c0);
-        spring_lanes(pi, load3(here, c0 + 1), coef[0], rest[0], c0, live, e);
-        if has_down {
-            spring_lanes(pi, load3(down, c0 + 1), coef[1], rest[1], c0, live, s);
-            spring_lanes(pi, load3(down, c0 + 2), coef[2], rest[2], c0, live, se);
-            spring_lanes(pi, load3(down, c0), coef[3], rest[3], c0, live, sw);
+
+    if r + 1 == inp.rows {
+        for c in [s, se, sw].into_iter().flatten() {
+            c.fill(0.0);
+        }
+        return;
+    }
+    let (south, south_east, south_west) = (
+        view(base + cols),
+        view(base + cols + 1),
+        view(base + cols - 1),
+    );
+    let (t_s, t_se, t_sw) = (table(1), table(2), table(3));
+    let [mut s, mut se, mut sw] =
+        [s, se, sw].map(|f| f.each_mut().map(|c| lanes_mut(c, LEAD, chunks)));
+    for k in 0..chunks {
+        let live = if k + 1 == chunks { inp.tail } else { ALL };
+        // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
+        unsafe {
+            let pi = load3(here, k);
+            spring_lanes(pi, load3(south, k), t_s, live, &mut s, k);
+            spring_lanes(pi, load3(south_east, k), t_se, live, &mut se, k);
+            spring_lanes(pi, load3(south_west, k), t_sw, live, &mut sw, k);
         }
     }
 }
 
-/// One family's springs for the lanes at column `c0`, stored into that family's row.
+/// One family's springs for chunk `k` (`table`: coefficient and rest-length views),
+/// stored into that family's row.
+///
+/// # Safety
+///
+/// `k` is below the length of `table`'s views and of `out`'s.
 #[inline(always)]
-fn spring_lanes(pi: [Lane; 3], pj: [Lane; 3], coef: &[f32], rest: &[f32], c0: usize, live: Lane, out: &mut [Vec<f32>; 3]) {
-    let f = spring_force(pi, pj, load(coef, c0) & live, load(rest, c0));
-    for (o, fk) in out.iter_mut().zip(f) {
-        store(o, LEAD + c0, fk);
+unsafe fn spring_lanes(
+    pi: [Lane; 3],
+    pj: [Lane; 3],
+    table: (&[[f32; LANES]], &[[f32; LANES]]),
+    live: Lane,
+    out: &mut [&mut [[f32; LANES]]; 3],
+    k: usize,
+) {
+    // SAFETY: the caller guarantees `k` is in range of every view.
+    unsafe {
+        let f = spring_force(pi, pj, get(table.0, k) & live, get(table.1, k));
+        for (o, fk) in out.iter_mut().zip(f) {
+            put(o, k, fk);
+        }
     }
+}
+
+/// Chunk `k` of three views.
+///
+/// # Safety
+///
+/// `k` is below the length of every view.
+#[inline(always)]
+unsafe fn load3(v: [&[[f32; LANES]]; 3], k: usize) -> [Lane; 3] {
+    // SAFETY: the caller guarantees `k` is in range of every view.
+    unsafe { [get(v[0], k), get(v[1], k), get(v[2], k)] }
 }
 
 /// Sums row `r`'s spring forces (`cur`: its own springs, `prev`: the ones arriving from
 /// row r−1) and integrates the row into the back buffers. Returns the first node whose
 /// new state is not finite.
 #[inline(always)]
-fn integrate_row(inp: &Inputs, r: usize, cur: &RowForces, prev: &RowForces, rows: &mut Rows) -> Option<usize> {
+fn integrate_row(
+    inp: &Inputs,
+    r: usize,
+    cur: &RowForces,
+    prev: &RowForces,
+    rows: &mut Rows,
+) -> Option<usize> {
     let cols = inp.cols;
+    let chunks = cols.div_ceil(LANES);
+    let full = cols / LANES;
     let base = r * cols;
-    fn row(s: &[f32], base: usize, cols: usize) -> &[f32] {
-        &s[base..base + cols + LANES]
-    }
-    let node = |s| row(s, base, cols);
-    let (inv_mass, viscosity) = (node(inp.inv_mass), node(inp.viscosity));
     let out_base = (r - rows.first_row) * cols;
+    let node = |s| lanes(s, base, chunks);
+    let (inv_mass, viscosity) = (node(inp.inv_mass), node(inp.viscosity));
     let dt = Lane::splat(inp.cfg.dt);
     let mut finite = Lane::ZERO;
-    for k in 0..3 {
-        let (pos, vel) = (node(inp.pos[k]), node(inp.vel[k]));
-        let ext = inp.ext.map(|e| node(e[k]));
-        let g = Lane::splat(inp.cfg.accel[k]);
-        let [e, s, se, sw] = cur.fam.each_ref().map(|f| &f[k][..]);
-        let [_, ps, pse, psw] = prev.fam.each_ref().map(|f| &f[k][..]);
-        let (out_x, out_v) = {
-            let [x0, x1, x2, v0, v1, v2] = &mut rows.out;
-            match k {
-                0 => (&mut **x0, &mut **v0),
-                1 => (&mut **x1, &mut **v1),
-                _ => (&mut **x2, &mut **v2),
-            }
-        };
-        for c0 in (0..cols).step_by(LANES) {
-            let a = LEAD + c0;
-            // Same expression as `scalar::node_force`: leaving minus arriving, per family.
-            let mut force = (load(e, a) - load(e, a - 1))
-                + (load(s, a) - load(ps, a))
-                + (load(se, a) - load(pse, a - 1))
-                + (load(sw, a) - load(psw, a + 1));
+    let (xs, vs) = rows.out.split_at_mut(3);
+    for (axis, (x_out, v_out)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
+        let (pos, vel) = (node(inp.pos[axis]), node(inp.vel[axis]));
+        let ext = inp.ext.map(|e| node(e[axis]));
+        let g = Lane::splat(inp.cfg.accel[axis]);
+        fn family(
+            rf: &RowForces,
+            fam: usize,
+            axis: usize,
+            start: usize,
+            chunks: usize,
+        ) -> &[[f32; LANES]] {
+            lanes(&rf.fam[fam][axis], start, chunks)
+        }
+        let f = |rf, fam, start| family(rf, fam, axis, start, chunks);
+        // Leaving (this row's springs at this node) and arriving (the same family's spring
+        // from the west, north, north-west and north-east neighbour).
+        let (e, e_w) = (f(cur, 0, LEAD), f(cur, 0, LEAD - 1));
+        let (s, s_n) = (f(cur, 1, LEAD), f(prev, 1, LEAD));
+        let (se, se_nw) = (f(cur, 2, LEAD), f(prev, 2, LEAD - 1));
+        let (sw, sw_ne) = (f(cur, 3, LEAD), f(prev, 3, LEAD + 1));
+        let (x_full, x_tail) = x_out[out_base..out_base + cols].split_at_mut(full * LANES);
+        let (v_full, v_tail) = v_out[out_base..out_base + cols].split_at_mut(full * LANES);
+        let (x_full, v_full) = (
+            x_full.as_chunks_mut::<LANES>().0,
+            v_full.as_chunks_mut::<LANES>().0,
+        );
+        for k in 0..chunks {
+            // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
+            let l = |v: &[[f32; LANES]]| unsafe { get(v, k) };
+            // Same expression as `scalar::node_force`.
+            let mut force =
+                (l(e) - l(e_w)) + (l(s) - l(s_n)) + (l(se) - l(se_nw)) + (l(sw) - l(sw_ne));
             if let Some(ext) = ext {
-                force += load(ext, c0);
+                force += l(ext);
             }
-            let inv_mass = load(inv_mass, c0);
-            let free = inv_mass.simd_gt(Lane::ZERO);
-            let v = load(vel, c0);
-            let acc = (force - load(viscosity, c0) * v) * inv_mass + free.select(g, Lane::ZERO);
+            let inv_mass = l(inv_mass);
+            let v = l(vel);
+            let acc = (force - l(viscosity) * v) * inv_mass
+                + inv_mass.simd_gt(Lane::ZERO).select(g, Lane::ZERO);
             let v1 = v + acc * dt;
-            let x1 = load(pos, c0) + v1 * dt;
+            let x1 = l(pos) + v1 * dt;
             // Fused finiteness check: `x·0` is 0 for finite x and NaN otherwise, and x' is
             // non-finite whenever v' is. Lanes past the row hold other rows' values or zero
             // padding; a non-finite one there is reported when its own row is checked.
             finite += x1 * Lane::ZERO;
-            let count = (cols - c0).min(LANES);
-            store_first(out_x, out_base + c0, x1, count);
-            store_first(out_v, out_base + c0, v1, count);
+            if k < full {
+                x_full[k] = x1.to_array();
+                v_full[k] = v1.to_array();
+            } else {
+                x_tail.copy_from_slice(&x1.to_array()[..x_tail.len()]);
+                v_tail.copy_from_slice(&v1.to_array()[..v_tail.len()]);
+            }
         }
     }
     if !finite.is_nan().any() {
         return None;
     }
-    (0..cols).find_map(|c| (0..6).any(|k| !rows.out[k][out_base + c].is_finite()).then_some(base + c))
+    (0..cols).find_map(|c| {
+        (0..6)
+            .any(|k| !rows.out[k][out_base + c].is_finite())
+            .then_some(base + c)
+    })
 }

@@ -22,15 +22,28 @@ impl<'a> MeshView<'a> {
     /// least 2×2 nodes.
     pub fn new(grid: Grid, spacing: f32, x: &'a [f32], y: &'a [f32], z: &'a [f32]) -> Result<Self> {
         if grid.cols < 2 || grid.rows < 2 {
-            return Err(Error::GridTooSmall { cols: grid.cols, rows: grid.rows });
+            return Err(Error::GridTooSmall {
+                cols: grid.cols,
+                rows: grid.rows,
+            });
         }
         crate::params::positive("spacing", spacing)?;
         for (what, s) in [("x", x), ("y", y), ("z", z)] {
             if s.len() != grid.len() {
-                return Err(Error::LengthMismatch { what, got: s.len(), expected: grid.len() });
+                return Err(Error::LengthMismatch {
+                    what,
+                    got: s.len(),
+                    expected: grid.len(),
+                });
             }
         }
-        Ok(Self { grid, spacing, x, y, z })
+        Ok(Self {
+            grid,
+            spacing,
+            x,
+            y,
+            z,
+        })
     }
 
     /// The grid shape.

@@ -5,14 +5,22 @@ use springwater::Surface;
 
 /// Every position and velocity bit of a surface, in a fixed order.
 pub fn state_bits(s: &Surface) -> Vec<u32> {
-    s.positions().iter().chain(s.velocities().iter()).flat_map(|c| c.iter().map(|v| v.to_bits())).collect()
+    s.positions()
+        .iter()
+        .chain(s.velocities().iter())
+        .flat_map(|c| c.iter().map(|v| v.to_bits()))
+        .collect()
 }
 
 /// FNV-1a over the state bits: a short fingerprint for cross-build comparisons.
 pub fn fingerprint(s: &Surface) -> u64 {
-    state_bits(s).iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
-        b.to_le_bytes().iter().fold(h, |h, &byte| (h ^ byte as u64).wrapping_mul(0x0100_0000_01b3))
-    })
+    state_bits(s)
+        .iter()
+        .fold(0xcbf2_9ce4_8422_2325u64, |h, &b| {
+            b.to_le_bytes().iter().fold(h, |h, &byte| {
+                (h ^ byte as u64).wrapping_mul(0x0100_0000_01b3)
+            })
+        })
 }
 
 /// Largest |displacement| of any node from its rest position `(col·h, 0, row·h)`.
@@ -23,7 +31,10 @@ pub fn max_displacement(s: &Surface) -> f32 {
     (0..s.len())
         .map(|i| {
             let (c, r) = g.coords(i);
-            (x[i] - c as f32 * h).abs().max(y[i].abs()).max((z[i] - r as f32 * h).abs())
+            (x[i] - c as f32 * h)
+                .abs()
+                .max(y[i].abs())
+                .max((z[i] - r as f32 * h).abs())
         })
         .fold(0.0, f32::max)
 }

@@ -41,21 +41,28 @@ pub struct ModelArgs {
 
 impl Default for ModelArgs {
     fn default() -> Self {
-        Self { params: Params::default(), steps: 100, drops: Vec::new(), threads: None }
+        Self {
+            params: Params::default(),
+            steps: 100,
+            drops: Vec::new(),
+            threads: None,
+        }
     }
 }
 
 impl ModelArgs {
     /// Consumes `arg` if it is a model flag. Returns false for flags it does not know.
     pub fn parse_flag(&mut self, arg: &Flag, p: &mut Parser) -> CliResult<bool> {
-        let Flag::Long(name) = arg else { return Ok(false) };
+        let Flag::Long(name) = arg else {
+            return Ok(false);
+        };
         let params = &mut self.params;
         match name.as_str() {
             "size" => {
                 let v = string(p, "--size")?;
-                let (c, r) = v
-                    .split_once(['x', 'X'])
-                    .ok_or_else(|| format!("--size expects COLSxROWS (for example 256x128), got '{v}'"))?;
+                let (c, r) = v.split_once(['x', 'X']).ok_or_else(|| {
+                    format!("--size expects COLSxROWS (for example 256x128), got '{v}'")
+                })?;
                 params.cols = number(c, "--size columns")?;
                 params.rows = number(r, "--size rows")?;
             }
@@ -70,10 +77,16 @@ impl ModelArgs {
                 params.boundary = match string(p, "--boundary")?.as_str() {
                     "pinned" => Boundary::Pinned,
                     "free" => Boundary::Free,
-                    other => return Err(format!("--boundary expects 'pinned' or 'free', got '{other}'")),
+                    other => {
+                        return Err(format!(
+                            "--boundary expects 'pinned' or 'free', got '{other}'"
+                        ))
+                    }
                 }
             }
-            "drop" => self.drops.push(list(&string(p, "--drop")?, "--drop COL,ROW,HEIGHT,RADIUS")?),
+            "drop" => self
+                .drops
+                .push(list(&string(p, "--drop")?, "--drop COL,ROW,HEIGHT,RADIUS")?),
             "threads" => {
                 let n: usize = value(p, "--threads")?;
                 if n == 0 || n > 1024 {
@@ -96,7 +109,8 @@ impl ModelArgs {
     /// Applies every `--drop` to `s`.
     pub fn apply_drops(&self, s: &mut Surface) -> CliResult<()> {
         for [c, r, h, rad] in &self.drops {
-            s.drop_at(*c, *r, *h, *rad).map_err(|e| format!("--drop: {e}"))?;
+            s.drop_at(*c, *r, *h, *rad)
+                .map_err(|e| format!("--drop: {e}"))?;
         }
         Ok(())
     }
@@ -117,7 +131,8 @@ impl ModelArgs {
 /// The next value as a UTF-8 string.
 pub fn string(p: &mut Parser, flag: &str) -> CliResult<String> {
     let v: OsString = p.value().map_err(|_| format!("{flag} needs a value"))?;
-    v.string().map_err(|_| format!("{flag}: the value is not valid UTF-8"))
+    v.string()
+        .map_err(|_| format!("{flag}: the value is not valid UTF-8"))
 }
 
 /// The next value parsed as `T`.
@@ -128,27 +143,28 @@ pub fn value<T: FromStr>(p: &mut Parser, flag: &str) -> CliResult<T> {
 
 /// Parses a number, naming the flag in the error.
 pub fn number<T: FromStr>(v: &str, what: &str) -> CliResult<T> {
-    v.trim()
-        .parse()
-        .map_err(|_| {
-            let kind = match std::any::type_name::<T>() {
-                "f32" | "f64" => "number",
-                _ => "whole number",
-            };
-            format!("{what}: '{v}' is not a valid {kind}")
-        })
+    v.trim().parse().map_err(|_| {
+        let kind = match std::any::type_name::<T>() {
+            "f32" | "f64" => "number",
+            _ => "whole number",
+        };
+        format!("{what}: '{v}' is not a valid {kind}")
+    })
 }
 
 /// Parses `N` comma-separated numbers.
 pub fn list<const N: usize>(v: &str, what: &str) -> CliResult<[f32; N]> {
     let parts: Vec<&str> = v.split(',').collect();
     if parts.len() != N {
-        return Err(format!("{what} expects {N} comma-separated numbers, got '{v}'"));
+        return Err(format!(
+            "{what} expects {N} comma-separated numbers, got '{v}'"
+        ));
     }
     let mut out = [0.0; N];
     for (o, s) in out.iter_mut().zip(parts) {
-        *o = number(s, what)?;
-        if !(*o as f32).is_finite() {
+        let v: f32 = number(s, what)?;
+        *o = v;
+        if !v.is_finite() {
             return Err(format!("{what}: '{s}' is not a finite number"));
         }
     }

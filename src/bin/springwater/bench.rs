@@ -1,7 +1,7 @@
 //! `springwater bench`: time the engine step, and compare it in the same run with the
 //! scalar reference, the naive array-of-structs baseline and the memory floor.
 
-use crate::args::{next_flag, Flag, string, unexpected, value, CliResult, ModelArgs};
+use crate::args::{next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
 use lexopt::Parser;
 use springwater::baselines::{MemoryFloor, NaiveSurface};
 use springwater::simd::LANES;
@@ -58,7 +58,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                         "reference" => Ok(Kernel::Reference),
                         "naive" => Ok(Kernel::Naive),
                         "floor" => Ok(Kernel::Floor),
-                        other => Err(format!("--compare: unknown kernel '{other}' (reference, naive, floor, none)")),
+                        other => Err(format!(
+                            "--compare: unknown kernel '{other}' (reference, naive, floor, none)"
+                        )),
                     })
                     .collect::<CliResult<_>>()?;
             }
@@ -96,11 +98,21 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let samples = model.with_threads(|| -> CliResult<Vec<Vec<f64>>> {
         let mut naive = kernels.contains(&Kernel::Naive).then(|| {
             let mut n = NaiveSurface::new(&params);
-            n.drop_at(params.cols, params.cols as f32 / 2.0, params.rows as f32 / 2.0, 1.0, 4.0);
+            n.drop_at(
+                params.cols,
+                params.cols as f32 / 2.0,
+                params.rows as f32 / 2.0,
+                1.0,
+                4.0,
+            );
             n
         });
-        let mut reference = kernels.contains(&Kernel::Reference).then(|| surface.clone());
-        let mut floor = kernels.contains(&Kernel::Floor).then(|| MemoryFloor::new(nodes));
+        let mut reference = kernels
+            .contains(&Kernel::Reference)
+            .then(|| surface.clone());
+        let mut floor = kernels
+            .contains(&Kernel::Floor)
+            .then(|| MemoryFloor::new(nodes));
         let mut samples = vec![Vec::new(); kernels.len()];
         // One warm-up round, then `repeats` interleaved rounds so drift hits every kernel.
         for round in 0..=repeats {
@@ -145,10 +157,23 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     })??;
 
     let per_step: Vec<f64> = samples.iter().map(|s| median(s)).collect();
-    println!("{:<14}{:>16}{:>20}{:>18}", "kernel", "s/step (median)", "node updates/s", "engine speed-up");
+    println!(
+        "{:<14}{:>16}{:>20}{:>18}",
+        "kernel", "s/step (median)", "node updates/s", "engine speed-up"
+    );
     for (kernel, t) in kernels.iter().zip(&per_step) {
-        let ratio = if *kernel == Kernel::Engine { String::from("1.00x") } else { format!("{:.2}x", t / per_step[0]) };
-        println!("{:<14}{:>16.6e}{:>20.4e}{:>18}", kernel.name(), t, nodes as f64 / t, ratio);
+        let ratio = if *kernel == Kernel::Engine {
+            String::from("1.00x")
+        } else {
+            format!("{:.2}x", t / per_step[0])
+        };
+        println!(
+            "{:<14}{:>16.6e}{:>20.4e}{:>18}",
+            kernel.name(),
+            t,
+            nodes as f64 / t,
+            ratio
+        );
     }
     let seconds = per_step[0] * model.steps as f64;
     println!(

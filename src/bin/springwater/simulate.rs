@@ -1,6 +1,6 @@
 //! `springwater simulate`: run the steps, print a summary, optionally write a CSV.
 
-use crate::args::{next_flag, Flag, string, unexpected, CliResult, ModelArgs};
+use crate::args::{next_flag, string, unexpected, CliResult, Flag, ModelArgs};
 use lexopt::Parser;
 use springwater::Surface;
 use std::io::Write;
@@ -46,13 +46,30 @@ pub fn run_steps(surface: &mut Surface, steps: u64) -> CliResult<()> {
 pub fn print_summary(s: &Surface, seconds: f64) {
     let p = s.params();
     let [_, y, _] = s.positions();
-    let (lo, hi) = y.iter().fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+    let (lo, hi) = y
+        .iter()
+        .fold((f32::INFINITY, f32::NEG_INFINITY), |(lo, hi), &v| {
+            (lo.min(v), hi.max(v))
+        });
     let e = s.energy();
-    println!("grid        {}x{} nodes, h {}, m {}, c {}, gamma {}, rest ratio {}", p.cols, p.rows, p.spacing, p.mass, p.stiffness, p.viscosity, p.rest_ratio);
-    println!("timestep    {} ({:.0}% of the critical {:.4})", p.dt, 100.0 * p.dt / s.critical_dt(), s.critical_dt());
+    println!(
+        "grid        {}x{} nodes, h {}, m {}, c {}, gamma {}, rest ratio {}",
+        p.cols, p.rows, p.spacing, p.mass, p.stiffness, p.viscosity, p.rest_ratio
+    );
+    println!(
+        "timestep    {} ({:.0}% of the critical {:.4})",
+        p.dt,
+        100.0 * p.dt / s.critical_dt(),
+        s.critical_dt()
+    );
     println!("steps       {} (model time {:.2})", s.steps(), s.time());
     println!("height      min {lo:.5}  max {hi:.5}");
-    println!("energy      kinetic {:.6}  potential {:.6}  total {:.6}", e.kinetic, e.potential, e.total());
+    println!(
+        "energy      kinetic {:.6}  potential {:.6}  total {:.6}",
+        e.kinetic,
+        e.potential,
+        e.total()
+    );
     if seconds > 0.0 {
         let rate = s.len() as f64 * s.steps() as f64 / seconds;
         println!("wall time   {seconds:.3} s ({rate:.3e} node updates/s)");
