@@ -108,6 +108,29 @@ impl Default for Look {
     }
 }
 
+impl Look {
+    /// Checks that colours, absorption, glint and caustics are finite and ≥ 0 and the sun
+    /// direction finite and non-zero.
+    pub fn validate(&self) -> Result<()> {
+        for c in self.sky_zenith.iter().chain(&self.sky_horizon) {
+            crate::params::non_negative("sky colour", *c)?;
+        }
+        for a in self.absorption {
+            crate::params::non_negative("absorption", a)?;
+        }
+        crate::params::non_negative("glint", self.glint)?;
+        crate::params::non_negative("caustics", self.caustics)?;
+        if !self.sun.is_finite() || self.sun.length_squared() < 1e-12 {
+            return Err(Error::InvalidParam {
+                name: "sun",
+                value: self.sun.length() as f64,
+                expected: "a finite non-zero direction",
+            });
+        }
+        Ok(())
+    }
+}
+
 /// Everything that sets up a [`Renderer`].
 #[derive(Debug, Clone, Copy)]
 pub struct RenderParams {
@@ -224,24 +247,7 @@ impl Renderer {
         if let Some(p) = params.lod_pixels {
             crate::params::positive("lod pixels", p)?;
         }
-        let look = &params.look;
-        for c in look
-            .sky_zenith
-            .iter()
-            .chain(&look.sky_horizon)
-            .chain(&look.absorption)
-        {
-            crate::params::non_negative("colour", *c)?;
-        }
-        crate::params::non_negative("glint", look.glint)?;
-        crate::params::non_negative("caustics", look.caustics)?;
-        if !look.sun.is_finite() || look.sun.length_squared() < 1e-12 {
-            return Err(Error::InvalidParam {
-                name: "sun",
-                value: look.sun.length() as f64,
-                expected: "a finite non-zero direction",
-            });
-        }
+        params.look.validate()?;
         Ok(Self {
             lod: LodMesh::new(params.lod)?,
             params,
@@ -265,10 +271,20 @@ impl Renderer {
         &self.params
     }
 
-    /// Changes the parameters that need no rebuild (look, wireframe, depth, ior).
-    pub fn set_look(&mut self, look: Look, wireframe: bool) {
+    /// Changes the look and the wireframe overlay from the next frame on. On error
+    /// nothing changes.
+    pub fn set_look(&mut self, look: Look, wireframe: bool) -> Result<()> {
+        look.validate()?;
         self.params.look = look;
         self.params.wireframe = wireframe;
+        Ok(())
+    }
+
+    /// Forgets the LOD levels of earlier frames (their hysteresis), so the next frame is
+    /// drawn as by a new renderer.
+    pub fn reset(&mut self) -> Result<()> {
+        self.lod = LodMesh::new(self.params.lod)?;
+        Ok(())
     }
 
     /// The last frame drawn.

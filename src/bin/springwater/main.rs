@@ -59,6 +59,7 @@ render flags (defaults in brackets):
   --seed S             random seed of the rain (1); same seed, same file
   --wake               a boat circling the pool, leaving a wake
   --wireframe          overlay the LOD triangles, coloured by level
+  --orbit DEGREES      turn the camera about the target over the animation (0)
 ";
 
 fn main() -> ExitCode {

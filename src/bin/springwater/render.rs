@@ -31,6 +31,7 @@ struct Options {
     seed: u64,
     wake: bool,
     wireframe: bool,
+    orbit: f32,
     out: Option<PathBuf>,
     png: Option<PathBuf>,
 }
@@ -55,6 +56,7 @@ impl Default for Options {
             seed: 1,
             wake: false,
             wireframe: false,
+            orbit: 0.0,
             out: None,
             png: None,
         }
@@ -95,10 +97,17 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             "seed" => o.seed = value(p, "--seed")?,
             "wake" => o.wake = true,
             "wireframe" => o.wireframe = true,
+            "orbit" => o.orbit = value(p, "--orbit")?,
             "out" => o.out = Some(string(p, "--out")?.into()),
             "png" => o.png = Some(string(p, "--png")?.into()),
             _ => return Err(unexpected(arg, "render")),
         }
+    }
+    if !(o.orbit.is_finite() && o.orbit.abs() <= 3600.0) {
+        return Err(format!(
+            "--orbit: {} is not an angle in degrees between -3600 and 3600",
+            o.orbit
+        ));
     }
     if o.out.is_none() && o.png.is_none() {
         return Err("render needs --out FILE.gif or --png DIR (or both)".into());
@@ -316,6 +325,8 @@ fn animate(
     mut each: impl FnMut(usize, &Frame) -> CliResult<()>,
 ) -> CliResult<u64> {
     let mut surface = model.surface()?;
+    // Every pass starts from the same LOD state, so passes draw the same frames.
+    renderer.reset().map_err(|e| e.to_string())?;
     let mut rain = Rain::new(o.rain, o.seed);
     let cols_rows = surface.params().cols.min(surface.params().rows) as f32;
     let mut wake = o.wake.then(|| Wake::circle(&surface, 0.3 * cols_rows));
@@ -332,8 +343,16 @@ fn animate(
         };
         run_steps(&mut surface, &mut disturbances, steps)?;
         clock.simulation += t.elapsed();
+        let mut camera = *camera;
+        if o.orbit != 0.0 {
+            // Turn the eye about the vertical through the target, `orbit` degrees in all.
+            let angle =
+                (o.orbit * k as f32 / o.frames.max(2).saturating_sub(1) as f32).to_radians();
+            let arm = camera.eye - camera.look_at;
+            camera.eye = camera.look_at + glam::Quat::from_rotation_y(angle) * arm;
+        }
         renderer
-            .render(&surface.mesh_view(), camera)
+            .render(&surface.mesh_view(), &camera)
             .map_err(|e| e.to_string())?;
         clock.stages += renderer.times();
         each(k, renderer.frame())?;
