@@ -4,7 +4,7 @@
 #![cfg(feature = "cli")]
 
 use glam::Vec3;
-use springwater::render::{Camera, Frame, Look, RenderParams, Renderer, Texture};
+use springwater::render::{Ball, Camera, Frame, Look, RenderParams, Renderer, Texture};
 use springwater::{Params, Surface};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -447,4 +447,39 @@ fn the_wireframe_overlay_colours_edges_by_level() {
         .filter(|p| p[0] > 200 && p[1] > 150 && p[2] < 100)
         .count();
     assert!(yellow > 100, "only {yellow} yellow pixels");
+}
+
+#[test]
+fn balls_are_drawn_over_the_water_and_bad_ones_refused() {
+    let water = Surface::new(Params::with_size(48, 48)).unwrap();
+    let camera = Camera::framing(48, 48, 1.0, 160, 120);
+    let mut renderer = Renderer::new(RenderParams::default(), Texture::pool_tiles(256)).unwrap();
+    let centre = Vec3::new(24.0, 1.0, 24.0);
+    let red = [[0.9, 0.0, 0.0], [0.9, 0.0, 0.0]];
+    renderer
+        .set_balls(&[Ball {
+            centre,
+            radius: 3.0,
+            colours: red,
+        }])
+        .unwrap();
+    let frame = renderer.render(&water.mesh_view(), &camera).unwrap();
+    let (x, y, _) = camera.project(centre).unwrap();
+    let [r, g, b] = frame.pixel(x as usize, y as usize);
+    assert!(
+        r > 150 && g < 80 && b < 80,
+        "the ball's middle is {r},{g},{b}"
+    );
+    let bad = Ball {
+        centre: Vec3::new(f32::NAN, 0.0, 0.0),
+        radius: 1.0,
+        colours: red,
+    };
+    assert!(renderer.set_balls(&[bad]).is_err());
+    let bad = Ball {
+        centre,
+        radius: 0.0,
+        colours: red,
+    };
+    assert!(renderer.set_balls(&[bad]).is_err());
 }

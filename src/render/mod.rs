@@ -27,7 +27,8 @@
 //! rasterises the LOD triangles, interpolating those values perspective-correctly. Each
 //! pixel samples the bottom texture at its interpolated UV and mixes
 //! `bottom × transmitted` with `sky` by the Fresnel term. Pixels no triangle covers show
-//! the pool deck (the plane y = 0 around the water) or the sky.
+//! the pool deck (the plane y = 0 around the water) or the sky. Floating [`Ball`]s (a
+//! buoy, the object making a wake) are drawn with the water, sharing its depth buffer.
 //!
 //! **Caustics** use the area-ratio method: the sunlight is refracted through every
 //! node with the same [`refract`] call (the eye far away along the sun direction), and
@@ -69,7 +70,7 @@ pub use texture::Texture;
 use crate::error::{Error, Result};
 use crate::mesh::{compute_normals, LodMesh, LodParams, MeshView, Normals};
 use crate::refraction::{refract, Refraction, RefractionParams};
-use raster::{ClipVertex, Rasteriser, Target, VALUES};
+use raster::{ClipVertex, Rasteriser, Target, NO_WIRE, VALUES};
 use texture::SrgbEncoder;
 
 /// How the scene looks. Colours are linear RGB in `[0, 1]`.
@@ -216,6 +217,18 @@ impl Frame {
     }
 }
 
+/// A floating ball drawn with the water (a buoy, a toy boat, the object making a wake):
+/// two-coloured stripes, lit by the sun.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Ball {
+    /// Centre in the water's space.
+    pub centre: Vec3,
+    /// Radius in world units.
+    pub radius: f32,
+    /// The colours of its alternate stripes, linear RGB.
+    pub colours: [[f32; 3]; 2],
+}
+
 /// Draws frames of a surface. Owns every buffer it needs and keeps them between frames.
 #[derive(Debug)]
 pub struct Renderer {
@@ -232,6 +245,7 @@ pub struct Renderer {
     frame: Frame,
     encoder: SrgbEncoder,
     times: StageTimes,
+    balls: Vec<Ball>,
     /// The rest footprint `(width, depth)` of the last surface drawn, world units.
     footprint: (f32, f32),
 }
@@ -262,6 +276,7 @@ impl Renderer {
             frame: Frame::default(),
             encoder: SrgbEncoder::new(),
             times: StageTimes::default(),
+            balls: Vec::new(),
             footprint: (0.0, 0.0),
         })
     }
@@ -277,6 +292,27 @@ impl Renderer {
         look.validate()?;
         self.params.look = look;
         self.params.wireframe = wireframe;
+        Ok(())
+    }
+
+    /// Sets the balls drawn from the next frame on (none by default). Balls with a
+    /// non-finite centre or a radius that is not finite and > 0 are refused.
+    pub fn set_balls(&mut self, balls: &[Ball]) -> Result<()> {
+        for b in balls {
+            if !b.centre.is_finite() {
+                return Err(Error::InvalidParam {
+                    name: "ball centre",
+                    value: f64::NAN,
+                    expected: "finite coordinates",
+                });
+            }
+            crate::params::positive("ball radius", b.radius)?;
+            for c in b.colours.iter().flatten() {
+                crate::params::non_negative("ball colour", *c)?;
+            }
+        }
+        self.balls.clear();
+        self.balls.extend_from_slice(balls);
         Ok(())
     }
 
@@ -512,7 +548,12 @@ impl Renderer {
             self.raster
                 .push(v, levels.get(t).copied().unwrap_or(0), width, height);
         }
+        for ball in &self.balls {
+            push_ball(&mut self.raster, ball, camera, &look, width, height);
+        }
         let bottom = &self.bottom;
+        // Balls come through the same shader: reflectance 1 and their colour as the
+        // "sky", so a pixel of a ball is its colour.
         let shade = |v: &[f32; VALUES]| -> [f32; 3] {
             let tex = bottom.sample(v[0], v[1]);
             let f = v[2];
@@ -554,6 +595,52 @@ impl Renderer {
             .iter()
             .zip(self.frame.rgb.chunks_exact_mut(3))
             .for_each(encode);
+    }
+}
+
+/// Triangulates a ball as a 12 × 16 latitude-longitude sphere and pushes it, each vertex
+/// coloured by its stripe and lit by the sun (ambient plus diffuse plus a highlight).
+fn push_ball(
+    raster: &mut Rasteriser,
+    ball: &Ball,
+    camera: &Camera,
+    look: &Look,
+    width: usize,
+    height: usize,
+) {
+    const RINGS: usize = 12;
+    const SEGMENTS: usize = 16;
+    let vp = camera.view_projection();
+    let sun = look.sun.normalize();
+    let vertex = |ring: usize, seg: usize| -> ClipVertex {
+        let theta = std::f32::consts::PI * ring as f32 / RINGS as f32;
+        let phi = std::f32::consts::TAU * seg as f32 / SEGMENTS as f32;
+        let n = Vec3::new(
+            theta.sin() * phi.cos(),
+            theta.cos(),
+            theta.sin() * phi.sin(),
+        );
+        let p = ball.centre + n * ball.radius;
+        // Three stripes: colour 0 at the poles and colour 1 round the middle.
+        let stripe = ball.colours[usize::from((RINGS / 3..2 * RINGS / 3).contains(&ring))];
+        let to_eye = (camera.eye - p).normalize_or(Vec3::Y);
+        let half = (to_eye + sun).normalize_or(Vec3::Y);
+        let diffuse = n.dot(sun).max(0.0);
+        let highlight = 0.5 * n.dot(half).max(0.0).powi(40);
+        let c = stripe.map(|s| s * (0.35 + 0.75 * diffuse) + highlight);
+        let values = [0.0, 0.0, 1.0, 0.0, 0.0, 0.0, c[0], c[1], c[2]];
+        ClipVertex {
+            clip: vp * p.extend(1.0),
+            values,
+        }
+    };
+    for ring in 0..RINGS {
+        for seg in 0..SEGMENTS {
+            let (a, b) = (vertex(ring, seg), vertex(ring, seg + 1));
+            let (c, d) = (vertex(ring + 1, seg), vertex(ring + 1, seg + 1));
+            raster.push([a, c, b], NO_WIRE, width, height);
+            raster.push([b, c, d], NO_WIRE, width, height);
+        }
     }
 }
 

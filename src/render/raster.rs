@@ -23,6 +23,9 @@ pub const BAND_ROWS: usize = 8;
 /// reflected sky RGB).
 pub const VALUES: usize = 9;
 
+/// The level of triangles the wireframe overlay leaves alone (objects, not water).
+pub const NO_WIRE: u8 = u8::MAX;
+
 /// A vertex in clip space with the values to interpolate.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ClipVertex {
@@ -91,7 +94,8 @@ impl Rasteriser {
         self.tris.len()
     }
 
-    /// Clips, projects and bins one triangle with LOD level `level`.
+    /// Clips, projects and bins one triangle with LOD level `level` ([`NO_WIRE`]: not
+    /// outlined by the wireframe).
     pub fn push(&mut self, v: [ClipVertex; 3], level: u8, width: usize, height: usize) {
         let near = super::camera::NEAR;
         if v.iter().all(|p| p.clip.w >= near) {
@@ -245,7 +249,7 @@ impl Rasteriser {
                                 * inv_q;
                         }
                         let mut c = shade(&vals);
-                        if let Some((wire, line)) = wire {
+                        if let (Some((wire, line)), false) = (wire, t.level == NO_WIRE) {
                             let d = (0..3)
                                 .map(|k| l[k] * t.edge_scale[k])
                                 .fold(f32::MAX, f32::min);

@@ -57,7 +57,7 @@ render flags (defaults in brackets):
   --lod-pixels P       on-screen size of a cell where the LOD starts to coarsen (1.5)
   --rain RATE          raindrops per unit of model time, 0 for none (0.3)
   --seed S             random seed of the rain (1); same seed, same file
-  --wake               a boat circling the pool, leaving a wake
+  --wake               a ball circling the pool, leaving a wake
   --wireframe          overlay the LOD triangles, coloured by level
   --orbit DEGREES      turn the camera about the target over the animation (0)
 ";

@@ -6,7 +6,7 @@ use crate::simulate::create;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use lexopt::Parser;
 use springwater::disturb::{Disturbance, Rain, Wake};
-use springwater::render::{Camera, Frame, RenderParams, Renderer, StageTimes, Texture};
+use springwater::render::{Ball, Camera, Frame, RenderParams, Renderer, StageTimes, Texture};
 use springwater::Surface;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
@@ -330,10 +330,6 @@ fn animate(
     let mut rain = Rain::new(o.rain, o.seed);
     let cols_rows = surface.params().cols.min(surface.params().rows) as f32;
     let mut wake = o.wake.then(|| Wake::circle(&surface, 0.3 * cols_rows));
-    let mut disturbances: Vec<&mut dyn Disturbance> = vec![&mut rain];
-    if let Some(w) = wake.as_mut() {
-        disturbances.push(w);
-    }
     for k in 0..o.frames {
         let t = Instant::now();
         let steps = if k == 0 {
@@ -341,8 +337,17 @@ fn animate(
         } else {
             o.substeps as u64
         };
+        let mut disturbances: Vec<&mut dyn Disturbance> = vec![&mut rain];
+        if let Some(w) = wake.as_mut() {
+            disturbances.push(w);
+        }
         run_steps(&mut surface, &mut disturbances, steps)?;
         clock.simulation += t.elapsed();
+        if let Some(w) = &wake {
+            renderer
+                .set_balls(&[boat(&surface, w)])
+                .map_err(|e| e.to_string())?;
+        }
         let mut camera = *camera;
         if o.orbit != 0.0 {
             // Turn the eye about the vertical through the target, `orbit` degrees in all.
@@ -357,8 +362,21 @@ fn animate(
         clock.stages += renderer.times();
         each(k, renderer.frame())?;
     }
-    drop(disturbances);
     Ok(rain.fallen())
+}
+
+/// The object making the wake: a red and white ball floating where the wake is.
+fn boat(surface: &Surface, wake: &Wake) -> Ball {
+    let h = surface.params().spacing;
+    let [col, row] = wake.position();
+    let (x, z) = (col * h, row * h);
+    let y = surface.height_at(x, z).unwrap_or(0.0);
+    let radius = 0.8 * wake.radius * h;
+    Ball {
+        centre: glam::Vec3::new(x, y + 0.2 * radius, z),
+        radius,
+        colours: [[0.8, 0.03, 0.02], [0.85, 0.85, 0.8]],
+    }
 }
 
 /// `steps` steps, each preceded by every disturbance.
