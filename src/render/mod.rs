@@ -530,15 +530,6 @@ impl Renderer {
         let look = self.params.look;
         self.linear.clear();
         self.linear.resize(width * height, [0.0; 3]);
-        if look.surroundings {
-            let rays = Rays::new(camera);
-            let footprint = self.footprint;
-            fill_rows(&mut self.linear, width, |py, row| {
-                for (px, out) in row.iter_mut().enumerate() {
-                    *out = surroundings(&look, &rays, footprint, px as f32 + 0.5, py as f32 + 0.5);
-                }
-            });
-        }
 
         self.raster.begin(width, height);
         let indices = self.lod.indices();
@@ -559,17 +550,22 @@ impl Renderer {
             let f = v[2];
             [0, 1, 2].map(|k| tex[k] * v[3 + k] * (1.0 - f) + v[6 + k] * f)
         };
+        let rays = Rays::new(camera);
+        let footprint = self.footprint;
+        let background = |px: usize, py: usize| {
+            if look.surroundings {
+                surroundings(&look, &rays, footprint, px as f32 + 0.5, py as f32 + 0.5)
+            } else {
+                [0.0; 3]
+            }
+        };
         let target = Target {
             width,
             height,
             colour: &mut self.linear,
         };
-        if self.params.wireframe {
-            self.raster.draw(target, &shade, Some((&wire_colour, 0.7)));
-        } else {
-            self.raster
-                .draw(target, &shade, None::<(&fn(u8) -> [f32; 3], f32)>);
-        }
+        let wire = self.params.wireframe.then_some((&wire_colour, 0.7));
+        self.raster.draw(target, &shade, wire, &background);
 
         let encoder = &self.encoder;
         self.frame.width = width;
@@ -674,23 +670,6 @@ impl Rays {
             dy,
         }
     }
-}
-
-/// Runs `f(row index, row)` over the rows of `image`, in parallel under `parallel`.
-fn fill_rows(image: &mut [[f32; 3]], width: usize, f: impl Fn(usize, &mut [[f32; 3]]) + Sync) {
-    #[cfg(feature = "parallel")]
-    {
-        use rayon::prelude::*;
-        image
-            .par_chunks_mut(width)
-            .enumerate()
-            .for_each(|(y, row)| f(y, row));
-    }
-    #[cfg(not(feature = "parallel"))]
-    image
-        .chunks_mut(width)
-        .enumerate()
-        .for_each(|(y, row)| f(y, row));
 }
 
 /// The sky seen along direction `r` (y ≥ 0): horizon to zenith.

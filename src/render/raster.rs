@@ -196,11 +196,18 @@ impl Rasteriser {
 
     /// Shades every binned triangle into `target`, bands in parallel. `shade` turns the
     /// interpolated values into a colour; `wire`, when given, colours pixels within
-    /// `width` pixels of a triangle's edge by the triangle's LOD level.
-    pub fn draw<S, W>(&mut self, target: Target<'_>, shade: &S, wire: Option<(&W, f32)>)
-    where
+    /// `width` pixels of a triangle's edge by the triangle's LOD level; pixels no
+    /// triangle covers get `background(x, y)`, computed only for them.
+    pub fn draw<S, W, B>(
+        &mut self,
+        target: Target<'_>,
+        shade: &S,
+        wire: Option<(&W, f32)>,
+        background: &B,
+    ) where
         S: Fn(&[f32; VALUES]) -> [f32; 3] + Sync,
         W: Fn(u8) -> [f32; 3] + Sync,
+        B: Fn(usize, usize) -> [f32; 3] + Sync,
     {
         let width = target.width;
         assert_eq!(
@@ -265,6 +272,11 @@ impl Rasteriser {
                     }
                 }
             }
+            for (p, (c, &d)) in colour.iter_mut().zip(depth.iter()).enumerate() {
+                if d == 0.0 {
+                    *c = background(p % width, y_start + p / width);
+                }
+            }
         };
         #[cfg(feature = "parallel")]
         {
@@ -300,6 +312,7 @@ mod tests {
     }
 
     fn draw(r: &mut Rasteriser, colour: &mut [[f32; 3]]) {
+        let black = |_: usize, _: usize| [0.0; 3];
         let shade = |v: &[f32; VALUES]| [v[0], v[1], v[2]];
         r.draw(
             Target {
@@ -309,6 +322,7 @@ mod tests {
             },
             &shade,
             None::<(&fn(u8) -> [f32; 3], f32)>,
+            &black,
         );
     }
 
