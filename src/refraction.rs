@@ -48,12 +48,13 @@
 //!
 //! [`refract`] runs [`LANES`] nodes at a time on the flat arrays (and chunks of nodes in
 //! parallel with the `parallel` feature). Every case above is a mask and a `select`, never a
-//! branch. [`refract_node`] is the scalar twin, with the same operations in the same order;
+//! branch. Clamps against constants use `fast_min`/`fast_max`, which agree with `f32::min`
+//! and `f32::max` there (a NaN input gives the constant). [`refract_node`] is the scalar twin, with the same operations in the same order;
 //! it computes the tail of the arrays and is compared with the lane code in tests.
 
 use crate::error::{Error, Result};
 use crate::mesh::{MeshView, Normals};
-use crate::simd::{load, store, Lane, LANES};
+use crate::simd::{lanes, lanes_mut, Lane, LANES};
 use glam::Vec3;
 
 /// The bottom and the water's optics.
@@ -284,59 +285,34 @@ impl Kernel {
     }
 
     /// Nodes `start .. start + out[0].len()`: lanes, then the scalar twin for the tail.
-    fn chunk(&self, view: &MeshView<'_>, normals: &Normals, start: usize, out: [&mut [f32]; 3]) {
+    fn chunk<'a>(
+        &self,
+        view: &MeshView<'a>,
+        normals: &'a Normals,
+        start: usize,
+        out: [&mut [f32]; 3],
+    ) {
         let [ou, ov, of] = out;
         let len = ou.len();
-        let splat = Lane::splat;
-        let (scale, es) = eye_scale(self.eye);
-        let (scale, ex, ey, ez) = (splat(scale), splat(es.x), splat(es.y), splat(es.z));
-        let max_travel = splat(MAX_TRAVEL);
-        let ior = self.params.ior;
-        let eta = splat(1.0 / ior);
-        let depth = splat(self.params.depth);
-        let r0 = splat(self.params.r0());
-        let ior2 = splat(ior * ior);
-        let (inv_width, inv_length) = (splat(1.0 / self.extent[0]), splat(1.0 / self.extent[1]));
-        let (zero, one) = (Lane::ZERO, Lane::ONE);
-        let (x, y, z) = (view.x(), view.y(), view.z());
-        let (nx, ny, nz) = (&normals.x, &normals.y, &normals.z);
-        let mut o = 0;
-        while o + LANES <= len {
-            let i = start + o;
-            let (px, py, pz) = (load(x, i), load(y, i), load(z, i));
-            let (nx, ny, nz) = (load(nx, i), load(ny, i), load(nz, i));
-            let (dx, dy, dz) = (px * scale - ex, py * scale - ey, pz * scale - ez);
-            let l2 = dx * dx + dy * dy + dz * dz;
-            let inv = one / l2.sqrt();
-            let has_dir = l2.simd_gt(splat(f32::MIN_POSITIVE)) & l2.simd_lt(splat(f32::INFINITY));
-            let (dx, dy, dz) = (
-                has_dir.select(dx * inv, zero),
-                has_dir.select(dy * inv, -one),
-                has_dir.select(dz * inv, zero),
-            );
-            let cosi = -(nx * dx + ny * dy + nz * dz);
-            let k = one - eta * eta * (one - cosi * cosi);
-            let root = k.max(zero).sqrt();
-            let f = eta * cosi - root;
-            let (tx, ty, tz) = (eta * dx + f * nx, eta * dy + f * ny, eta * dz + f * nz);
-            let s = (-depth - py) / ty;
-            let front = cosi.simd_gt(zero);
-            let valid = front & ty.simd_lt(zero) & s.simd_ge(zero) & s.simd_lt(max_travel);
-            let (hx, hz) = (valid.select(px + s * tx, px), valid.select(pz + s * tz, pz));
-
-            let c_in = (-cosi).min(one);
-            let sin2t = ior2 * (one - c_in * c_in);
-            let c_back = (one - sin2t).max(zero).sqrt();
-            let c = front.select(cosi.min(one), c_back);
-            let m = one - c;
-            let m2 = m * m;
-            let r = r0 + (one - r0) * (m2 * m2 * m);
-            let r = (!front & sin2t.simd_ge(one)).select(one, r);
-            store(ou, o, hx * inv_width);
-            store(ov, o, hz * inv_length);
-            store(of, o, r);
-            o += LANES;
+        let c = Consts::new(self);
+        // Chunk views cut to exactly `count` lanes: indexing them below needs no bounds
+        // check the compiler cannot prove.
+        let count = len / LANES;
+        let at = |s: &'a [f32]| lanes(s, start, count);
+        let (x, y, z) = (at(view.x()), at(view.y()), at(view.z()));
+        let (nx, ny, nz) = (at(&normals.x), at(&normals.y), at(&normals.z));
+        let (u, v, f) = (
+            lanes_mut(ou, 0, count),
+            lanes_mut(ov, 0, count),
+            lanes_mut(of, 0, count),
+        );
+        for k in 0..count {
+            let p = [Lane::new(x[k]), Lane::new(y[k]), Lane::new(z[k])];
+            let n = [Lane::new(nx[k]), Lane::new(ny[k]), Lane::new(nz[k])];
+            let [ru, rv, rf] = refract_lanes(&c, p, n);
+            (u[k], v[k], f[k]) = (ru.to_array(), rv.to_array(), rf.to_array());
         }
+        let o = count * LANES;
         for o in o..len {
             let i = start + o;
             let [u, v, f] = refract_node(
@@ -349,4 +325,80 @@ impl Kernel {
             (ou[o], ov[o], of[o]) = (u, v, f);
         }
     }
+}
+
+/// Per-call constants of the lane kernel, splatted once.
+struct Consts {
+    scale: Lane,
+    eye: [Lane; 3],
+    max_travel: Lane,
+    eta: Lane,
+    depth: Lane,
+    r0: Lane,
+    ior2: Lane,
+    inv_extent: [Lane; 2],
+}
+
+impl Consts {
+    fn new(k: &Kernel) -> Self {
+        let splat = Lane::splat;
+        let (scale, es) = eye_scale(k.eye);
+        let ior = k.params.ior;
+        Self {
+            scale: splat(scale),
+            eye: [splat(es.x), splat(es.y), splat(es.z)],
+            max_travel: splat(MAX_TRAVEL),
+            eta: splat(1.0 / ior),
+            depth: splat(k.params.depth),
+            r0: splat(k.params.r0()),
+            ior2: splat(ior * ior),
+            inv_extent: [splat(1.0 / k.extent[0]), splat(1.0 / k.extent[1])],
+        }
+    }
+}
+
+/// `[u, v, fresnel]` for [`LANES`] nodes at `[px, py, pz]` with normals `[nx, ny, nz]`:
+/// [`refract_node`] with masks for its branches.
+#[inline(always)]
+fn refract_lanes(c: &Consts, [px, py, pz]: [Lane; 3], [nx, ny, nz]: [Lane; 3]) -> [Lane; 3] {
+    let (zero, one) = (Lane::ZERO, Lane::ONE);
+    let (eta, scale) = (c.eta, c.scale);
+    let [ex, ey, ez] = c.eye;
+    let (dx, dy, dz) = (px * scale - ex, py * scale - ey, pz * scale - ez);
+    let l2 = dx * dx + dy * dy + dz * dz;
+    let inv = one / l2.sqrt();
+    let has_dir =
+        l2.simd_gt(Lane::splat(f32::MIN_POSITIVE)) & l2.simd_lt(Lane::splat(f32::INFINITY));
+    let (dx, dy, dz) = (
+        has_dir.select(dx * inv, zero),
+        has_dir.select(dy * inv, -one),
+        has_dir.select(dz * inv, zero),
+    );
+    let cosi = -(nx * dx + ny * dy + nz * dz);
+    let k = one - eta * eta * (one - cosi * cosi);
+    let root = k.fast_max(zero).sqrt();
+    let f = eta * cosi - root;
+    let (tx, ty, tz) = (eta * dx + f * nx, eta * dy + f * ny, eta * dz + f * nz);
+    let s = (-c.depth - py) / ty;
+    let front = cosi.simd_gt(zero);
+    let valid = front & ty.simd_lt(zero) & s.simd_ge(zero) & s.simd_lt(c.max_travel);
+    let (hx, hz) = (valid.select(px + s * tx, px), valid.select(pz + s * tz, pz));
+
+    let schlick = |cos: Lane| {
+        let m = one - cos;
+        let m2 = m * m;
+        c.r0 + (one - c.r0) * (m2 * m2 * m)
+    };
+    let r = if front.all() {
+        // The usual case, an eye above the water: no lane needs the transmitted angle, so
+        // skip its square root. Same arithmetic as the masked path for front lanes.
+        schlick(cosi.fast_min(one))
+    } else {
+        let c_in = (-cosi).fast_min(one);
+        let sin2t = c.ior2 * (one - c_in * c_in);
+        let c_back = (one - sin2t).fast_max(zero).sqrt();
+        let r = schlick(front.select(cosi.fast_min(one), c_back));
+        (!front & sin2t.simd_ge(one)).select(one, r)
+    };
+    [hx * c.inv_extent[0], hz * c.inv_extent[1], r]
 }

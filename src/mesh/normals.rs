@@ -30,7 +30,7 @@
 //! order — the two agree bitwise (tested).
 
 use super::view::MeshView;
-use crate::simd::{load, store, Lane, LANES};
+use crate::simd::{lanes, lanes_mut, Lane, LANES};
 
 /// Unit normals, one per node, row-major: `x[i], y[i], z[i]` is node `i`'s normal.
 ///
@@ -131,7 +131,7 @@ pub fn node_normal(view: &MeshView<'_>, col: usize, row: usize) -> glam::Vec3 {
         v[0] * u[1] - v[1] * u[0],
     ];
     let len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    if len2 > f32::MIN_POSITIVE && len2.is_finite() {
+    if len2 > f32::MIN_POSITIVE && len2 < f32::INFINITY {
         let inv = 1.0 / len2.sqrt();
         glam::Vec3::new(n[0] * inv, n[1] * inv, n[2] * inv)
     } else {
@@ -140,39 +140,50 @@ pub fn node_normal(view: &MeshView<'_>, col: usize, row: usize) -> glam::Vec3 {
 }
 
 /// One row of normals: lanes over the interior columns, [`node_normal`] for the rest.
-fn normals_row(view: &MeshView<'_>, row: usize, out: [&mut [f32]; 3]) {
+fn normals_row<'a>(view: &MeshView<'a>, row: usize, out: [&mut [f32]; 3]) {
     let cols = view.cols();
     let here = row * cols;
     let up = row.saturating_sub(1) * cols;
     let down = (row + 1).min(view.rows() - 1) * cols;
     let (x, y, z) = (view.x(), view.y(), view.z());
     let [ox, oy, oz] = out;
-    // A lane at column c reads columns c-1 ..= c+LANES, so it must end before the last one.
-    let mut c = 1;
-    while c + LANES < cols {
-        let (l, r) = (here + c - 1, here + c + 1);
+    // Lane k covers columns 1 + k·LANES ..; it reads one column either side, so the lanes
+    // stop before the last column. Chunk views cut to `count` need no further bounds checks.
+    let count = cols.saturating_sub(2) / LANES;
+    let at = |s: &'a [f32], from: usize| lanes(s, from, count);
+    let (lx, ly, lz) = (at(x, here), at(y, here), at(z, here));
+    let (rx, ry, rz) = (at(x, here + 2), at(y, here + 2), at(z, here + 2));
+    let (ux_, uy_, uz_) = (at(x, up + 1), at(y, up + 1), at(z, up + 1));
+    let (dx_, dy_, dz_) = (at(x, down + 1), at(y, down + 1), at(z, down + 1));
+    let (ox_, oy_, oz_) = (
+        lanes_mut(ox, 1, count),
+        lanes_mut(oy, 1, count),
+        lanes_mut(oz, 1, count),
+    );
+    let l = Lane::new;
+    for k in 0..count {
         let (ux, uy, uz) = (
-            load(x, r) - load(x, l),
-            load(y, r) - load(y, l),
-            load(z, r) - load(z, l),
+            l(rx[k]) - l(lx[k]),
+            l(ry[k]) - l(ly[k]),
+            l(rz[k]) - l(lz[k]),
         );
-        let (d, u) = (down + c, up + c);
         let (vx, vy, vz) = (
-            load(x, d) - load(x, u),
-            load(y, d) - load(y, u),
-            load(z, d) - load(z, u),
+            l(dx_[k]) - l(ux_[k]),
+            l(dy_[k]) - l(uy_[k]),
+            l(dz_[k]) - l(uz_[k]),
         );
         let nx = vy * uz - vz * uy;
         let ny = vz * ux - vx * uz;
         let nz = vx * uy - vy * ux;
         let len2 = nx * nx + ny * ny + nz * nz;
-        let ok = len2.simd_gt(Lane::splat(f32::MIN_POSITIVE)) & len2.is_finite();
+        let ok =
+            len2.simd_gt(Lane::splat(f32::MIN_POSITIVE)) & len2.simd_lt(Lane::splat(f32::INFINITY));
         let inv = Lane::ONE / len2.sqrt();
-        store(ox, c, ok.select(nx * inv, Lane::ZERO));
-        store(oy, c, ok.select(ny * inv, Lane::ONE));
-        store(oz, c, ok.select(nz * inv, Lane::ZERO));
-        c += LANES;
+        ox_[k] = ok.select(nx * inv, Lane::ZERO).to_array();
+        oy_[k] = ok.select(ny * inv, Lane::ONE).to_array();
+        oz_[k] = ok.select(nz * inv, Lane::ZERO).to_array();
     }
+    let c = 1 + count * LANES;
     for col in std::iter::once(0).chain(c..cols) {
         let n = node_normal(view, col, row);
         (ox[col], oy[col], oz[col]) = (n.x, n.y, n.z);

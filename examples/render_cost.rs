@@ -1,0 +1,76 @@
+//! Per-node cost of the render stages against one step, as the best of 30 interleaved
+//! runs: a robust ratio on a shared machine, where criterion's means drift.
+//!
+//! `cargo run --release --example render_cost -- [SIZE] [THREADS]` (513, 1).
+
+use glam::Vec3;
+use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
+use springwater::refraction::{refract, Refraction, RefractionParams};
+use springwater::{Params, Surface};
+use std::time::Instant;
+fn main() {
+    let n: usize = std::env::args()
+        .nth(1)
+        .map(|a| a.parse().unwrap())
+        .unwrap_or(513);
+    let threads: usize = std::env::args()
+        .nth(2)
+        .map(|a| a.parse().unwrap())
+        .unwrap_or(1);
+    let mut s = Surface::new(Params::with_size(n, n)).unwrap();
+    s.drop_at(n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0).unwrap();
+    for _ in 0..5 {
+        s.step().unwrap();
+    }
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
+    pool.install(|| {
+        let mut best = [f64::MAX; 5];
+        let mut lod = LodMesh::new(LodParams::default()).unwrap();
+        let mut flip = false;
+        let mut nm = Normals::new();
+        let mut uv = Refraction::default();
+        let eye = Vec3::new(n as f32 / 2.0, 20.0, n as f32 / 2.0);
+        let p = RefractionParams::default();
+        for _ in 0..30 {
+            let t = Instant::now();
+            s.step().unwrap();
+            best[0] = best[0].min(t.elapsed().as_secs_f64());
+            let view = s.mesh_view();
+            let t = Instant::now();
+            compute_normals(&view, &mut nm);
+            best[1] = best[1].min(t.elapsed().as_secs_f64());
+            let t = Instant::now();
+            refract(&view, &nm, eye, &p, &mut uv).unwrap();
+            best[2] = best[2].min(t.elapsed().as_secs_f64());
+            // A rebuild: the eye moves three patches between updates.
+            flip = !flip;
+            let at = eye + Vec3::new(if flip { 48.0 } else { 0.0 }, 0.0, 0.0);
+            let t = Instant::now();
+            assert!(lod.update(&view, at));
+            best[3] = best[3].min(t.elapsed().as_secs_f64());
+            // A rebuild at full detail everywhere.
+            let [a, d] = lod.patch_grid();
+            let mut levels = vec![0u8; a * d];
+            levels[0] = flip as u8;
+            let t = Instant::now();
+            assert!(lod.set_levels(&view, &levels).unwrap());
+            best[4] = best[4].min(t.elapsed().as_secs_f64());
+        }
+        let nn = (n * n) as f64;
+        println!(
+            "{n}x{n} {threads} thread(s), best of 30, ns/node: step {:.2} normals {:.2} refract {:.2} \
+             lod {:.3} lod_full {:.2} | ratios to a step: normals+refract {:.2} lod {:.3} lod_full {:.2}",
+            best[0] / nn * 1e9,
+            best[1] / nn * 1e9,
+            best[2] / nn * 1e9,
+            best[3] / nn * 1e9,
+            best[4] / nn * 1e9,
+            (best[1] + best[2]) / best[0],
+            best[3] / best[0],
+            best[4] / best[0],
+        );
+    });
+}
