@@ -21,6 +21,8 @@
 //! # Ok::<(), springwater::Error>(())
 //! ```
 //!
+//! With [`Surface::advance`]-style frame times, [`advance`] does the same for every substep.
+//!
 //! Both keep to the regime where the timestep limit holds: a raindrop's depth never
 //! exceeds its radius, and the wake pushes with a bounded force spread over several nodes.
 
@@ -33,6 +35,52 @@ pub trait Disturbance {
     /// Disturbs `surface` for the step of length `dt` about to be taken. Call it right
     /// before [`Surface::step`]: forces it adds apply to that step only.
     fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()>;
+}
+
+/// Advances `surface` by `frame_dt` like [`Surface::advance`] (equal substeps no longer
+/// than `params().dt`), applying every disturbance before each substep. Returns the
+/// number of substeps. A failing disturbance or substep stops the frame there.
+///
+/// ```
+/// use springwater::disturb::{advance, Disturbance, Rain};
+/// use springwater::{Params, Surface};
+///
+/// let mut water = Surface::new(Params::with_size(64, 64))?;
+/// let mut rain = Rain::new(2.0, 1);
+/// for _frame in 0..30 {
+///     advance(&mut water, 1.0, &mut [&mut rain])?;     // 3 substeps of 1/3
+/// }
+/// assert!(rain.fallen() > 20);
+/// # Ok::<(), springwater::Error>(())
+/// ```
+pub fn advance(
+    surface: &mut Surface,
+    frame_dt: f32,
+    disturbances: &mut [&mut dyn Disturbance],
+) -> Result<usize> {
+    params::non_negative("frame_dt", frame_dt)?;
+    let dt = surface.params().dt;
+    let substeps = (frame_dt / dt).ceil();
+    if substeps > crate::surface::MAX_SUBSTEPS as f32 {
+        return Err(Error::InvalidParam {
+            name: "frame_dt",
+            value: frame_dt as f64,
+            expected: "at most 10000 timesteps long",
+        });
+    }
+    let substeps = substeps as usize;
+    if substeps == 0 {
+        return Ok(0);
+    }
+    // Never past `dt` by a rounding error, so each `advance` below is one step.
+    let sub = (frame_dt / substeps as f32).min(dt);
+    for _ in 0..substeps {
+        for d in disturbances.iter_mut() {
+            d.apply(surface, sub)?;
+        }
+        surface.advance(sub)?;
+    }
+    Ok(substeps)
 }
 
 /// A small, fast, seedable random number generator (PCG-XSH-RR, 64-bit state, 32-bit
@@ -381,6 +429,24 @@ mod tests {
         let y = s.positions()[1];
         assert!(y.iter().any(|v| v.abs() > 0.05));
         assert!(y.iter().all(|v| v.is_finite() && v.abs() < 10.0));
+    }
+
+    #[test]
+    fn advance_takes_the_same_substeps_as_the_surface() {
+        let p = Params::with_size(32, 32);
+        let mut a = Surface::new(p).unwrap();
+        let mut b = Surface::new(p).unwrap();
+        a.drop_at(16.0, 16.0, -1.0, 2.0).unwrap();
+        b.drop_at(16.0, 16.0, -1.0, 2.0).unwrap();
+        for frame_dt in [1.0, 0.4, 0.05, 2.3, 0.0] {
+            let n = advance(&mut a, frame_dt, &mut []).unwrap();
+            assert_eq!(n, b.advance(frame_dt).unwrap());
+            assert_eq!(a.steps(), b.steps());
+        }
+        assert_eq!(a.positions(), b.positions());
+        let mut rain = Rain::new(1.0, 2);
+        assert!(advance(&mut a, f32::NAN, &mut [&mut rain]).is_err());
+        assert!(advance(&mut a, 1e9, &mut [&mut rain]).is_err());
     }
 
     #[test]
