@@ -137,8 +137,9 @@ fn mix(mut z: u64) -> u64 {
 /// Rain: drops at random places and random times, the same ones for the same seed.
 ///
 /// Drops arrive as a Poisson process of `rate` drops per unit of model time. Each one is a
-/// [`Surface::drop_at`] dent of radius in `radius` (grid steps) and depth
-/// `-depth × radius` (so `|height| ≤ radius` as long as `depth ≤ 1`), placed uniformly
+/// [`Surface::drop_at`] dent of radius in `radius` (grid steps) and height
+/// `−depth × radius × h` in world units, `h` the grid spacing: as steep on any grid, and
+/// no steeper than one height per cell as long as `depth ≤ 1`. Drops are placed uniformly
 /// over the free interior, at least one radius away from the edge.
 ///
 /// The times and places depend only on the seed and the model time passed to
@@ -235,7 +236,8 @@ impl Disturbance for Rain {
             };
             let col = place(&mut self.rng, grid.cols);
             let row = place(&mut self.rng, grid.rows);
-            surface.drop_at(col, row, -self.depth * radius, radius)?;
+            let h = surface.params().spacing;
+            surface.drop_at(col, row, -self.depth * radius * h, radius)?;
             self.fallen += 1;
             self.next += self.wait();
         }

@@ -692,7 +692,10 @@ fn surroundings(look: &Look, rays: &Rays, footprint: (f32, f32), px: f32, py: f3
     let ox = (-hit.x).max(hit.x - w).max(0.0);
     let oz = (-hit.z).max(hit.z - d).max(0.0);
     let outside = ox.max(oz);
-    let coping = 2.0;
+    // The paving scales with the pool: slabs of 1/21 of its longer side (6 units for the
+    // default 128-node pool), a coping a third of a slab wide.
+    let slab = w.max(d).max(1e-3) / 21.0;
+    let coping = slab / 3.0;
     // World size of the pixel's footprint along its longest side, to filter the paving
     // pattern: sharp joints near the eye, their average colour where a slab shrinks to a
     // few pixels (unfiltered, they alias into moiré bands towards the horizon).
@@ -701,25 +704,24 @@ fn surroundings(look: &Look, rays: &Rays, footprint: (f32, f32), px: f32, py: f3
     let base = if outside < coping {
         [0.80, 0.78, 0.72]
     } else {
-        const SLAB: f32 = 6.0;
-        const JOINT: f32 = 0.2;
+        let joint_width = slab / 30.0;
         let stone = [0.52, 0.45, 0.37];
         let joint_colour = [0.30, 0.27, 0.24];
         // Joint coverage of the pixel across each axis, box-filtered.
         let cover = |g: f32| {
-            let d = (g / SLAB - (g / SLAB).round()).abs() * SLAB;
-            ((JOINT / 2.0 - d) / footprint_px + 0.5).clamp(0.0, 1.0)
+            let d = (g / slab - (g / slab).round()).abs() * slab;
+            ((joint_width / 2.0 - d) / footprint_px + 0.5).clamp(0.0, 1.0)
         };
         let joint = cover(hit.x).max(cover(hit.z));
-        let cell = (((hit.x / SLAB).floor() as i32).wrapping_mul(73_856_093)
-            ^ ((hit.z / SLAB).floor() as i32).wrapping_mul(19_349_663)) as u32;
+        let cell = (((hit.x / slab).floor() as i32).wrapping_mul(73_856_093)
+            ^ ((hit.z / slab).floor() as i32).wrapping_mul(19_349_663)) as u32;
         let shade = 0.92 + 0.08 * ((cell >> 7) % 97) as f32 / 97.0;
         let sharp: [f32; 3] =
             [0, 1, 2].map(|k| (stone[k] * shade) * (1.0 - joint) + joint_colour[k] * joint);
-        // The average over many slabs: joints cover about 2·JOINT/SLAB of the area.
-        let f = 2.0 * JOINT / SLAB;
+        // The average over many slabs: joints cover about 2·joint/slab of the area.
+        let f = 2.0 * joint_width / slab;
         let mean: [f32; 3] = [0, 1, 2].map(|k| stone[k] * 0.96 * (1.0 - f) + joint_colour[k] * f);
-        let t = ((footprint_px - 0.6) / 1.8).clamp(0.0, 1.0);
+        let t = ((footprint_px / slab - 0.1) / 0.3).clamp(0.0, 1.0);
         [0, 1, 2].map(|k| sharp[k] + (mean[k] - sharp[k]) * t)
     };
     // Sunlight on the deck, and haze towards the horizon.
