@@ -35,16 +35,43 @@ impl Camera {
         }
     }
 
-    /// A camera framing a `cols × rows` grid of spacing `h` from the south-east and above,
-    /// the water filling most of a `width × height` image. The default view of `render`.
+    /// A camera framing a `cols × rows` grid of spacing `h` from above its near (+z) edge,
+    /// looking down about 25°: the default view of `render`. Its distance is chosen so the
+    /// far edge spans about two thirds of the image width and the water two thirds of
+    /// its height (the near corners may leave the image), whatever the grid's shape.
     pub fn framing(cols: usize, rows: usize, spacing: f32, width: u32, height: u32) -> Self {
         let w = (cols.max(2) - 1) as f32 * spacing;
         let d = (rows.max(2) - 1) as f32 * spacing;
-        let size = w.max(d);
         let centre = Vec3::new(w / 2.0, 0.0, d / 2.0);
-        let eye = centre + Vec3::new(0.0, 0.39, 0.87) * size;
-        let look_at = centre + Vec3::new(0.0, -0.06, -0.03) * size;
-        Self::new(eye, look_at, width, height)
+        let place = |dist: f32| {
+            let eye = centre + Vec3::new(0.0, 0.39, 0.87) * dist;
+            let look_at = centre + Vec3::new(0.0, -0.06, -0.03) * dist;
+            Self::new(eye, look_at, width, height)
+        };
+        // Projected sizes shrink about as 1/distance, so scaling the distance by how much
+        // too big the picture is converges in a few rounds. The targets are what a square
+        // pool gets at a distance of its side (far edge ±0.647, water 1.331 of the 2-unit
+        // normalised height).
+        let mut dist = w.max(d);
+        for _ in 0..8 {
+            let vp = place(dist).view_projection();
+            let ndc = |x: f32, z: f32| {
+                let c = vp * Vec4::new(x, 0.0, z, 1.0);
+                (c.x / c.w, c.y / c.w, c.w)
+            };
+            let (far_x, far_y, _) = ndc(w, 0.0);
+            let (_, near_y, near_w) = ndc(w, d);
+            let grow = if near_w > NEAR {
+                (far_x.abs() / 0.95).max((far_y - near_y) / 1.331)
+            } else {
+                2.0
+            };
+            if !(grow.is_finite() && grow > 0.0) {
+                break;
+            }
+            dist *= grow;
+        }
+        place(dist)
     }
 
     /// A camera straight above the middle of the grid, looking down, whose image just

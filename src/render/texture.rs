@@ -49,16 +49,40 @@ impl Texture {
         })
     }
 
-    /// The built-in pool bottom: small pale tiles with grout lines, a darker border two
-    /// tiles wide and a dark lane line down the middle, `size × size` texels. Every tile's
-    /// shade varies a little (from a fixed seed), so the same call gives the same image.
+    /// The built-in pool bottom: small pale tiles with grout lines, a darker border one
+    /// tile wide and a dark lane line down the middle, 24 × 24 tiles on `size × size`
+    /// texels. Every tile's shade varies a little (from a fixed seed), so the same call
+    /// gives the same image.
     pub fn pool_tiles(size: usize) -> Self {
-        let size = size.clamp(16, MAX_TEXTURE_SIDE);
-        let tiles = 24usize;
-        let tile = size as f32 / tiles as f32;
+        let size = size.clamp(24, MAX_TEXTURE_SIDE);
+        Self::pool(24, 24, size / 24)
+    }
+
+    /// The built-in pool bottom for a rest footprint of `width × depth` world units:
+    /// 24 tiles along the longer side and square tiles (as near as whole tiles allow)
+    /// along the other, 21 texels per tile.
+    pub fn pool_tiles_for(width: f32, depth: f32) -> Self {
+        let long = width.max(depth);
+        let count = |side: f32| {
+            let n = if long > 0.0 && side.is_finite() {
+                (24.0 * side / long).round()
+            } else {
+                24.0
+            };
+            (n as usize).clamp(6, 24)
+        };
+        Self::pool(count(width), count(depth), 21)
+    }
+
+    fn pool(tiles_x: usize, tiles_y: usize, texels_per_tile: usize) -> Self {
+        let tile = texels_per_tile.max(1) as f32;
+        let (width, height) = (
+            tiles_x * texels_per_tile.max(1),
+            tiles_y * texels_per_tile.max(1),
+        );
         let grout = (tile * 0.09).max(1.0);
         let mut rng = Rng::new(0x9001);
-        let shades: Vec<f32> = (0..tiles * tiles)
+        let shades: Vec<f32> = (0..tiles_x * tiles_y)
             .map(|_| rng.range(-0.045, 0.045))
             .collect();
         let srgb = |r: u8, g: u8, b: u8| [srgb_to_linear(r), srgb_to_linear(g), srgb_to_linear(b)];
@@ -66,20 +90,22 @@ impl Texture {
         let border = srgb(34, 112, 160);
         let lane = srgb(22, 48, 92);
         let grout_colour = srgb(120, 150, 160);
-        let mut texels = Vec::with_capacity(size * size);
-        for y in 0..size {
-            for x in 0..size {
+        let mid = tiles_x / 2;
+        let mut texels = Vec::with_capacity(width * height);
+        for y in 0..height {
+            for x in 0..width {
                 let (fx, fy) = (x as f32 + 0.5, y as f32 + 0.5);
                 let (tx, ty) = ((fx / tile) as usize, (fy / tile) as usize);
-                let (tx, ty) = (tx.min(tiles - 1), ty.min(tiles - 1));
+                let (tx, ty) = (tx.min(tiles_x - 1), ty.min(tiles_y - 1));
                 let (ox, oy) = (fx - tx as f32 * tile, fy - ty as f32 * tile);
                 let in_grout = ox < grout || oy < grout;
-                let edge = tx < 1 || ty < 1 || tx >= tiles - 1 || ty >= tiles - 1;
+                let edge = tx < 1 || ty < 1 || tx + 1 >= tiles_x || ty + 1 >= tiles_y;
                 // The lane line: two tiles wide down the middle, stopping short of the ends
                 // with a T at each end, as in a competition pool.
-                let mid = tiles / 2;
-                let in_lane = (tx + 1 == mid || tx == mid) && (3..tiles - 3).contains(&ty);
-                let in_t = (ty == 3 || ty == tiles - 4) && (mid - 3..mid + 3).contains(&tx);
+                let in_lane =
+                    (tx + 1 == mid || tx == mid) && (3..tiles_y.saturating_sub(3)).contains(&ty);
+                let in_t = (ty == 3 || ty + 4 == tiles_y)
+                    && (mid.saturating_sub(3)..mid + 3).contains(&tx);
                 let base = if in_grout {
                     grout_colour
                 } else if edge {
@@ -93,14 +119,14 @@ impl Texture {
                     + if in_grout {
                         0.0
                     } else {
-                        shades[ty * tiles + tx]
+                        shades[ty * tiles_x + tx]
                     };
                 texels.push(base.map(|c| (c * shade).clamp(0.0, 1.0)));
             }
         }
         Self {
-            width: size,
-            height: size,
+            width,
+            height,
             texels,
         }
     }

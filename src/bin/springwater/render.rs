@@ -142,7 +142,10 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     camera.validate().map_err(|e| format!("camera: {e}"))?;
     let bottom = match &o.bottom {
         Some(path) => read_png(path)?,
-        None => Texture::pool_tiles(512),
+        None => Texture::pool_tiles_for(
+            (params.cols - 1) as f32 * params.spacing,
+            (params.rows - 1) as f32 * params.spacing,
+        ),
     };
     let mut render_params = RenderParams {
         wireframe: o.wireframe,
