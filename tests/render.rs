@@ -415,6 +415,29 @@ fn bad_flags_and_files_get_one_line_errors() {
             "{args:?}: the error does not mention {mention}: {stderr}"
         );
     }
+    // A simulation that fails part-way reports the step and leaves no truncated GIF.
+    let broken = dir.join("broken.gif");
+    let o = springwater(&[
+        "render",
+        "--size",
+        "32x32",
+        "--frames",
+        "3",
+        "--drop",
+        "16,16,-1e30,1",
+        "--out",
+        broken.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && stderr.contains("non-finite"),
+        "{stderr}"
+    );
+    assert!(
+        !broken.exists(),
+        "a failed render left {}",
+        broken.display()
+    );
 }
 
 #[test]

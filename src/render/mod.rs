@@ -239,6 +239,7 @@ pub struct Renderer {
     eye_uv: Refraction,
     sun_uv: Refraction,
     caustic: Vec<f32>,
+    caustic_counts: Vec<u8>,
     vertices: Vec<ClipVertex>,
     raster: Rasteriser,
     linear: Vec<[f32; 3]>,
@@ -270,6 +271,7 @@ impl Renderer {
             eye_uv: Refraction::default(),
             sun_uv: Refraction::default(),
             caustic: Vec::new(),
+            caustic_counts: Vec::new(),
             vertices: Vec::new(),
             raster: Rasteriser::new(),
             linear: Vec::new(),
@@ -416,7 +418,9 @@ impl Renderer {
         let rest = 1.0 / ((cols - 1) * (rows - 1)) as f32;
         let sums = &mut self.caustic;
         sums.fill(0.0);
-        let mut counts = vec![0u8; cols * rows];
+        let counts = &mut self.caustic_counts;
+        counts.clear();
+        counts.resize(cols * rows, 0);
         for r in 0..rows - 1 {
             for c in 0..cols - 1 {
                 let a = r * cols + c;
@@ -440,7 +444,7 @@ impl Renderer {
                 }
             }
         }
-        for (s, &k) in sums.iter_mut().zip(&counts) {
+        for (s, &k) in sums.iter_mut().zip(counts.iter()) {
             *s = if k > 0 { *s / k as f32 } else { 1.0 };
         }
         Ok(())

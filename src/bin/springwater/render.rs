@@ -163,6 +163,8 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         .as_ref()
         .map(|path| create(path).map(|f| (path.clone(), f)))
         .transpose()?;
+    // A render that fails part-way leaves no truncated GIF behind.
+    let mut cleanup = RemoveOnDrop(o.out.as_deref());
     if let Some(dir) = &o.png {
         std::fs::create_dir_all(dir)
             .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
@@ -250,6 +252,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         gif.finish().map_err(fail)?;
     }
     bar.finish_and_clear();
+    cleanup.0 = None;
 
     let drawn = (o.frames as u64 * passes) as f64;
     let ms = |d: Duration| d.as_secs_f64() * 1e3 / drawn;
@@ -304,6 +307,17 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         println!("wrote {} PNG frames to {}", o.frames, dir.display());
     }
     Ok(())
+}
+
+/// Removes the file at its path when dropped, unless the path was taken out.
+struct RemoveOnDrop<'a>(Option<&'a std::path::Path>);
+
+impl Drop for RemoveOnDrop<'_> {
+    fn drop(&mut self) {
+        if let Some(path) = self.0 {
+            let _ = std::fs::remove_file(path);
+        }
+    }
 }
 
 /// Frames kept in memory for the GIF palette before `render` switches to two passes
