@@ -18,6 +18,16 @@
 //! UVs outside `[0, 1]` are bottom points outside the footprint (wrap or clamp the texture
 //! as the scene wants).
 //!
+//! The code evaluates exactly this, scaled by `L = |P − E|` so that the square root and
+//! division of the normalisation leave the hit's dependency chain: with `D = P − E` and
+//! `c = −n·D = L·cosi`,
+//!
+//! ```text
+//! T    = η D + (η c − sqrt(L² − η²(L² − c²))) n   = L·t
+//! s'   = (−depth − P.y) / T.y                      = s / L, so P + s' T = P + s t
+//! cosi = c / L                                     (for Fresnel only)
+//! ```
+//!
 //! **When the ray does not reach the bottom**, the node's coordinate is the point of the
 //! bottom texture straight below it, `(P.x / ((cols−1)h), P.z / ((rows−1)h))`, as if the
 //! water were still there. That happens when
@@ -27,13 +37,13 @@
 //! * the refracted ray does not go down (`t.y ≥ 0`: a normal tilted more than the
 //!   refraction angle away from vertical);
 //! * the node lies below the bottom (`P.y < −depth`);
-//! * the ray would travel more than 10³⁰ units to get there (it is horizontal to within
-//!   about 10⁻³⁰).
+//! * the hit would land more than 10³⁰ units sideways (the ray is horizontal to within
+//!   about 10⁻³⁰);
+//! * the eye sits exactly on the node (`cosi` is taken as 0: seen edge-on, `R = 1`).
 //!
-//! The eye sitting on a node (closer than about 10⁻¹⁹ units) counts as looking straight
-//! down there. View vectors are computed in units of the eye's largest coordinate when
-//! that exceeds 1 (`σ·P − σ·E`, σ = 1/max(1, |E|∞)), so any finite eye works, however far
-//! away, without overflow.
+//! View vectors are computed in units of the eye's largest coordinate when that exceeds 1
+//! (`D = σP − σE`, σ = 1/max(1, |E|∞)), so any finite eye works, however far away, without
+//! overflow.
 //!
 //! # Fresnel
 //!
@@ -49,8 +59,9 @@
 //! [`refract`] runs [`LANES`] nodes at a time on the flat arrays (and chunks of nodes in
 //! parallel with the `parallel` feature). Every case above is a mask and a `select`, never a
 //! branch. Clamps against constants use `fast_min`/`fast_max`, which agree with `f32::min`
-//! and `f32::max` there (a NaN input gives the constant). [`refract_node`] is the scalar twin, with the same operations in the same order;
-//! it computes the tail of the arrays and is compared with the lane code in tests.
+//! and `f32::max` there (a NaN input gives the constant). [`refract_node`] is the scalar
+//! twin, with the same operations in the same order; it computes the tail of the arrays and
+//! is compared with the lane code, bitwise, in tests.
 
 use crate::error::{Error, Result};
 use crate::mesh::{MeshView, Normals};
@@ -254,27 +265,24 @@ pub fn refract_node(
 ) -> [f32; 3] {
     let eta = 1.0 / params.ior;
     let (scale, es) = eye_scale(eye);
+    // The view vector D = σ(P − E), not normalised: with L = |D|, cosi = c/L and the
+    // refracted direction is T/L (see the module docs), so the hit needs no division by L.
     let (dx, dy, dz) = (p.x * scale - es.x, p.y * scale - es.y, p.z * scale - es.z);
     let l2 = dx * dx + dy * dy + dz * dz;
-    let inv = 1.0 / l2.sqrt();
-    let (dx, dy, dz) = if l2 > f32::MIN_POSITIVE && l2 < f32::INFINITY {
-        (dx * inv, dy * inv, dz * inv)
-    } else {
-        (0.0, -1.0, 0.0)
-    };
-    let cosi = -(n.x * dx + n.y * dy + n.z * dz);
-    let k = 1.0 - eta * eta * (1.0 - cosi * cosi);
-    let root = k.max(0.0).sqrt();
-    let f = eta * cosi - root;
+    let c = -(n.x * dx + n.y * dy + n.z * dz);
+    let q = l2 - eta * eta * (l2 - c * c);
+    let f = eta * c - q.max(0.0).sqrt();
     let (tx, ty, tz) = (eta * dx + f * n.x, eta * dy + f * n.y, eta * dz + f * n.z);
     let s = (-params.depth - p.y) / ty;
-    let front = cosi > 0.0;
-    let valid = front && ty < 0.0 && (0.0..MAX_TRAVEL).contains(&s);
+    let (ox, oz) = (s * tx, s * tz);
+    let front = c > 0.0;
+    let valid = front && ty < 0.0 && s >= 0.0 && ox.abs() < MAX_TRAVEL && oz.abs() < MAX_TRAVEL;
     let (hx, hz) = if valid {
-        (p.x + s * tx, p.z + s * tz)
+        (p.x + ox, p.z + oz)
     } else {
         (p.x, p.z)
     };
+    let cosi = c / l2.max(f32::MIN_POSITIVE).sqrt();
 
     let r0 = params.r0();
     let c_in = (-cosi).min(1.0);
@@ -394,6 +402,7 @@ struct Consts {
     eye: [Lane; 3],
     max_travel: Lane,
     eta: Lane,
+    eta2: Lane,
     depth: Lane,
     r0: Lane,
     ior2: Lane,
@@ -410,6 +419,7 @@ impl Consts {
             eye: [splat(es.x), splat(es.y), splat(es.z)],
             max_travel: splat(MAX_TRAVEL),
             eta: splat(1.0 / ior),
+            eta2: splat((1.0 / ior) * (1.0 / ior)),
             depth: splat(k.params.depth),
             r0: splat(k.params.r0()),
             ior2: splat(ior * ior),
@@ -427,23 +437,20 @@ fn refract_lanes(c: &Consts, [px, py, pz]: [Lane; 3], [nx, ny, nz]: [Lane; 3]) -
     let [ex, ey, ez] = c.eye;
     let (dx, dy, dz) = (px * scale - ex, py * scale - ey, pz * scale - ez);
     let l2 = dx * dx + dy * dy + dz * dz;
-    let inv = one / l2.sqrt();
-    let has_dir =
-        l2.simd_gt(Lane::splat(f32::MIN_POSITIVE)) & l2.simd_lt(Lane::splat(f32::INFINITY));
-    let (dx, dy, dz) = (
-        has_dir.select(dx * inv, zero),
-        has_dir.select(dy * inv, -one),
-        has_dir.select(dz * inv, zero),
-    );
-    let cosi = -(nx * dx + ny * dy + nz * dz);
-    let k = one - eta * eta * (one - cosi * cosi);
-    let root = k.fast_max(zero).sqrt();
-    let f = eta * cosi - root;
+    let c_l = -(nx * dx + ny * dy + nz * dz);
+    let q = l2 - c.eta2 * (l2 - c_l * c_l);
+    let f = eta * c_l - q.fast_max(zero).sqrt();
     let (tx, ty, tz) = (eta * dx + f * nx, eta * dy + f * ny, eta * dz + f * nz);
     let s = (-c.depth - py) / ty;
-    let front = cosi.simd_gt(zero);
-    let valid = front & ty.simd_lt(zero) & s.simd_ge(zero) & s.simd_lt(c.max_travel);
-    let (hx, hz) = (valid.select(px + s * tx, px), valid.select(pz + s * tz, pz));
+    let (ox, oz) = (s * tx, s * tz);
+    let front = c_l.simd_gt(zero);
+    let valid = front
+        & ty.simd_lt(zero)
+        & s.simd_ge(zero)
+        & ox.abs().simd_lt(c.max_travel)
+        & oz.abs().simd_lt(c.max_travel);
+    let (hx, hz) = (valid.select(px + ox, px), valid.select(pz + oz, pz));
+    let cosi = c_l / l2.fast_max(Lane::splat(f32::MIN_POSITIVE)).sqrt();
 
     let schlick = |cos: Lane| {
         let m = one - cos;

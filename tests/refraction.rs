@@ -352,9 +352,10 @@ fn rays_that_never_reach_the_bottom_use_the_point_below_the_node() {
     for i in [10, 20] {
         assert_below(&out, i, s.pos(i), [w, l]);
     }
-    // The eye exactly on a node looks straight down there.
+    // The eye exactly on a node sees it edge-on: the point below, full reflection.
     let on = s.run(s.pos(40), &params);
     assert_below(&on, 40, s.pos(40), [w, l]);
+    assert_eq!(on.fresnel[40], 1.0);
 }
 
 #[test]
