@@ -10,6 +10,9 @@
 //! Every stage writes into a caller-owned buffer that keeps its capacity from frame to
 //! frame, and every index buffer indexes the full row-major node array, so a renderer
 //! uploads the positions, normals and UVs as they are and draws the LOD triangles.
+//! [`normals_and_refraction`](crate::refraction::normals_and_refraction) does the two
+//! per-node stages in one pass. Game code asks the full-resolution simulation, not the
+//! mesh, for heights, normals and velocities: [`query`].
 //!
 //! # A frame
 //!
@@ -42,8 +45,8 @@
 //! # Ok::<(), springwater::Error>(())
 //! ```
 
-mod lod;
-mod normals;
+pub mod lod;
+pub mod normals;
 pub mod query;
 mod view;
 
