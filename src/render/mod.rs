@@ -50,7 +50,7 @@
 //! crate: what it draws is one kind of primitive (triangles with nine interpolated
 //! values over a depth buffer), and writing it lets it split the image into bands of
 //! rows that rayon shades in parallel while the picture stays bit-identical for any
-//! thread count, with no `unsafe` (the crate forbids it). Of the crates looked at,
+//! thread count, with no `unsafe` (only `simd.rs` has any). Of the crates looked at,
 //! tiny-skia draws 2-D paths with no per-vertex values to interpolate, and euc (shaders
 //! behind its own `Pipeline` trait, maths in `vek` types) would mean converting our data
 //! to its types and leaving the parallel split, and whether the picture depends on it,
