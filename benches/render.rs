@@ -3,6 +3,7 @@
 //!
 //! * `step`: one engine step (the reference cost);
 //! * `normals`, `refraction`, `normals+refraction`: per-node stages for all nodes;
+//! * `normals_and_refraction`: the fused pass (same results as the two calls);
 //! * `lod_rebuild`: an index buffer rebuild for an eye 20 units above the water, moving
 //!   between two spots three patches apart (every update rebuilds);
 //! * `lod_rebuild_full`: a rebuild at full detail (level 0 everywhere: the largest buffer);
@@ -11,7 +12,7 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::Vec3;
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
-use springwater::refraction::{refract, Refraction, RefractionParams};
+use springwater::refraction::{normals_and_refraction, refract, Refraction, RefractionParams};
 use springwater::{Params, Surface};
 use std::hint::black_box;
 use std::time::Duration;
@@ -57,6 +58,13 @@ fn render(c: &mut Criterion) {
             b.iter(|| {
                 compute_normals(black_box(&view), &mut normals);
                 refract(&view, &normals, eye, &optics, &mut uv).unwrap()
+            })
+        });
+
+        g.bench_function(BenchmarkId::new("normals_and_refraction", &size), |b| {
+            b.iter(|| {
+                normals_and_refraction(black_box(&view), eye, &optics, &mut normals, &mut uv)
+                    .unwrap()
             })
         });
 

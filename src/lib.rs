@@ -41,14 +41,19 @@
 //!   index buffer ([`mesh::LodMesh`]), point queries ([`Surface::height_at`] and friends).
 //!   Its docs show a renderer's frame.
 //! * [`refraction`]: per-node bottom texture coordinates through the surface, Fresnel.
+//! * [`disturb`]: disturbances worth watching, through the public API: rain reproducible
+//!   from a seed ([`disturb::Rain`]) and a moving object's wake ([`disturb::Wake`]).
+//! * `render` (feature `render`): a CPU preview renderer drawing the LOD mesh in
+//!   perspective with the bottom refracted through it, sky reflections and caustics.
 //! * [`baselines`]: comparison kernels for benchmarks (naive AoS, memory floor).
 //!
 //! ## Features
 //!
 //! * `parallel` (default): colour batches run on the rayon pool. Results are bitwise
 //!   identical with it off and for any number of threads.
-//! * `cli` (default): the `springwater` command-line tool. Engines embedding the library
-//!   use `default-features = false, features = ["parallel"]`.
+//! * `cli` (default): the `springwater` command-line tool (turns on `render`). Engines
+//!   embedding the library use `default-features = false, features = ["parallel"]`.
+//! * `render`: the CPU preview renderer (`springwater::render`). No extra dependencies.
 //! * `serde`: derive `Serialize`/`Deserialize` for [`Params`] and [`Snapshot`].
 
 #![warn(missing_docs)]
@@ -56,12 +61,15 @@
 #![warn(clippy::undocumented_unsafe_blocks)]
 
 pub mod baselines;
+pub mod disturb;
 pub mod error;
 mod forces;
 pub mod grid;
 pub mod mesh;
 pub mod params;
 pub mod refraction;
+#[cfg(feature = "render")]
+pub mod render;
 pub mod simd;
 pub mod snapshot;
 pub mod springs;

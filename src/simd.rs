@@ -66,44 +66,6 @@ pub unsafe fn put(view: &mut [[f32; LANES]], k: usize, v: Lane) {
     unsafe { *view.get_unchecked_mut(k) = v.to_array() };
 }
 
-/// Loads `LANES` values starting at `at`.
-#[inline(always)]
-pub fn load(s: &[f32], at: usize) -> Lane {
-    let chunk: &[f32; LANES] = s[at..at + LANES].try_into().unwrap();
-    Lane::new(*chunk)
-}
-
-/// Stores all lanes at `at`.
-#[inline(always)]
-pub fn store(s: &mut [f32], at: usize, v: Lane) {
-    let chunk: &mut [f32; LANES] = (&mut s[at..at + LANES]).try_into().unwrap();
-    *chunk = v.to_array();
-}
-
-/// Stores the first `count` lanes at `at` (`count <= LANES`): the tail of a row.
-#[inline(always)]
-pub fn store_first(s: &mut [f32], at: usize, v: Lane, count: usize) {
-    if count == LANES {
-        store(s, at, v);
-    } else {
-        s[at..at + count].copy_from_slice(&v.to_array()[..count]);
-    }
-}
-
-/// Adds `v` to the `LANES` values at `at`.
-#[inline(always)]
-pub fn add_to(s: &mut [f32], at: usize, v: Lane) {
-    let old = load(s, at);
-    store(s, at, old + v);
-}
-
-/// Subtracts `v` from the `LANES` values at `at`.
-#[inline(always)]
-pub fn sub_from(s: &mut [f32], at: usize, v: Lane) {
-    let old = load(s, at);
-    store(s, at, old - v);
-}
-
 /// A mask lane: all-ones where `lane index < count`.
 #[inline(always)]
 pub fn first_lanes(count: usize) -> Lane {

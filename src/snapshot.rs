@@ -548,6 +548,9 @@ impl Surface {
             springs.rest[f][..n].copy_from_slice(&snap.rest[f]);
             springs.coef[f][..n].copy_from_slice(&snap.coef[f]);
         }
+        // The engine reads a family's shared (c, L0) while all its springs agree: derived
+        // from the tables, so recomputed rather than stored.
+        springs.refresh(Grid::new(p.cols, p.rows));
         let bounds = [snap.min_mass, snap.max_stiffness, snap.max_viscosity];
         Ok(Surface::from_parts(
             p,

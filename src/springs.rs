@@ -48,12 +48,21 @@ pub fn band_rows(rows: usize, threads: usize) -> usize {
 }
 
 /// Rest length and coefficient of every spring, one buffer per family.
+///
+/// The tables are the truth. Beside them each family keeps a summary: the one
+/// `(coefficient, rest length)` pair all its springs share, while they do. The engine then
+/// reads those two numbers instead of the two tables, which saves 32 of the ~100 bytes a
+/// step moves per node; the first [`Springs::set`] that breaks the agreement switches the
+/// family to its tables. The scalar reference always reads the tables, so the parity tests
+/// check the summaries too.
 #[derive(Debug, Clone)]
 pub(crate) struct Springs {
     /// Rest length `L0` per family, indexed by origin node.
     pub rest: [Vec<f32>; 4],
     /// Coefficient `c` per family, indexed by origin node.
     pub coef: [Vec<f32>; 4],
+    /// `(c, L0)` shared by every spring of a family, if they all agree.
+    uniform: [Option<(f32, f32)>; 4],
 }
 
 impl Springs {
@@ -68,7 +77,44 @@ impl Springs {
             rest[f][id.origin] = params.rest_ratio * id.family.initial_length() * params.spacing;
             coef[f][id.origin] = params.stiffness;
         }
-        Self { rest, coef }
+        let mut springs = Self {
+            rest,
+            coef,
+            uniform: [None; 4],
+        };
+        springs.refresh(grid);
+        springs
+    }
+
+    /// Sets one spring's rest length and coefficient.
+    pub fn set(&mut self, id: SpringId, rest: f32, coef: f32) {
+        let f = id.family as usize;
+        self.rest[f][id.origin] = rest;
+        self.coef[f][id.origin] = coef;
+        if self.uniform[f]
+            .is_some_and(|u| u.0.to_bits() != coef.to_bits() || u.1.to_bits() != rest.to_bits())
+        {
+            self.uniform[f] = None;
+        }
+    }
+
+    /// Recomputes the per-family summaries after the tables were written wholesale.
+    pub fn refresh(&mut self, grid: Grid) {
+        for family in Family::ALL {
+            let f = family as usize;
+            let mut existing = (0..grid.len())
+                .filter(|&i| grid.spring_end(family, i).is_some())
+                .map(|i| (self.coef[f][i].to_bits(), self.rest[f][i].to_bits()));
+            let first = existing.next();
+            self.uniform[f] = first
+                .filter(|&u| existing.all(|v| v == u))
+                .map(|(c, r)| (f32::from_bits(c), f32::from_bits(r)));
+        }
+    }
+
+    /// The `(coefficient, rest length)` every spring of `family` shares, if they all agree.
+    pub fn uniform(&self, family: usize) -> Option<(f32, f32)> {
+        self.uniform[family]
     }
 }
 

@@ -489,9 +489,7 @@ impl Surface {
             params::critical_dt(self.min_mass, max_stiffness, self.max_viscosity),
         )?;
         self.max_stiffness = max_stiffness;
-        let f = id.family as usize;
-        self.springs.rest[f][id.origin] = rest;
-        self.springs.coef[f][id.origin] = coef;
+        self.springs.set(id, rest, coef);
         Ok(())
     }
 

@@ -438,3 +438,24 @@ fn level_for_distance_doubles_each_range() {
     assert_eq!(p.level_for_distance(f32::NAN), 0);
     assert_eq!(p.level_for_distance(f32::INFINITY), 4);
 }
+
+#[test]
+fn set_levels_caches_caps_and_balances() {
+    let flat = Flat::new(65, 33, 1.0); // 4 × 2 patches of 16 cells
+    let mut lod = LodMesh::new(LodParams::default()).unwrap();
+    assert!(lod
+        .set_levels(&flat.view(), &[0, 0, 0, 0, 0, 0, 0, 9])
+        .unwrap());
+    // 9 is capped at 4, then balanced down to 1 next to its level-0 neighbours.
+    assert_eq!(lod.patch_levels(), &[0, 0, 0, 0, 0, 0, 0, 1]);
+    assert!(
+        !lod.set_levels(&flat.view(), &[0, 0, 0, 0, 0, 0, 0, 1])
+            .unwrap(),
+        "same levels: cached"
+    );
+    assert!(lod.set_levels(&flat.view(), &[0; 8]).unwrap());
+    check_mesh(&lod, flat.grid);
+    // A wrong count is refused and changes nothing.
+    assert!(lod.set_levels(&flat.view(), &[0; 3]).is_err());
+    assert_eq!(lod.patch_levels(), &[0; 8]);
+}

@@ -8,13 +8,16 @@ mod common;
 
 use common::{state_bits, Rng};
 use proptest::prelude::*;
-use springwater::{Boundary, Params, Stepper, Surface};
+use springwater::{Boundary, Family, Params, SpringId, Stepper, Surface};
 
 #[derive(Debug, Clone)]
 struct Case {
     params: Params,
     drops: Vec<(f32, f32, f32, f32)>,
     pins: Vec<(usize, bool)>,
+    /// Springs given their own rest length and coefficient (switching their family from
+    /// the shared summary to the per-spring tables in the engine).
+    edits: Vec<(Family, usize, f32, f32)>,
     force_seed: Option<u32>,
     band_rows: usize,
 }
@@ -36,6 +39,15 @@ fn case() -> impl Strategy<Value = Case> {
         prop::collection::vec((any::<prop::sample::Index>(), any::<bool>()), 0..8),
         prop::option::of(any::<u32>()),
         1usize..20,
+        prop::collection::vec(
+            (
+                0usize..4,
+                any::<prop::sample::Index>(),
+                0.0f32..1.5,
+                0.2f32..1.0,
+            ),
+            0..6,
+        ),
     )
         .prop_map(
             |(
@@ -48,6 +60,7 @@ fn case() -> impl Strategy<Value = Case> {
                 pins,
                 force_seed,
                 band_rows,
+                edits,
             )| {
                 let mut params = Params {
                     cols,
@@ -73,10 +86,19 @@ fn case() -> impl Strategy<Value = Case> {
                     .into_iter()
                     .map(|(i, p)| (i.index(cols * rows), p))
                     .collect();
+                // Coefficients at most the global one keep dt below the critical timestep.
+                let edits = edits
+                    .into_iter()
+                    .map(|(f, i, rest, c)| {
+                        let origin = i.index(cols * rows);
+                        (Family::ALL[f], origin, rest * spacing, c * stiffness)
+                    })
+                    .collect();
                 Case {
                     params,
                     drops,
                     pins,
+                    edits,
                     force_seed: force_seed.map(|s| s | 1),
                     band_rows,
                 }
@@ -92,6 +114,10 @@ fn build(case: &Case) -> Surface {
     }
     for &(i, p) in &case.pins {
         s.set_pinned(i, p).unwrap();
+    }
+    for &(family, origin, rest, coef) in &case.edits {
+        // Springs that do not exist (E from the last column, …) are refused: skip them.
+        let _ = s.set_spring(SpringId { family, origin }, rest, coef);
     }
     s
 }

@@ -352,9 +352,10 @@ fn rays_that_never_reach_the_bottom_use_the_point_below_the_node() {
     for i in [10, 20] {
         assert_below(&out, i, s.pos(i), [w, l]);
     }
-    // The eye exactly on a node looks straight down there.
+    // The eye exactly on a node sees it edge-on: the point below, full reflection.
     let on = s.run(s.pos(40), &params);
     assert_below(&on, 40, s.pos(40), [w, l]);
+    assert_eq!(on.fresnel[40], 1.0);
 }
 
 #[test]
@@ -394,4 +395,44 @@ fn bad_input_is_refused_and_changes_nothing() {
     };
     assert!(refract(&s.view(), &short, eye, &ok, &mut out).is_err());
     assert_eq!(out, before);
+}
+
+/// The fused pass gives bitwise what the two calls give, for grids narrower and wider than
+/// one parallel task, with a surface that is not flat.
+#[test]
+fn the_fused_pass_equals_normals_then_refraction() {
+    use springwater::refraction::normals_and_refraction;
+    for (cols, rows) in [(2, 2), (7, 3), (129, 97), (5000, 3), (300, 40)] {
+        let mut s = Scene::flat(cols, rows, 0.7);
+        for i in 0..cols * rows {
+            s.p[1][i] = ((i * 37 % 101) as f32 / 101.0 - 0.5) * 0.8;
+            s.p[0][i] += ((i * 13 % 7) as f32 - 3.0) * 0.01;
+        }
+        let eye = Vec3::new(3.0, 12.0, -4.0);
+        let params = RefractionParams::default();
+        let mut normals = Normals::new();
+        compute_normals(&s.view(), &mut normals);
+        let mut separate = Refraction::default();
+        refract(&s.view(), &normals, eye, &params, &mut separate).unwrap();
+        let (mut fused_normals, mut fused) = (Normals::new(), Refraction::default());
+        normals_and_refraction(&s.view(), eye, &params, &mut fused_normals, &mut fused).unwrap();
+        let bits = |v: &[f32]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        assert_eq!(bits(&fused_normals.x), bits(&normals.x), "{cols}x{rows}");
+        assert_eq!(bits(&fused_normals.y), bits(&normals.y), "{cols}x{rows}");
+        assert_eq!(bits(&fused_normals.z), bits(&normals.z), "{cols}x{rows}");
+        assert_eq!(bits(&fused.u), bits(&separate.u), "{cols}x{rows}");
+        assert_eq!(bits(&fused.v), bits(&separate.v), "{cols}x{rows}");
+        assert_eq!(
+            bits(&fused.fresnel),
+            bits(&separate.fresnel),
+            "{cols}x{rows}"
+        );
+    }
+    let s = Scene::flat(4, 4, 1.0);
+    let (mut n, mut r) = (Normals::new(), Refraction::default());
+    let bad = RefractionParams {
+        depth: -1.0,
+        ..Default::default()
+    };
+    assert!(normals_and_refraction(&s.view(), Vec3::ONE, &bad, &mut n, &mut r).is_err());
 }

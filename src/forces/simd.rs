@@ -159,8 +159,48 @@ struct Inputs<'a> {
     ext: Option<[&'a [f32]; 3]>,
     springs: &'a Springs,
     cfg: StepConfig,
-    /// Lane mask of the last chunk of a row (columns past the row are off).
-    tail: Lane,
+    /// Lane masks of the springs that exist in the last chunk of a row, per family (no E
+    /// or SE spring leaves the last column; columns past the row are off).
+    tail: [Lane; 4],
+    /// Lane mask of the SW springs that exist in the first chunk (none leaves column 0).
+    head_sw: Lane,
+}
+
+impl Inputs<'_> {
+    /// Which lanes of chunk `k` hold a spring of family `fam`.
+    #[inline(always)]
+    fn exists(&self, fam: usize, k: usize, chunks: usize) -> Lane {
+        let mut m = if k + 1 == chunks { self.tail[fam] } else { ALL };
+        if fam == 3 && k == 0 {
+            m &= self.head_sw;
+        }
+        m
+    }
+}
+
+/// Where a family's coefficients and rest lengths come from for one row.
+#[derive(Clone, Copy)]
+enum Table<'a> {
+    /// Every spring of the family shares these lanes.
+    Uniform(Lane, Lane),
+    /// Per-spring chunk views of the coefficient and rest-length tables.
+    PerSpring(&'a [[f32; LANES]], &'a [[f32; LANES]]),
+}
+
+impl Table<'_> {
+    /// `(coefficient, rest length)` of chunk `k`.
+    ///
+    /// # Safety
+    ///
+    /// For `PerSpring`, `k` is below the length of both views.
+    #[inline(always)]
+    unsafe fn at(self, k: usize) -> (Lane, Lane) {
+        match self {
+            Table::Uniform(c, r) => (c, r),
+            // SAFETY: the caller guarantees `k` is in range of both views.
+            Table::PerSpring(c, r) => unsafe { (get(c, k), get(r, k)) },
+        }
+    }
 }
 
 /// The back-buffer rows one task may write: rows `first_row ..` of x, y, z, vx, vy, vz.
@@ -212,7 +252,12 @@ pub(crate) fn step(
             .then(|| [&state.ext[0][..], &state.ext[1][..], &state.ext[2][..]]),
         springs,
         cfg,
-        tail: first_lanes(cols - (cols - 1) / LANES * LANES),
+        tail: {
+            let last = cols - (cols - 1) / LANES * LANES; // columns in the last chunk
+            let [all, short] = [first_lanes(last), first_lanes(last - 1)];
+            [short, all, short, all]
+        },
+        head_sw: !first_lanes(1),
     };
     let h = ws.prepare(cols, rows);
 
@@ -382,73 +427,62 @@ fn row_springs(inp: &Inputs, r: usize, out: &mut RowForces) {
     let cols = inp.cols;
     let chunks = cols.div_ceil(LANES);
     let base = r * cols;
+    let has_down = r + 1 < inp.rows;
     // Chunk views (see `crate::simd`): chunk k of `view(start)` holds the nodes
     // `start + k·LANES ..`, so `view(base + 1)` is the east neighbour of `view(base)`.
     let view = |start: usize| inp.pos.map(|p| lanes(p, start, chunks));
-    let table = |fam: usize| {
-        let sp = inp.springs;
-        (
-            lanes(&sp.coef[fam], base, chunks),
-            lanes(&sp.rest[fam], base, chunks),
-        )
-    };
-    let [e, s, se, sw] = &mut out.fam;
     let here = view(base);
-
-    let (east, t_e) = (view(base + 1), table(0));
-    let mut e = e.each_mut().map(|c| lanes_mut(c, LEAD, chunks));
-    for k in 0..chunks {
-        let live = if k + 1 == chunks { inp.tail } else { ALL };
-        // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
-        unsafe { spring_lanes(load3(here, k), load3(east, k), t_e, live, &mut e, k) };
-    }
-
-    if r + 1 == inp.rows {
-        for c in [s, se, sw].into_iter().flatten() {
-            c.fill(0.0);
+    // (family, the view of each spring's other end)
+    let families = [
+        (0, view(base + 1)),
+        (1, if has_down { view(base + cols) } else { here }),
+        (
+            2,
+            if has_down {
+                view(base + cols + 1)
+            } else {
+                here
+            },
+        ),
+        (
+            3,
+            if has_down {
+                view(base + cols - 1)
+            } else {
+                here
+            },
+        ),
+    ];
+    for (fam, there) in families {
+        let mut out = out.fam[fam].each_mut().map(|c| lanes_mut(c, LEAD, chunks));
+        if fam > 0 && !has_down {
+            for c in &mut out {
+                c.fill([0.0; LANES]);
+            }
+            continue;
         }
-        return;
-    }
-    let (south, south_east, south_west) = (
-        view(base + cols),
-        view(base + cols + 1),
-        view(base + cols - 1),
-    );
-    let (t_s, t_se, t_sw) = (table(1), table(2), table(3));
-    let [mut s, mut se, mut sw] =
-        [s, se, sw].map(|f| f.each_mut().map(|c| lanes_mut(c, LEAD, chunks)));
-    for k in 0..chunks {
-        let live = if k + 1 == chunks { inp.tail } else { ALL };
-        // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
-        unsafe {
-            let pi = load3(here, k);
-            spring_lanes(pi, load3(south, k), t_s, live, &mut s, k);
-            spring_lanes(pi, load3(south_east, k), t_se, live, &mut se, k);
-            spring_lanes(pi, load3(south_west, k), t_sw, live, &mut sw, k);
-        }
-    }
-}
-
-/// One family's springs for chunk `k` (`table`: coefficient and rest-length views),
-/// stored into that family's row.
-///
-/// # Safety
-///
-/// `k` is below the length of `table`'s views and of `out`'s.
-#[inline(always)]
-unsafe fn spring_lanes(
-    pi: [Lane; 3],
-    pj: [Lane; 3],
-    table: (&[[f32; LANES]], &[[f32; LANES]]),
-    live: Lane,
-    out: &mut [&mut [[f32; LANES]]; 3],
-    k: usize,
-) {
-    // SAFETY: the caller guarantees `k` is in range of every view.
-    unsafe {
-        let f = spring_force(pi, pj, get(table.0, k) & live, get(table.1, k));
-        for (o, fk) in out.iter_mut().zip(f) {
-            put(o, k, fk);
+        let sp = inp.springs;
+        let table = match sp.uniform(fam) {
+            Some((c, r)) => Table::Uniform(Lane::splat(c), Lane::splat(r)),
+            None => Table::PerSpring(
+                lanes(&sp.coef[fam], base, chunks),
+                lanes(&sp.rest[fam], base, chunks),
+            ),
+        };
+        for k in 0..chunks {
+            // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
+            unsafe {
+                let (coef, rest) = table.at(k);
+                let f = spring_force(
+                    load3(here, k),
+                    load3(there, k),
+                    coef & inp.exists(fam, k, chunks),
+                    rest,
+                );
+                for (o, fk) in out.iter_mut().zip(f) {
+                    put(o, k, fk);
+                }
+            }
         }
     }
 }

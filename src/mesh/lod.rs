@@ -227,6 +227,49 @@ impl LodMesh {
     /// If the grid has more than 2^32 nodes (a `u32` cannot index them; a
     /// [`Surface`](crate::Surface) never has that many).
     pub fn update(&mut self, view: &MeshView<'_>, eye: Vec3) -> bool {
+        let fresh = self.reshape(view);
+        if !fresh && !eye.is_finite() {
+            return false;
+        }
+        self.distance_levels(eye, fresh);
+        self.apply(fresh)
+    }
+
+    /// Builds the mesh from levels chosen by the caller (one per patch, row-major over
+    /// [`LodMesh::patch_grid`] for this view's grid) instead of from an eye distance: for a
+    /// renderer with its own error metric, or to force full detail. Levels are capped at
+    /// `levels − 1`, then balanced 2:1 and stitched like [`LodMesh::update`]'s. Returns
+    /// true if the index buffer was rebuilt. The next [`LodMesh::update`] applies its
+    /// hysteresis against these levels.
+    ///
+    /// # Panics
+    ///
+    /// Like [`LodMesh::update`].
+    pub fn set_levels(&mut self, view: &MeshView<'_>, levels: &[u8]) -> Result<bool> {
+        let [across, down] = self.patches_for(view.grid());
+        if levels.len() != across * down {
+            return Err(Error::LengthMismatch {
+                what: "patch levels",
+                got: levels.len(),
+                expected: across * down,
+            });
+        }
+        let fresh = self.reshape(view);
+        let top = (self.params.levels - 1) as u8;
+        self.raw.clear();
+        self.raw.extend(levels.iter().map(|&l| l.min(top)));
+        Ok(self.apply(fresh))
+    }
+
+    /// Patches `[across, down]` for `grid`.
+    fn patches_for(&self, grid: Grid) -> [usize; 2] {
+        let p = self.params.patch_cells;
+        [(grid.cols - 1).div_ceil(p), (grid.rows - 1).div_ceil(p)]
+    }
+
+    /// Starts over if `view` has another grid shape or spacing than the cache: returns
+    /// true then (the levels are fresh, without hysteresis).
+    fn reshape(&mut self, view: &MeshView<'_>) -> bool {
         let grid = view.grid();
         assert!(
             grid.len() - 1 <= u32::MAX as usize,
@@ -237,19 +280,20 @@ impl LodMesh {
             grid,
             spacing: view.spacing(),
         };
-        let fresh = self.shape != Some(shape);
-        if fresh {
-            let p = self.params.patch_cells;
-            self.shape = Some(shape);
-            self.patches = [(grid.cols - 1).div_ceil(p), (grid.rows - 1).div_ceil(p)];
-            let n = self.patches[0] * self.patches[1];
-            self.raw.clear();
-            self.raw.resize(n, 0);
-            self.levels.clear();
-        } else if !eye.is_finite() {
+        if self.shape == Some(shape) {
             return false;
         }
-        self.distance_levels(shape, eye, fresh);
+        self.shape = Some(shape);
+        self.patches = self.patches_for(grid);
+        self.raw.clear();
+        self.raw.resize(self.patches[0] * self.patches[1], 0);
+        self.levels.clear();
+        true
+    }
+
+    /// Balances `raw` and rebuilds the index buffer if the result differs from the levels
+    /// it was built with (or always, when `fresh`). Returns true if it rebuilt.
+    fn apply(&mut self, fresh: bool) -> bool {
         self.next.clear();
         self.next.extend_from_slice(&self.raw);
         balance(&mut self.next, self.patches);
@@ -257,47 +301,8 @@ impl LodMesh {
             return false;
         }
         std::mem::swap(&mut self.next, &mut self.levels);
-        self.rebuild(grid);
+        self.rebuild();
         true
-    }
-
-    /// Builds the mesh from levels chosen by the caller (one per patch, row-major over
-    /// [`LodMesh::patch_grid`] for this view's grid) instead of from an eye distance: for a
-    /// renderer with its own error metric, or to force full detail. Levels are capped at
-    /// `levels − 1`, then balanced 2:1 and stitched like [`LodMesh::update`]'s. Returns
-    /// true if the index buffer was rebuilt. The next [`LodMesh::update`] applies its
-    /// hysteresis against these levels.
-    pub fn set_levels(&mut self, view: &MeshView<'_>, levels: &[u8]) -> Result<bool> {
-        let grid = view.grid();
-        let p = self.params.patch_cells;
-        let patches = [(grid.cols - 1).div_ceil(p), (grid.rows - 1).div_ceil(p)];
-        let expected = patches[0] * patches[1];
-        if levels.len() != expected {
-            return Err(Error::LengthMismatch {
-                what: "patch levels",
-                got: levels.len(),
-                expected,
-            });
-        }
-        // Any finite eye: sets the shape (and sizes the buffers) without changing levels
-        // we are about to replace.
-        let shape = Shape {
-            grid,
-            spacing: view.spacing(),
-        };
-        let rebuilt = self.shape != Some(shape) && self.update(view, Vec3::ZERO);
-        let top = (self.params.levels - 1) as u8;
-        self.raw.clear();
-        self.raw.extend(levels.iter().map(|&l| l.min(top)));
-        self.next.clear();
-        self.next.extend_from_slice(&self.raw);
-        balance(&mut self.next, self.patches);
-        if self.next == self.levels {
-            return Ok(rebuilt);
-        }
-        std::mem::swap(&mut self.next, &mut self.levels);
-        self.rebuild(grid);
-        Ok(true)
     }
 
     /// Triangles, three indices each, counter-clockwise seen from +y, indexing the full
@@ -328,7 +333,8 @@ impl LodMesh {
 
     /// Sets `raw` from the eye's distance to each patch footprint, with hysteresis
     /// against the previous `raw` unless `fresh`.
-    fn distance_levels(&mut self, shape: Shape, eye: Vec3, fresh: bool) {
+    fn distance_levels(&mut self, eye: Vec3, fresh: bool) {
+        let shape = self.shape.expect("reshape() ran first");
         let p = self.params.patch_cells;
         let [across, down] = self.patches;
         let (cols, rows, h) = (shape.grid.cols, shape.grid.rows, shape.spacing);
@@ -365,7 +371,8 @@ impl LodMesh {
         }
     }
 
-    fn rebuild(&mut self, grid: Grid) {
+    fn rebuild(&mut self) {
+        let grid = self.shape.expect("reshape() ran first").grid;
         self.indices.clear();
         self.triangle_levels.clear();
         let p = self.params.patch_cells;

@@ -10,6 +10,9 @@
 //! Every stage writes into a caller-owned buffer that keeps its capacity from frame to
 //! frame, and every index buffer indexes the full row-major node array, so a renderer
 //! uploads the positions, normals and UVs as they are and draws the LOD triangles.
+//! [`normals_and_refraction`](crate::refraction::normals_and_refraction) does the two
+//! per-node stages in one pass. Game code asks the full-resolution simulation, not the
+//! mesh, for heights, normals and velocities: [`query`].
 //!
 //! # A frame
 //!
@@ -42,12 +45,13 @@
 //! # Ok::<(), springwater::Error>(())
 //! ```
 
-mod lod;
-mod normals;
+pub mod lod;
+pub mod normals;
 pub mod query;
 mod view;
 
 pub use lod::{LodMesh, LodParams};
+pub(crate) use normals::normals_row;
 pub use normals::{compute_normals, compute_normals_scalar, node_normal, Normals};
 pub use view::MeshView;
 
@@ -80,5 +84,40 @@ where
         .enumerate()
     {
         f(i, [x, y, z]);
+    }
+}
+
+/// [`for_each_chunk3`] over six buffers.
+pub(crate) fn for_each_chunk6<F>(out: [&mut [f32]; 6], len: usize, f: F)
+where
+    F: Fn(usize, [&mut [f32]; 6]) + Sync + Send,
+{
+    let [a, b, c, d, e, g] = out;
+    let len = len.max(1);
+    #[cfg(feature = "parallel")]
+    {
+        use rayon::prelude::*;
+        let min_chunks = (4096 / len).max(1);
+        a.par_chunks_mut(len)
+            .zip(b.par_chunks_mut(len))
+            .zip(c.par_chunks_mut(len))
+            .zip(d.par_chunks_mut(len))
+            .zip(e.par_chunks_mut(len))
+            .zip(g.par_chunks_mut(len))
+            .with_min_len(min_chunks)
+            .enumerate()
+            .for_each(|(i, (((((a, b), c), d), e), g))| f(i, [a, b, c, d, e, g]));
+    }
+    #[cfg(not(feature = "parallel"))]
+    for (i, (((((a, b), c), d), e), g)) in a
+        .chunks_mut(len)
+        .zip(b.chunks_mut(len))
+        .zip(c.chunks_mut(len))
+        .zip(d.chunks_mut(len))
+        .zip(e.chunks_mut(len))
+        .zip(g.chunks_mut(len))
+        .enumerate()
+    {
+        f(i, [a, b, c, d, e, g]);
     }
 }

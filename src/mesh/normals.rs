@@ -67,7 +67,7 @@ impl Normals {
         glam::Vec3::new(self.x[i], self.y[i], self.z[i])
     }
 
-    fn resize(&mut self, n: usize) {
+    pub(crate) fn resize(&mut self, n: usize) {
         for c in [&mut self.x, &mut self.y, &mut self.z] {
             c.resize(n, 0.0);
         }
@@ -140,7 +140,7 @@ pub fn node_normal(view: &MeshView<'_>, col: usize, row: usize) -> glam::Vec3 {
 }
 
 /// One row of normals: lanes over the interior columns, [`node_normal`] for the rest.
-fn normals_row<'a>(view: &MeshView<'a>, row: usize, out: [&mut [f32]; 3]) {
+pub(crate) fn normals_row<'a>(view: &MeshView<'a>, row: usize, out: [&mut [f32]; 3]) {
     let cols = view.cols();
     let here = row * cols;
     let up = row.saturating_sub(1) * cols;

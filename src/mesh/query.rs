@@ -14,7 +14,7 @@
 //! So a query at a node's rest position returns that node's value, and values vary
 //! continuously between nodes. Heights are the nodes' current `y`; velocities the nodes'
 //! current velocities; normals the per-node normals of
-//! [`node_normal`](crate::mesh::node_normal) blended the same way and renormalised.
+//! [`node_normal`] blended the same way and renormalised.
 //! The lattice also moves sideways a little; the queries follow the nodes (the surface
 //! point whose rest position is `(x, z)`), which is what a floating object riding the
 //! water feels.

@@ -5,6 +5,8 @@
 mod args;
 mod bench;
 mod export;
+mod image;
+mod render;
 mod simulate;
 
 use std::process::ExitCode;
@@ -15,6 +17,7 @@ springwater — CPU water surface animation (mass-spring lattice)
 usage: springwater <command> [flags]
 
 commands:
+  render     draw the water as an animated GIF        --out FILE.gif | --png DIR
   simulate   run the steps and print a summary        [--csv FILE] [--save FILE]
              continue from a snapshot: simulate --load FILE --steps N [--drop …]
   bench      time the step against the scalar reference, a naive AoS
@@ -36,6 +39,28 @@ model flags (seed defaults):
   --boundary pinned|free  edge condition (pinned)
   --drop COL,ROW,HEIGHT,RADIUS   add a drop (repeatable)
   --threads N          worker threads (all cores)
+
+render flags (defaults in brackets):
+  --out FILE.gif       the animation (a looping GIF, one median-cut palette)
+  --png DIR            also (or instead) every frame as DIR/frame_NNNN.png
+  --frames N           frames to draw (72)
+  --substeps N         simulation steps between frames (3)
+  --fps F              GIF frame rate (20)
+  --steps N            steps before the first frame, rain falling (60)
+  --width W --height H image size in pixels (400x300)
+  --eye X,Y,Z          camera position (above the near edge of the pool)
+  --look-at X,Y,Z      point in the middle of the image (near the pool's centre)
+  --fov DEGREES        vertical field of view (45)
+  --bottom FILE.png    pool bottom texture (built-in tiles)
+  --depth D            depth of the bottom below the surface (8)
+  --ior N              index of refraction of the water (1.333)
+  --caustics S         caustic strength, 0 for none (1.3)
+  --lod-pixels P       on-screen size of a cell where the LOD starts to coarsen (1.5)
+  --rain RATE          raindrops per unit of model time, 0 for none (0.3)
+  --seed S             random seed of the rain (1); same seed, same file
+  --wake               a ball circling the pool, leaving a wake
+  --wireframe          overlay the LOD triangles, coloured by level
+  --orbit DEGREES      turn the camera about the target over the animation (0)
 ";
 
 fn main() -> ExitCode {
@@ -65,13 +90,14 @@ fn run() -> args::CliResult<()> {
     match command.as_str() {
         "simulate" => simulate::run(&mut p),
         "bench" => bench::run(&mut p),
+        "render" => render::run(&mut p),
         "export" => export::run(&mut p),
         "help" => {
             print!("{USAGE}");
             Ok(())
         }
         other => Err(format!(
-            "unknown command '{other}' (simulate, bench, export; see springwater --help)"
+            "unknown command '{other}' (render, simulate, bench, export; see springwater --help)"
         )),
     }
 }

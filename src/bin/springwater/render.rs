@@ -1,0 +1,444 @@
+//! `springwater render`: the water as an animated GIF (and/or PNG frames).
+
+use crate::args::{list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
+use crate::image::{read_png, write_png, GifWriter, Histogram, Palette};
+use crate::simulate::create;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use lexopt::Parser;
+use springwater::disturb::{Disturbance, Rain, Wake};
+use springwater::render::{Ball, Camera, Frame, RenderParams, Renderer, StageTimes, Texture};
+use springwater::Surface;
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+/// The render command's options beyond the model flags.
+#[derive(Debug, Clone)]
+struct Options {
+    frames: usize,
+    substeps: usize,
+    fps: f32,
+    eye: Option<[f32; 3]>,
+    look_at: Option<[f32; 3]>,
+    fov: f32,
+    width: u32,
+    height: u32,
+    bottom: Option<PathBuf>,
+    depth: f32,
+    ior: f32,
+    caustics: f32,
+    lod_pixels: f32,
+    rain: f32,
+    seed: u64,
+    wake: bool,
+    wireframe: bool,
+    orbit: f32,
+    out: Option<PathBuf>,
+    png: Option<PathBuf>,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Self {
+            frames: 72,
+            substeps: 3,
+            fps: 20.0,
+            eye: None,
+            look_at: None,
+            fov: 45.0,
+            width: 400,
+            height: 300,
+            bottom: None,
+            depth: 8.0,
+            ior: 1.333,
+            caustics: 1.3,
+            lod_pixels: 1.5,
+            rain: 0.3,
+            seed: 1,
+            wake: false,
+            wireframe: false,
+            orbit: 0.0,
+            out: None,
+            png: None,
+        }
+    }
+}
+
+/// Steps run before the first frame when `--steps` is not given: the rain has started.
+const WARM_UP_STEPS: u64 = 60;
+
+pub fn run(p: &mut Parser) -> CliResult<()> {
+    let mut model = ModelArgs {
+        steps: WARM_UP_STEPS,
+        ..ModelArgs::default()
+    };
+    let mut o = Options::default();
+    while let Some(arg) = next_flag(p)? {
+        if model.parse_flag(&arg, p)? {
+            continue;
+        }
+        let Flag::Long(name) = &arg else {
+            return Err(unexpected(arg, "render"));
+        };
+        match name.as_str() {
+            "frames" => o.frames = ranged(value(p, "--frames")?, 1, 100_000, "--frames")?,
+            "substeps" => o.substeps = ranged(value(p, "--substeps")?, 0, 10_000, "--substeps")?,
+            "fps" => o.fps = positive(value(p, "--fps")?, "--fps")?,
+            "eye" => o.eye = Some(list(&string(p, "--eye")?, "--eye X,Y,Z")?),
+            "look-at" => o.look_at = Some(list(&string(p, "--look-at")?, "--look-at X,Y,Z")?),
+            "fov" => o.fov = value(p, "--fov")?,
+            "width" => o.width = ranged(value(p, "--width")?, 16, 4096, "--width")?,
+            "height" => o.height = ranged(value(p, "--height")?, 16, 4096, "--height")?,
+            "bottom" => o.bottom = Some(string(p, "--bottom")?.into()),
+            "depth" => o.depth = positive(value(p, "--depth")?, "--depth")?,
+            "ior" => o.ior = value(p, "--ior")?,
+            "caustics" => o.caustics = value(p, "--caustics")?,
+            "lod-pixels" => o.lod_pixels = positive(value(p, "--lod-pixels")?, "--lod-pixels")?,
+            "rain" => o.rain = value(p, "--rain")?,
+            "seed" => o.seed = value(p, "--seed")?,
+            "wake" => o.wake = true,
+            "wireframe" => o.wireframe = true,
+            "orbit" => o.orbit = value(p, "--orbit")?,
+            "out" => o.out = Some(string(p, "--out")?.into()),
+            "png" => o.png = Some(string(p, "--png")?.into()),
+            _ => return Err(unexpected(arg, "render")),
+        }
+    }
+    if !(o.orbit.is_finite() && o.orbit.abs() <= 3600.0) {
+        return Err(format!(
+            "--orbit: {} is not an angle in degrees between -3600 and 3600",
+            o.orbit
+        ));
+    }
+    if o.out.is_none() && o.png.is_none() {
+        return Err("render needs --out FILE.gif or --png DIR (or both)".into());
+    }
+    if !(o.rain.is_finite() && o.rain >= 0.0) {
+        return Err(format!(
+            "--rain: {} is not a rate >= 0 (drops per unit of model time)",
+            o.rain
+        ));
+    }
+    if !(o.ior.is_finite() && o.ior >= 1.0) {
+        return Err(format!(
+            "--ior: {} is not an index of refraction >= 1",
+            o.ior
+        ));
+    }
+    if !(o.caustics.is_finite() && o.caustics >= 0.0) {
+        return Err(format!("--caustics: {} is not a strength >= 0", o.caustics));
+    }
+
+    // Validates the model and the drops before anything is opened.
+    let surface = model.surface()?;
+    let params = *surface.params();
+    let mut camera = Camera::framing(params.cols, params.rows, params.spacing, o.width, o.height);
+    if let Some(e) = o.eye {
+        camera.eye = e.into();
+    }
+    if let Some(l) = o.look_at {
+        camera.look_at = l.into();
+    }
+    camera.fov_y_degrees = o.fov;
+    camera.validate().map_err(|e| format!("camera: {e}"))?;
+    let bottom = match &o.bottom {
+        Some(path) => read_png(path)?,
+        None => Texture::pool_tiles_for(
+            (params.cols - 1) as f32 * params.spacing,
+            (params.rows - 1) as f32 * params.spacing,
+        ),
+    };
+    let mut render_params = RenderParams {
+        wireframe: o.wireframe,
+        ..RenderParams::default()
+    };
+    render_params.refraction.depth = o.depth;
+    render_params.refraction.ior = o.ior;
+    render_params.look.caustics = o.caustics;
+    render_params.lod_pixels = Some(o.lod_pixels);
+    let mut renderer = Renderer::new(render_params, bottom).map_err(|e| e.to_string())?;
+
+    // Open every output before any work: an unwritable path fails at once.
+    let gif_file = o
+        .out
+        .as_ref()
+        .map(|path| create(path).map(|f| (path.clone(), f)))
+        .transpose()?;
+    // A render that fails part-way leaves no truncated GIF behind.
+    let mut cleanup = RemoveOnDrop(o.out.as_deref());
+    if let Some(dir) = &o.png {
+        std::fs::create_dir_all(dir)
+            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
+        create(&frame_path(dir, 0))?;
+    }
+
+    // A GIF needs its palette before its first frame. Frames that fit in memory are kept
+    // and encoded after one pass; larger animations are simulated and drawn twice (the
+    // run is deterministic, so both passes see the same frames): once for the palette,
+    // once to encode.
+    let frame_bytes = o.width as u64 * o.height as u64 * 3;
+    let keep = std::env::var("SPRINGWATER_KEEP_FRAMES_BYTES")
+        .ok()
+        .and_then(|v| v.parse().ok())
+        .unwrap_or(KEEP_FRAMES_BYTES);
+    let two_pass = gif_file.is_some() && frame_bytes * o.frames as u64 > keep;
+    let passes = if two_pass { 2 } else { 1 };
+    let bar = progress(o.frames as u64 * passes);
+    let start = Instant::now();
+    let mut clock = Clock::default();
+    let mut frames: Vec<Vec<u8>> = Vec::new();
+    let mut histogram = Histogram::new();
+    let mut png_time = Duration::ZERO;
+    let raindrops = model.with_threads(|| {
+        animate(
+            &model,
+            &o,
+            &mut renderer,
+            &camera,
+            &mut clock,
+            |k, frame| {
+                if let Some(dir) = &o.png {
+                    let t = Instant::now();
+                    let path = frame_path(dir, k);
+                    let file = create(&path)?;
+                    write_png(file, frame.width(), frame.height(), frame.rgb())
+                        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                    png_time += t.elapsed();
+                }
+                if gif_file.is_some() {
+                    histogram.add(frame.rgb());
+                    if !two_pass {
+                        frames.push(frame.rgb().to_vec());
+                    }
+                }
+                bar.inc(1);
+                Ok(())
+            },
+        )
+    })??;
+
+    let mut gif_time = Duration::ZERO;
+    if let Some((path, file)) = gif_file {
+        let fail = |e: String| format!("cannot write {}: {e}", path.display());
+        let t = Instant::now();
+        let palette = model.with_threads(|| Palette::median_cut(&histogram))?;
+        let delay = (100.0 / o.fps).round().clamp(2.0, 65535.0) as u16;
+        let mut gif = GifWriter::new(file, o.width as usize, o.height as usize, &palette, delay)
+            .map_err(fail)?;
+        if two_pass {
+            gif_time += t.elapsed();
+            model.with_threads(|| {
+                animate(
+                    &model,
+                    &o,
+                    &mut renderer,
+                    &camera,
+                    &mut clock,
+                    |_, frame| {
+                        let t = Instant::now();
+                        gif.frame(frame.rgb()).map_err(fail)?;
+                        gif_time += t.elapsed();
+                        bar.inc(1);
+                        Ok(())
+                    },
+                )
+            })??;
+        } else {
+            bar.set_message("encoding GIF");
+            for rgb in &frames {
+                gif.frame(rgb).map_err(fail)?;
+            }
+            gif_time += t.elapsed();
+        }
+        gif.finish().map_err(fail)?;
+    }
+    bar.finish_and_clear();
+    cleanup.0 = None;
+
+    let drawn = (o.frames as u64 * passes) as f64;
+    let ms = |d: Duration| d.as_secs_f64() * 1e3 / drawn;
+    let total = start.elapsed();
+    println!(
+        "rendered {} frames of {}x{} pixels, a {}x{} surface, {} steps per frame after {} warm-up steps{}",
+        o.frames,
+        o.width,
+        o.height,
+        params.cols,
+        params.rows,
+        o.substeps,
+        model.steps,
+        if two_pass { " (twice: too large to keep for the GIF palette)" } else { "" }
+    );
+    let lod = renderer.lod();
+    let levels = lod.patch_levels();
+    let (lo, hi) = levels
+        .iter()
+        .fold((u8::MAX, 0), |(lo, hi), &l| (lo.min(l), hi.max(l)));
+    println!(
+        "mesh         {} LOD triangles in the last frame ({} at full detail), levels {lo} to {hi}",
+        lod.triangle_count(),
+        2 * (params.cols - 1) * (params.rows - 1),
+    );
+    println!(
+        "disturbances: {raindrops} raindrops (rate {}, seed {}){}",
+        o.rain,
+        o.seed,
+        if o.wake { ", a wake" } else { "" }
+    );
+    println!(
+        "per frame    simulation {:.2} ms, normals {:.2} ms, LOD {:.2} ms, refraction {:.2} ms, drawing {:.2} ms",
+        ms(clock.simulation),
+        ms(clock.stages.normals),
+        ms(clock.stages.lod),
+        ms(clock.stages.refraction),
+        ms(clock.stages.drawing)
+    );
+    println!(
+        "total        {:.2} s ({:.1} ms per frame); GIF palette + encoding {:.2} s, PNG writing {:.2} s",
+        total.as_secs_f64(),
+        total.as_secs_f64() * 1e3 / o.frames as f64,
+        gif_time.as_secs_f64(),
+        png_time.as_secs_f64()
+    );
+    if let Some(path) = &o.out {
+        let size = std::fs::metadata(path).map(|m| m.len()).unwrap_or(0);
+        println!("wrote {} ({:.1} KiB)", path.display(), size as f64 / 1024.0);
+    }
+    if let Some(dir) = &o.png {
+        println!("wrote {} PNG frames to {}", o.frames, dir.display());
+    }
+    Ok(())
+}
+
+/// Removes the file at its path when dropped, unless the path was taken out.
+struct RemoveOnDrop<'a>(Option<&'a std::path::Path>);
+
+impl Drop for RemoveOnDrop<'_> {
+    fn drop(&mut self) {
+        if let Some(path) = self.0 {
+            let _ = std::fs::remove_file(path);
+        }
+    }
+}
+
+/// Frames kept in memory for the GIF palette before `render` switches to two passes
+/// (the environment variable `SPRINGWATER_KEEP_FRAMES_BYTES` overrides it, for tests).
+const KEEP_FRAMES_BYTES: u64 = 768 << 20;
+
+/// Time spent simulating and in each render stage.
+#[derive(Debug, Default)]
+struct Clock {
+    simulation: Duration,
+    stages: StageTimes,
+}
+
+/// Builds the surface and its disturbances, runs the warm-up steps, then simulates and
+/// draws every frame in order, handing each to `each`. Returns the raindrops that fell.
+fn animate(
+    model: &ModelArgs,
+    o: &Options,
+    renderer: &mut Renderer,
+    camera: &Camera,
+    clock: &mut Clock,
+    mut each: impl FnMut(usize, &Frame) -> CliResult<()>,
+) -> CliResult<u64> {
+    let mut surface = model.surface()?;
+    // Every pass starts from the same LOD state, so passes draw the same frames.
+    renderer.reset().map_err(|e| e.to_string())?;
+    let mut rain = Rain::new(o.rain, o.seed);
+    let cols_rows = surface.params().cols.min(surface.params().rows) as f32;
+    let mut wake = o.wake.then(|| Wake::circle(&surface, 0.3 * cols_rows));
+    for k in 0..o.frames {
+        let t = Instant::now();
+        let steps = if k == 0 {
+            model.steps
+        } else {
+            o.substeps as u64
+        };
+        let mut disturbances: Vec<&mut dyn Disturbance> = vec![&mut rain];
+        if let Some(w) = wake.as_mut() {
+            disturbances.push(w);
+        }
+        run_steps(&mut surface, &mut disturbances, steps)?;
+        clock.simulation += t.elapsed();
+        if let Some(w) = &wake {
+            renderer
+                .set_balls(&[boat(&surface, w)])
+                .map_err(|e| e.to_string())?;
+        }
+        let mut camera = *camera;
+        if o.orbit != 0.0 {
+            // Turn the eye about the vertical through the target, `orbit` degrees in all.
+            let angle =
+                (o.orbit * k as f32 / o.frames.max(2).saturating_sub(1) as f32).to_radians();
+            let arm = camera.eye - camera.look_at;
+            camera.eye = camera.look_at + glam::Quat::from_rotation_y(angle) * arm;
+        }
+        renderer
+            .render(&surface.mesh_view(), &camera)
+            .map_err(|e| e.to_string())?;
+        clock.stages += renderer.times();
+        each(k, renderer.frame())?;
+    }
+    Ok(rain.fallen())
+}
+
+/// The object making the wake: a red and white ball floating where the wake is.
+fn boat(surface: &Surface, wake: &Wake) -> Ball {
+    let h = surface.params().spacing;
+    let [col, row] = wake.position();
+    let (x, z) = (col * h, row * h);
+    let y = surface.height_at(x, z).unwrap_or(0.0);
+    let radius = 0.8 * wake.radius * h;
+    Ball {
+        centre: glam::Vec3::new(x, y + 0.2 * radius, z),
+        radius,
+        colours: [[0.8, 0.03, 0.02], [0.85, 0.85, 0.8]],
+    }
+}
+
+/// `steps` steps, each preceded by every disturbance.
+fn run_steps(
+    surface: &mut Surface,
+    disturbances: &mut [&mut dyn Disturbance],
+    steps: u64,
+) -> CliResult<()> {
+    for _ in 0..steps {
+        let dt = surface.params().dt;
+        for d in disturbances.iter_mut() {
+            d.apply(surface, dt).map_err(|e| e.to_string())?;
+        }
+        surface.step().map_err(|e| e.to_string())?;
+    }
+    Ok(())
+}
+
+fn frame_path(dir: &std::path::Path, k: usize) -> PathBuf {
+    dir.join(format!("frame_{k:04}.png"))
+}
+
+/// A progress bar on stderr; indicatif draws nothing when stderr is not a terminal.
+fn progress(frames: u64) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(Some(frames), ProgressDrawTarget::stderr());
+    if let Ok(style) = ProgressStyle::with_template(
+        "{bar:40.cyan/blue} {pos}/{len} frames {elapsed_precise} (eta {eta}) {msg}",
+    ) {
+        bar.set_style(style);
+    }
+    bar
+}
+
+fn ranged<T: PartialOrd + std::fmt::Display>(v: T, lo: T, hi: T, flag: &str) -> CliResult<T> {
+    if v < lo || v > hi {
+        Err(format!("{flag} must be between {lo} and {hi}, got {v}"))
+    } else {
+        Ok(v)
+    }
+}
+
+fn positive(v: f32, flag: &str) -> CliResult<f32> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!("{flag} must be a finite number > 0, got {v}"))
+    }
+}

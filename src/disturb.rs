@@ -1,0 +1,460 @@
+//! Disturbances worth watching: [`Rain`] (random drops, reproducible from a seed) and
+//! [`Wake`] (a moving object pushing the surface along a path).
+//!
+//! Both drive a [`Surface`] only through its public API (`drop_at`, `add_force`), so a
+//! game can use them as they are, or read them as examples of writing its own. Call
+//! [`Disturbance::apply`] once before every [`Surface::step`] with that step's timestep:
+//!
+//! ```
+//! use springwater::disturb::{Disturbance, Rain, Wake};
+//! use springwater::{Params, Surface};
+//!
+//! let mut water = Surface::new(Params::with_size(64, 64))?;
+//! let mut rain = Rain::new(0.5, 7);                  // 0.5 drops per unit of model time
+//! let mut boat = Wake::circle(&water, 16.0);          // circles the middle of the pool
+//! for _ in 0..50 {
+//!     let dt = water.params().dt;
+//!     rain.apply(&mut water, dt)?;
+//!     boat.apply(&mut water, dt)?;
+//!     water.step()?;
+//! }
+//! # Ok::<(), springwater::Error>(())
+//! ```
+//!
+//! With [`Surface::advance`]-style frame times, [`advance`] does the same for every substep.
+//!
+//! Both keep to the regime where the timestep limit holds: a raindrop's depth never
+//! exceeds its radius, and the wake pushes with a bounded force spread over several nodes.
+
+use crate::error::{Error, Result};
+use crate::params;
+use crate::surface::Surface;
+
+/// Something that disturbs a surface as model time passes.
+pub trait Disturbance {
+    /// Disturbs `surface` for the step of length `dt` about to be taken. Call it right
+    /// before [`Surface::step`]: forces it adds apply to that step only.
+    fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()>;
+}
+
+/// Advances `surface` by `frame_dt` like [`Surface::advance`] (equal substeps no longer
+/// than `params().dt`), applying every disturbance before each substep. Returns the
+/// number of substeps. A failing disturbance or substep stops the frame there.
+///
+/// ```
+/// use springwater::disturb::{advance, Disturbance, Rain};
+/// use springwater::{Params, Surface};
+///
+/// let mut water = Surface::new(Params::with_size(64, 64))?;
+/// let mut rain = Rain::new(2.0, 1);
+/// for _frame in 0..30 {
+///     advance(&mut water, 1.0, &mut [&mut rain])?;     // 3 substeps of 1/3
+/// }
+/// assert!(rain.fallen() > 20);
+/// # Ok::<(), springwater::Error>(())
+/// ```
+pub fn advance(
+    surface: &mut Surface,
+    frame_dt: f32,
+    disturbances: &mut [&mut dyn Disturbance],
+) -> Result<usize> {
+    params::non_negative("frame_dt", frame_dt)?;
+    let dt = surface.params().dt;
+    let substeps = (frame_dt / dt).ceil();
+    if substeps > crate::surface::MAX_SUBSTEPS as f32 {
+        return Err(Error::InvalidParam {
+            name: "frame_dt",
+            value: frame_dt as f64,
+            expected: "at most 10000 timesteps long",
+        });
+    }
+    let substeps = substeps as usize;
+    if substeps == 0 {
+        return Ok(0);
+    }
+    // Never past `dt` by a rounding error, so each `advance` below is one step.
+    let sub = (frame_dt / substeps as f32).min(dt);
+    for _ in 0..substeps {
+        for d in disturbances.iter_mut() {
+            d.apply(surface, sub)?;
+        }
+        surface.advance(sub)?;
+    }
+    Ok(substeps)
+}
+
+/// A small, fast, seedable random number generator (PCG-XSH-RR, 64-bit state, 32-bit
+/// output). Not for cryptography; the same seed gives the same numbers on every platform.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Rng {
+    state: u64,
+    inc: u64,
+}
+
+impl Rng {
+    const MUL: u64 = 6_364_136_223_846_793_005;
+
+    /// A generator for `seed`. Every seed (including 0) gives a good stream.
+    pub fn new(seed: u64) -> Self {
+        // Spread the seed over both words so nearby seeds give unrelated streams.
+        let mut rng = Self {
+            state: 0,
+            inc: (mix(seed ^ 0x5851_f42d_4c95_7f2d) << 1) | 1,
+        };
+        rng.next_u32();
+        rng.state = rng.state.wrapping_add(mix(seed));
+        rng.next_u32();
+        rng
+    }
+
+    /// The next 32 random bits.
+    pub fn next_u32(&mut self) -> u32 {
+        let old = self.state;
+        self.state = old.wrapping_mul(Self::MUL).wrapping_add(self.inc);
+        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
+        xorshifted.rotate_right((old >> 59) as u32)
+    }
+
+    /// A uniform number in `[0, 1)` with 24 random bits.
+    pub fn next_f32(&mut self) -> f32 {
+        (self.next_u32() >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
+    }
+
+    /// A uniform number in `[lo, hi)`.
+    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.next_f32()
+    }
+}
+
+/// SplitMix64's finaliser: a bijection that scatters nearby inputs.
+fn mix(mut z: u64) -> u64 {
+    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
+}
+
+/// Rain: drops at random places and random times, the same ones for the same seed.
+///
+/// Drops arrive as a Poisson process of `rate` drops per unit of model time. Each one is a
+/// [`Surface::drop_at`] dent of radius in `radius` (grid steps) and height
+/// `−depth × radius × h` in world units, `h` the grid spacing: as steep on any grid, and
+/// no steeper than one height per cell as long as `depth ≤ 1`. Drops are placed uniformly
+/// over the free interior, at least one radius away from the edge.
+///
+/// The times and places depend only on the seed and the model time passed to
+/// [`Disturbance::apply`], not on how that time is cut into steps: a drop due at time
+/// `t` lands at the first step boundary at or after `t`.
+#[derive(Debug, Clone)]
+pub struct Rain {
+    /// Mean drops per unit of model time (default in [`Rain::new`]: as given). Zero: no rain.
+    pub rate: f32,
+    /// Range of drop radii in grid steps (default: `1.5..3.0`).
+    pub radius: std::ops::Range<f32>,
+    /// Drop depth as a fraction of its radius, in `(0, 1]` (default: `0.6`).
+    pub depth: f32,
+    rng: Rng,
+    time: f64,
+    next: f64,
+    fallen: u64,
+}
+
+impl Rain {
+    /// Rain of `rate` drops per unit of model time from `seed`.
+    pub fn new(rate: f32, seed: u64) -> Self {
+        let mut rain = Self {
+            rate,
+            radius: 1.5..3.0,
+            depth: 0.6,
+            rng: Rng::new(seed),
+            time: 0.0,
+            next: 0.0,
+            fallen: 0,
+        };
+        rain.next = rain.wait();
+        rain
+    }
+
+    /// Drops that have fallen so far.
+    pub fn fallen(&self) -> u64 {
+        self.fallen
+    }
+
+    /// Model time this rain has seen.
+    pub fn time(&self) -> f64 {
+        self.time
+    }
+
+    /// Model time until the next drop: exponential with mean `1 / rate`.
+    fn wait(&mut self) -> f64 {
+        if self.rate.is_finite() && self.rate > 0.0 {
+            // 1 − u is in (0, 1], so the logarithm is finite.
+            -((1.0 - self.rng.next_f32() as f64).ln()) / self.rate as f64
+        } else {
+            f64::INFINITY
+        }
+    }
+
+    fn check(&self) -> Result<()> {
+        params::non_negative("rain rate", self.rate)?;
+        params::positive("rain radius", self.radius.start)?;
+        params::positive("rain radius", self.radius.end)?;
+        if self.radius.end < self.radius.start {
+            return Err(Error::InvalidParam {
+                name: "rain radius",
+                value: self.radius.end as f64,
+                expected: "a range whose end is at least its start",
+            });
+        }
+        if !(self.depth > 0.0 && self.depth <= 1.0) {
+            return Err(Error::InvalidParam {
+                name: "rain depth",
+                value: self.depth as f64,
+                expected: "a fraction of the radius in (0, 1] (deeper drops can fold the lattice)",
+            });
+        }
+        Ok(())
+    }
+}
+
+impl Disturbance for Rain {
+    fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()> {
+        self.check()?;
+        params::non_negative("dt", dt)?;
+        if self.next.is_infinite() {
+            // The rate may have been raised since the last call.
+            self.next = self.time + self.wait();
+        }
+        let grid = surface.grid();
+        while self.next <= self.time {
+            let radius = self.rng.range(self.radius.start, self.radius.end);
+            // Keep the dent off the pinned ring where the grid allows it.
+            let place = |rng: &mut Rng, n: usize| {
+                let n = (n - 1) as f32;
+                let margin = radius.min(n / 2.0);
+                rng.range(margin, n - margin)
+            };
+            let col = place(&mut self.rng, grid.cols);
+            let row = place(&mut self.rng, grid.rows);
+            let h = surface.params().spacing;
+            surface.drop_at(col, row, -self.depth * radius * h, radius)?;
+            self.fallen += 1;
+            self.next += self.wait();
+        }
+        self.time += dt as f64;
+        Ok(())
+    }
+}
+
+/// A wake: an object (a boat, a duck, a finger) moving along a closed path at constant
+/// speed, pushing the water down under it with a Gaussian footprint.
+///
+/// Each step it adds a downward force `strength · exp(−d²/radius²)` to every free node
+/// within `3 × radius` of the object (`d` in grid steps). Moving faster than the ripples
+/// (about `h·sqrt(3c(1 − rest_ratio)/m)` per unit time, 1.6 with the seed's defaults)
+/// leaves a V-shaped wake behind it.
+#[derive(Debug, Clone)]
+pub struct Wake {
+    /// Corners of the closed path, in grid coordinates `(col, row)`.
+    path: Vec<[f32; 2]>,
+    /// Cumulative length of the path at each corner; the last entry is the full length.
+    lengths: Vec<f32>,
+    /// Speed along the path in grid steps per unit of model time (default: `2.5`).
+    pub speed: f32,
+    /// Footprint radius in grid steps (default: `2.5`).
+    pub radius: f32,
+    /// Peak downward force on the node under the object (default: `1.5`).
+    pub strength: f32,
+    distance: f32,
+}
+
+impl Wake {
+    /// A wake along the closed polyline `path` (grid coordinates `(col, row)`), starting
+    /// at its first corner. The path needs at least two distinct finite corners.
+    pub fn new(path: Vec<[f32; 2]>) -> Result<Self> {
+        for p in &path {
+            params::finite("wake path", p[0])?;
+            params::finite("wake path", p[1])?;
+        }
+        let mut lengths = Vec::with_capacity(path.len() + 1);
+        let mut total = 0.0f32;
+        lengths.push(0.0);
+        for (k, a) in path.iter().enumerate() {
+            let b = path[(k + 1) % path.len()];
+            total += ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+            lengths.push(total);
+        }
+        if !(total > 0.0 && total.is_finite()) {
+            return Err(Error::InvalidParam {
+                name: "wake path",
+                value: total as f64,
+                expected: "a closed path with at least two distinct corners",
+            });
+        }
+        Ok(Self {
+            path,
+            lengths,
+            speed: 2.5,
+            radius: 2.5,
+            strength: 1.5,
+            distance: 0.0,
+        })
+    }
+
+    /// A circle of `radius` grid steps around the middle of `surface`, counter-clockwise
+    /// seen from above, as a 64-gon.
+    pub fn circle(surface: &Surface, radius: f32) -> Self {
+        let g = surface.grid();
+        let (cx, cy) = ((g.cols - 1) as f32 / 2.0, (g.rows - 1) as f32 / 2.0);
+        let path = (0..64)
+            .map(|k| {
+                let a = k as f32 * std::f32::consts::TAU / 64.0;
+                [cx + radius * a.cos(), cy - radius * a.sin()]
+            })
+            .collect();
+        Self::new(path).unwrap_or_else(|_| {
+            Self::new(vec![[cx, cy], [cx + 1.0, cy]]).expect("two distinct corners")
+        })
+    }
+
+    /// Where the object is now, in grid coordinates `(col, row)`.
+    pub fn position(&self) -> [f32; 2] {
+        let total = *self.lengths.last().expect("at least one corner");
+        let s = self.distance.rem_euclid(total);
+        let k = self
+            .lengths
+            .partition_point(|&l| l <= s)
+            .saturating_sub(1)
+            .min(self.path.len() - 1);
+        let a = self.path[k];
+        let b = self.path[(k + 1) % self.path.len()];
+        let seg = self.lengths[k + 1] - self.lengths[k];
+        let t = if seg > 0.0 {
+            (s - self.lengths[k]) / seg
+        } else {
+            0.0
+        };
+        [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
+    }
+}
+
+impl Disturbance for Wake {
+    fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()> {
+        params::non_negative("dt", dt)?;
+        params::finite("wake speed", self.speed)?;
+        params::positive("wake radius", self.radius)?;
+        params::finite("wake strength", self.strength)?;
+        let [pc, pr] = self.position();
+        let grid = surface.grid();
+        let reach = 3.0 * self.radius;
+        let inv_r2 = 1.0 / (self.radius * self.radius);
+        let span = |p: f32, n: usize| {
+            let lo = (p - reach).ceil().max(0.0) as usize;
+            let hi = ((p + reach).floor().max(-1.0) as isize).min(n as isize - 1);
+            lo..(hi + 1).max(0) as usize
+        };
+        for row in span(pr, grid.rows) {
+            for col in span(pc, grid.cols) {
+                let d2 = (col as f32 - pc).powi(2) + (row as f32 - pr).powi(2);
+                let f = -self.strength * (-d2 * inv_r2).exp();
+                surface.add_force(row * grid.cols + col, [0.0, f, 0.0])?;
+            }
+        }
+        // Keep the distance small so f32 keeps its precision on long runs.
+        let total = *self.lengths.last().expect("at least one corner");
+        self.distance = (self.distance + self.speed * dt).rem_euclid(total);
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Params;
+
+    #[test]
+    fn rng_is_reproducible_and_spread() {
+        let mut a = Rng::new(42);
+        let mut b = Rng::new(42);
+        let mut c = Rng::new(43);
+        let xs: Vec<u32> = (0..100).map(|_| a.next_u32()).collect();
+        assert_eq!(xs, (0..100).map(|_| b.next_u32()).collect::<Vec<_>>());
+        assert_ne!(xs, (0..100).map(|_| c.next_u32()).collect::<Vec<_>>());
+        let mean = (0..10_000).map(|_| a.next_f32() as f64).sum::<f64>() / 10_000.0;
+        assert!((mean - 0.5).abs() < 0.02, "{mean}");
+    }
+
+    #[test]
+    fn rain_does_not_depend_on_how_time_is_cut() {
+        let p = Params::with_size(32, 32);
+        let mut s1 = Surface::new(p).unwrap();
+        let mut s2 = Surface::new(p).unwrap();
+        let mut r1 = Rain::new(2.0, 9);
+        let mut r2 = Rain::new(2.0, 9);
+        // Same drops when the same total time is passed in 1 call or in 10.
+        r1.apply(&mut s1, 10.0).unwrap();
+        r1.apply(&mut s1, 0.0).unwrap();
+        for _ in 0..10 {
+            r2.apply(&mut s2, 1.0).unwrap();
+        }
+        r2.apply(&mut s2, 0.0).unwrap();
+        assert_eq!(r1.fallen(), r2.fallen());
+        assert!(r1.fallen() > 5);
+        assert_eq!(s1.positions()[1], s2.positions()[1]);
+    }
+
+    #[test]
+    fn rain_stays_stable_for_a_long_time() {
+        let mut s = Surface::new(Params::with_size(48, 48)).unwrap();
+        let mut rain = Rain::new(1.0, 3);
+        for _ in 0..2000 {
+            let dt = s.params().dt;
+            rain.apply(&mut s, dt).unwrap();
+            s.step().unwrap();
+        }
+        assert!(rain.fallen() > 100);
+        assert!(s.positions()[1].iter().all(|y| y.abs() < 10.0));
+    }
+
+    #[test]
+    fn wake_moves_and_pushes() {
+        let mut s = Surface::new(Params::with_size(64, 64)).unwrap();
+        let mut wake = Wake::circle(&s, 20.0);
+        let start = wake.position();
+        assert!((start[0] - 51.5).abs() < 1e-4 && (start[1] - 31.5).abs() < 1e-4);
+        for _ in 0..500 {
+            let dt = s.params().dt;
+            wake.apply(&mut s, dt).unwrap();
+            s.step().unwrap();
+        }
+        assert_ne!(wake.position(), start);
+        let y = s.positions()[1];
+        assert!(y.iter().any(|v| v.abs() > 0.05));
+        assert!(y.iter().all(|v| v.is_finite() && v.abs() < 10.0));
+    }
+
+    #[test]
+    fn advance_takes_the_same_substeps_as_the_surface() {
+        let p = Params::with_size(32, 32);
+        let mut a = Surface::new(p).unwrap();
+        let mut b = Surface::new(p).unwrap();
+        a.drop_at(16.0, 16.0, -1.0, 2.0).unwrap();
+        b.drop_at(16.0, 16.0, -1.0, 2.0).unwrap();
+        for frame_dt in [1.0, 0.4, 0.05, 2.3, 0.0] {
+            let n = advance(&mut a, frame_dt, &mut []).unwrap();
+            assert_eq!(n, b.advance(frame_dt).unwrap());
+            assert_eq!(a.steps(), b.steps());
+        }
+        assert_eq!(a.positions(), b.positions());
+        let mut rain = Rain::new(1.0, 2);
+        assert!(advance(&mut a, f32::NAN, &mut [&mut rain]).is_err());
+        assert!(advance(&mut a, 1e9, &mut [&mut rain]).is_err());
+    }
+
+    #[test]
+    fn bad_wake_paths_are_refused() {
+        assert!(Wake::new(vec![]).is_err());
+        assert!(Wake::new(vec![[1.0, 1.0], [1.0, 1.0]]).is_err());
+        assert!(Wake::new(vec![[f32::NAN, 1.0], [2.0, 1.0]]).is_err());
+    }
+}

@@ -1,0 +1,508 @@
+//! The renderer and `springwater render`: pictures that are not blank, motion where the
+//! ripples are and stillness where they are not, reproducible files, an undistorted
+//! bottom through flat water, and clear errors.
+#![cfg(feature = "cli")]
+
+use glam::Vec3;
+use springwater::render::{Ball, Camera, Frame, Look, RenderParams, Renderer, Texture};
+use springwater::{Params, Surface};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn springwater(args: &[&str]) -> std::process::Output {
+    Command::new(env!("CARGO_BIN_EXE_springwater"))
+        .args(args)
+        .output()
+        .expect("the binary runs")
+}
+
+/// A fresh empty directory under the target directory, unique to `name`.
+fn scratch(name: &str) -> PathBuf {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR"))
+        .join("render-tests")
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn luminance(frame: &Frame) -> Vec<f32> {
+    frame
+        .rgb()
+        .chunks_exact(3)
+        .map(|p| 0.2126 * p[0] as f32 + 0.7152 * p[1] as f32 + 0.0722 * p[2] as f32)
+        .collect()
+}
+
+#[test]
+fn a_render_is_neither_blank_nor_uniform() {
+    let mut water = Surface::new(Params::with_size(64, 64)).unwrap();
+    water.drop_at(30.0, 34.0, -2.0, 3.0).unwrap();
+    for _ in 0..15 {
+        water.step().unwrap();
+    }
+    let camera = Camera::framing(64, 64, 1.0, 160, 120);
+    let mut renderer = Renderer::new(RenderParams::default(), Texture::pool_tiles(256)).unwrap();
+    let frame = renderer.render(&water.mesh_view(), &camera).unwrap();
+    assert_eq!((frame.width(), frame.height()), (160, 120));
+    let lum = luminance(frame);
+    let mean = lum.iter().sum::<f32>() / lum.len() as f32;
+    let var = lum.iter().map(|l| (l - mean).powi(2)).sum::<f32>() / lum.len() as f32;
+    assert!(mean > 20.0 && mean < 240.0, "mean luminance {mean}");
+    assert!(var.sqrt() > 10.0, "standard deviation {}", var.sqrt());
+    let mut colours: Vec<[u8; 3]> = frame
+        .rgb()
+        .chunks_exact(3)
+        .map(|p| [p[0], p[1], p[2]])
+        .collect();
+    colours.sort_unstable();
+    colours.dedup();
+    assert!(colours.len() > 500, "only {} colours", colours.len());
+    // The middle of the image is water: bluish.
+    let [r, _, b] = frame.pixel(80, 60);
+    assert!(b > r, "middle pixel is not water-coloured");
+}
+
+#[test]
+fn frames_change_where_ripples_travel_and_agree_where_the_water_is_calm() {
+    // One drop near a corner of a 96×96 pool, seen from straight above. In 8 steps the
+    // disturbance reaches at most ~30 cells from the drop (its Gaussian's non-zero reach
+    // plus one cell per step); the opposite corner stays exactly at rest.
+    let mut water = Surface::new(Params::with_size(96, 96)).unwrap();
+    water.drop_at(14.0, 14.0, -1.5, 2.0).unwrap();
+    let camera = Camera::top_down(96, 96, 1.0, 192, 192);
+    let mut renderer = Renderer::new(RenderParams::default(), Texture::pool_tiles(512)).unwrap();
+    for _ in 0..4 {
+        water.step().unwrap();
+    }
+    let a = renderer
+        .render(&water.mesh_view(), &camera)
+        .unwrap()
+        .clone();
+    for _ in 0..4 {
+        water.step().unwrap();
+    }
+    let b = renderer
+        .render(&water.mesh_view(), &camera)
+        .unwrap()
+        .clone();
+    // Pixels per cell: 192 / 95 ≈ 2. The drop is near pixel (28, 28).
+    let differs = |x0: usize, x1: usize| {
+        (x0..x1)
+            .flat_map(|y| (x0..x1).map(move |x| (x, y)))
+            .filter(|&(x, y)| a.pixel(x, y) != b.pixel(x, y))
+            .count()
+    };
+    assert!(
+        differs(10, 50) > 200,
+        "the ripple near the drop did not change the picture"
+    );
+    assert_eq!(differs(120, 190), 0, "calm water far from the drop changed");
+}
+
+#[test]
+fn a_flat_surface_seen_from_above_shows_the_bottom_undistorted() {
+    let (cols, rows) = (65, 65);
+    let water = Surface::new(Params::with_size(cols, rows)).unwrap();
+    let (w, h) = (240u32, 240u32);
+    let camera = Camera::top_down(cols, rows, 1.0, w, h);
+    // Nothing but the bottom: no tint, no caustics, a black sky (the Fresnel reflection of
+    // a black sky only darkens by the reflectance, about 2% looking straight down).
+    let look = Look {
+        sky_zenith: [0.0; 3],
+        sky_horizon: [0.0; 3],
+        glint: 0.0,
+        absorption: [0.0; 3],
+        caustics: 0.0,
+        surroundings: false,
+        ..Look::default()
+    };
+    let mut params = RenderParams {
+        look,
+        ..RenderParams::default()
+    };
+    params.refraction.depth = 6.0;
+    let ior = params.refraction.ior;
+    let texture = Texture::pool_tiles(512);
+    let mut renderer = Renderer::new(params, texture.clone()).unwrap();
+    let frame = renderer.render(&water.mesh_view(), &camera).unwrap();
+
+    // The same picture traced directly: each pixel's ray meets the flat water at y = 0,
+    // bends by Snell's law, meets the bottom, and reads the texture there.
+    let footprint = ((cols - 1) as f32, (rows - 1) as f32);
+    let expected = |px: f32, py: f32, shift: f32| -> Option<[u8; 3]> {
+        let d = camera.ray(px, py);
+        let s = -camera.eye.y / d.y;
+        let p = camera.eye + d * s;
+        if p.x < 0.0 || p.z < 0.0 || p.x > footprint.0 || p.z > footprint.1 {
+            return None;
+        }
+        let (sin_i, eta) = ((1.0 - d.y * d.y).max(0.0).sqrt(), 1.0 / ior);
+        let sin_t = eta * sin_i;
+        let tan_t = sin_t / (1.0 - sin_t * sin_t).sqrt();
+        let horizontal = Vec3::new(d.x, 0.0, d.z).normalize_or_zero();
+        let q = p + horizontal * (tan_t * params.refraction.depth);
+        let c = texture.sample(q.x / footprint.0 + shift, q.z / footprint.1);
+        let r0 = ((1.0 - ior) / (1.0 + ior)).powi(2);
+        Some(c.map(|v| {
+            let s = v * (1.0 - r0);
+            let s = if s <= 0.003_130_8 {
+                s * 12.92
+            } else {
+                1.055 * s.powf(1.0 / 2.4) - 0.055
+            };
+            (s * 255.0 + 0.5).clamp(0.0, 255.0) as u8
+        }))
+    };
+    let error = |shift: f32| {
+        let (mut sum, mut n) = (0.0f64, 0usize);
+        for y in 0..h as usize {
+            for x in 0..w as usize {
+                if let Some(e) = expected(x as f32 + 0.5, y as f32 + 0.5, shift) {
+                    let got = frame.pixel(x, y);
+                    sum += (0..3)
+                        .map(|k| (got[k] as f64 - e[k] as f64).abs())
+                        .sum::<f64>()
+                        / 3.0;
+                    n += 1;
+                }
+            }
+        }
+        assert!(
+            n > (w * h) as usize / 2,
+            "the water covers too little of the image"
+        );
+        sum / n as f64
+    };
+    let exact = error(0.0);
+    // The bottom moved by 1% of the pool (a quarter of a tile) is far off: the test is sharp.
+    let shifted = error(0.01);
+    assert!(
+        exact < 1.0,
+        "mean error {exact:.2} levels against the directly sampled bottom"
+    );
+    assert!(
+        shifted > 4.0 * exact.max(0.5),
+        "a shifted bottom is not detected ({shifted:.2} vs {exact:.2})"
+    );
+}
+
+#[test]
+fn the_same_seed_gives_the_same_file_and_another_seed_another() {
+    let dir = scratch("seed");
+    let run = |name: &str, seed: &str| {
+        let out = dir.join(name);
+        let o = springwater(&[
+            "render",
+            "--size",
+            "48x48",
+            "--frames",
+            "6",
+            "--width",
+            "96",
+            "--height",
+            "72",
+            "--rain",
+            "2",
+            "--seed",
+            seed,
+            "--wake",
+            "--orbit",
+            "60",
+            "--wireframe",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        std::fs::read(out).unwrap()
+    };
+    let a = run("a.gif", "5");
+    let b = run("b.gif", "5");
+    let c = run("c.gif", "6");
+    assert!(a.starts_with(b"GIF89a"));
+    assert_eq!(a, b, "same seed, different bytes");
+    assert_ne!(a, c, "another seed gave the same file");
+    // Thread count changes nothing either.
+    let one = dir.join("one.gif");
+    let o = springwater(&[
+        "render",
+        "--size",
+        "48x48",
+        "--frames",
+        "6",
+        "--width",
+        "96",
+        "--height",
+        "72",
+        "--rain",
+        "2",
+        "--seed",
+        "5",
+        "--wake",
+        "--orbit",
+        "60",
+        "--wireframe",
+        "--threads",
+        "1",
+        "--out",
+        one.to_str().unwrap(),
+    ]);
+    assert!(o.status.success());
+    assert_eq!(
+        a,
+        std::fs::read(one).unwrap(),
+        "one thread gave different bytes"
+    );
+    // Nor does drawing the animation twice (once for the palette, once to encode), the
+    // way animations too large to keep in memory are written.
+    let twice = dir.join("twice.gif");
+    let o = Command::new(env!("CARGO_BIN_EXE_springwater"))
+        .env("SPRINGWATER_KEEP_FRAMES_BYTES", "1000")
+        .args([
+            "render",
+            "--size",
+            "48x48",
+            "--frames",
+            "6",
+            "--width",
+            "96",
+            "--height",
+            "72",
+            "--rain",
+            "2",
+            "--seed",
+            "5",
+            "--wake",
+            "--orbit",
+            "60",
+            "--wireframe",
+            "--out",
+            twice.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    assert!(String::from_utf8_lossy(&o.stdout).contains("twice"));
+    assert_eq!(
+        a,
+        std::fs::read(twice).unwrap(),
+        "two passes gave different bytes"
+    );
+}
+
+#[test]
+fn png_frames_and_a_png_bottom_work() {
+    let dir = scratch("png");
+    // A 4×4 checkerboard PNG as the bottom.
+    let bottom = dir.join("checker.png");
+    {
+        let file = std::fs::File::create(&bottom).unwrap();
+        let mut enc = png::Encoder::new(std::io::BufWriter::new(file), 4, 4);
+        enc.set_color(png::ColorType::Grayscale);
+        enc.set_depth(png::BitDepth::Eight);
+        let data: Vec<u8> = (0..16)
+            .map(|i| if (i % 4 + i / 4) % 2 == 0 { 255 } else { 0 })
+            .collect();
+        enc.write_header().unwrap().write_image_data(&data).unwrap();
+    }
+    let frames = dir.join("frames");
+    let o = springwater(&[
+        "render",
+        "--size",
+        "32x32",
+        "--frames",
+        "3",
+        "--width",
+        "64",
+        "--height",
+        "48",
+        "--bottom",
+        bottom.to_str().unwrap(),
+        "--png",
+        frames.to_str().unwrap(),
+        "--wireframe",
+    ]);
+    assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+    let stdout = String::from_utf8_lossy(&o.stdout);
+    for stage in ["simulation", "normals", "LOD", "refraction", "drawing"] {
+        assert!(
+            stdout.contains(stage),
+            "the summary does not mention {stage}: {stdout}"
+        );
+    }
+    for k in 0..3 {
+        let path = frames.join(format!("frame_{k:04}.png"));
+        let decoder =
+            png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&path).unwrap()));
+        let info = decoder.read_info().unwrap().info().clone();
+        assert_eq!((info.width, info.height), (64, 48));
+    }
+}
+
+#[test]
+fn bad_flags_and_files_get_one_line_errors() {
+    let dir = scratch("errors");
+    let garbage = dir.join("not-a.png");
+    std::fs::write(&garbage, b"this is not a PNG file").unwrap();
+    let gif = dir.join("x.gif");
+    let gif = gif.to_str().unwrap();
+    let missing = dir.join("missing.png");
+    let unwritable = dir.join("no-such-dir").join("x.gif");
+    let cases: Vec<(Vec<&str>, &str)> = vec![
+        (vec!["render"], "--out"),
+        (vec!["render", "--frames", "abc", "--out", gif], "--frames"),
+        (vec!["render", "--frames", "0", "--out", gif], "--frames"),
+        (vec!["render", "--width", "-3", "--out", gif], "--width"),
+        (vec!["render", "--eye", "1,2", "--out", gif], "--eye"),
+        (vec!["render", "--eye", "1,nan,3", "--out", gif], "--eye"),
+        (vec!["render", "--depth", "0", "--out", gif], "--depth"),
+        (vec!["render", "--rain", "-1", "--out", gif], "--rain"),
+        (vec!["render", "--bogus", "--out", gif], "--bogus"),
+        (
+            vec![
+                "render",
+                "--eye",
+                "10,10,10",
+                "--look-at",
+                "10,10,10",
+                "--out",
+                gif,
+            ],
+            "look-at",
+        ),
+        (
+            vec![
+                "render",
+                "--bottom",
+                missing.to_str().unwrap(),
+                "--out",
+                gif,
+            ],
+            "missing.png",
+        ),
+        (
+            vec![
+                "render",
+                "--bottom",
+                garbage.to_str().unwrap(),
+                "--out",
+                gif,
+            ],
+            "not-a.png",
+        ),
+        (
+            vec!["render", "--out", unwritable.to_str().unwrap()],
+            "x.gif",
+        ),
+        (vec!["render", "--dt", "0.6", "--out", gif], "timestep"),
+    ];
+    for (args, mention) in cases {
+        let o = springwater(&args);
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        assert!(!o.status.success(), "{args:?} succeeded");
+        assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+        assert_eq!(
+            stderr.trim_end().lines().count(),
+            1,
+            "{args:?}: not one line: {stderr}"
+        );
+        assert!(
+            stderr.starts_with("springwater: error:"),
+            "{args:?}: {stderr}"
+        );
+        assert!(
+            stderr.contains(mention),
+            "{args:?}: the error does not mention {mention}: {stderr}"
+        );
+    }
+    // A simulation that fails part-way reports the step and leaves no truncated GIF.
+    let broken = dir.join("broken.gif");
+    let o = springwater(&[
+        "render",
+        "--size",
+        "32x32",
+        "--frames",
+        "3",
+        "--drop",
+        "16,16,-1e30,1",
+        "--out",
+        broken.to_str().unwrap(),
+    ]);
+    let stderr = String::from_utf8_lossy(&o.stderr);
+    assert!(
+        !o.status.success() && stderr.contains("non-finite"),
+        "{stderr}"
+    );
+    assert!(
+        !broken.exists(),
+        "a failed render left {}",
+        broken.display()
+    );
+}
+
+#[test]
+fn the_wireframe_overlay_colours_edges_by_level() {
+    let water = Surface::new(Params::with_size(48, 48)).unwrap();
+    let camera = Camera::framing(48, 48, 1.0, 200, 150);
+    let plain = Renderer::new(RenderParams::default(), Texture::pool_tiles(256))
+        .unwrap()
+        .render(&water.mesh_view(), &camera)
+        .unwrap()
+        .clone();
+    let mut wire = Renderer::new(
+        RenderParams {
+            wireframe: true,
+            ..RenderParams::default()
+        },
+        Texture::pool_tiles(256),
+    )
+    .unwrap();
+    let framed = wire.render(&water.mesh_view(), &camera).unwrap();
+    let changed = (0..150)
+        .flat_map(|y| (0..200).map(move |x| (x, y)))
+        .filter(|&(x, y)| plain.pixel(x, y) != framed.pixel(x, y))
+        .count();
+    assert!(changed > 2000, "only {changed} pixels show edges");
+    // The finest level's edges are yellow: strong red and green, little blue.
+    let yellow = framed
+        .rgb()
+        .chunks_exact(3)
+        .filter(|p| p[0] > 200 && p[1] > 150 && p[2] < 100)
+        .count();
+    assert!(yellow > 100, "only {yellow} yellow pixels");
+}
+
+#[test]
+fn balls_are_drawn_over_the_water_and_bad_ones_refused() {
+    let water = Surface::new(Params::with_size(48, 48)).unwrap();
+    let camera = Camera::framing(48, 48, 1.0, 160, 120);
+    let mut renderer = Renderer::new(RenderParams::default(), Texture::pool_tiles(256)).unwrap();
+    let centre = Vec3::new(24.0, 1.0, 24.0);
+    let red = [[0.9, 0.0, 0.0], [0.9, 0.0, 0.0]];
+    renderer
+        .set_balls(&[Ball {
+            centre,
+            radius: 3.0,
+            colours: red,
+        }])
+        .unwrap();
+    let frame = renderer.render(&water.mesh_view(), &camera).unwrap();
+    let (x, y, _) = camera.project(centre).unwrap();
+    let [r, g, b] = frame.pixel(x as usize, y as usize);
+    assert!(
+        r > 150 && g < 80 && b < 80,
+        "the ball's middle is {r},{g},{b}"
+    );
+    let bad = Ball {
+        centre: Vec3::new(f32::NAN, 0.0, 0.0),
+        radius: 1.0,
+        colours: red,
+    };
+    assert!(renderer.set_balls(&[bad]).is_err());
+    let bad = Ball {
+        centre,
+        radius: 0.0,
+        colours: red,
+    };
+    assert!(renderer.set_balls(&[bad]).is_err());
+}
