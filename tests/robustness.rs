@@ -456,3 +456,32 @@ fn free_pretensioned_sheet_collapses_without_going_non_finite() {
     // The finding (docs/reliability.md): far more than the bound K = 199 of the regime.
     eprintln!("free pre-tensioned sheet: energy gain x{:.0}", e_max / e0);
 }
+
+/// From the `params` fuzz target (fuzz/regressions/params/crash-d603…): lanes past the end
+/// of a row hold padding, and once the surface was ~1e19 from the origin their zero-
+/// coefficient "springs" to it computed `0 · ∞ = NaN`, which leaked into real nodes: the
+/// engine refused a step that the reference took. A rigidly moving sheet far away must
+/// step alike in both.
+#[test]
+fn a_sheet_far_from_the_origin_steps_like_the_reference() {
+    for cols in [3, 9, 17] {
+        let p = Params {
+            boundary: Boundary::Free,
+            rest_ratio: 1.0,
+            ..Params::with_size(cols, 6)
+        };
+        let mut engine = Surface::new(p).unwrap();
+        for node in 0..engine.len() {
+            engine.add_velocity(node, [1e20, 0.0, -1e20]).unwrap();
+        }
+        let mut reference = engine.clone();
+        for step in 0..4 {
+            engine
+                .step()
+                .unwrap_or_else(|e| panic!("{cols} columns, step {step}: {e}"));
+            reference.step_with(Stepper::Reference).unwrap();
+            assert_eq!(engine.to_bytes(), reference.to_bytes());
+        }
+        assert!(engine.positions()[0][0] > 1e20);
+    }
+}

@@ -407,8 +407,6 @@ fn odd_band(
 }
 
 /// Force on the `i` lanes from springs `i → j`: `c (L − L0) d / L`, zero where `L = 0`.
-/// A spring that does not exist has `c = 0` and gives ±0, which sums like the reference's
-/// +0 in every case but an all-zero force, and the integrator adds `+0` (or `g`) to that.
 #[inline(always)]
 fn spring_force(pi: [Lane; 3], pj: [Lane; 3], coef: Lane, rest: Lane) -> [Lane; 3] {
     let d = [pj[0] - pi[0], pj[1] - pi[1], pj[2] - pi[2]];
@@ -473,12 +471,16 @@ fn row_springs(inp: &Inputs, r: usize, out: &mut RowForces) {
             // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
             unsafe {
                 let (coef, rest) = table.at(k);
-                let f = spring_force(
-                    load3(here, k),
-                    load3(there, k),
-                    coef & inp.exists(fam, k, chunks),
-                    rest,
-                );
+                let mut f = spring_force(load3(here, k), load3(there, k), coef, rest);
+                // Lanes without a spring (only in a row's first and last chunk) hold other
+                // rows' nodes or padding; they get exactly +0, like the reference's absent
+                // spring. A coefficient of 0 is not enough: `0 · ∞` is NaN once those
+                // positions are far apart (the `params` fuzz target found a surface beyond
+                // ~1e19 from the origin whose step the engine refused and the reference took).
+                if k + 1 == chunks || (fam == 3 && k == 0) {
+                    let exists = inp.exists(fam, k, chunks);
+                    f = f.map(|c| exists.select(c, Lane::ZERO));
+                }
                 for (o, fk) in out.iter_mut().zip(f) {
                     put(o, k, fk);
                 }
