@@ -2,7 +2,8 @@
 # Runs every cargo-fuzz target for SECONDS seconds each, one after the other, and fails on
 # the first crash. Usage: fuzz/run.sh SECONDS [TARGET...]
 #
-# Installs cargo-fuzz if it is missing and uses the first nightly toolchain rustup has.
+# Installs cargo-fuzz if it is missing and uses the first nightly toolchain rustup has
+# (installing one if there is none).
 # Inputs that once found a bug live in fuzz/regressions/TARGET/ and are replayed first (as
 # a read-only corpus); new corpus entries go to fuzz/corpus/TARGET/ (not committed), crash
 # inputs to fuzz/artifacts/TARGET/.
@@ -19,14 +20,16 @@ cd "$(dirname "$0")/.."
 
 toolchain=$(rustup toolchain list | awk '/^nightly/ { print $1; exit }')
 if [[ -z "$toolchain" ]]; then
-    echo "fuzz/run.sh: no nightly toolchain (rustup toolchain install nightly)" >&2
-    exit 1
+    echo "fuzz/run.sh: no nightly toolchain; installing one" >&2
+    rustup toolchain install nightly --profile minimal
+    toolchain=nightly
 fi
 if ! cargo "+$toolchain" fuzz --version >/dev/null 2>&1; then
     cargo install cargo-fuzz --locked
 fi
 
-flags=(-s none -a -O)
+# FUZZ_SANITIZER=address runs the targets under AddressSanitizer instead.
+flags=(-s "${FUZZ_SANITIZER:-none}" -a -O)
 targets=("$@")
 if [[ ${#targets[@]} -eq 0 ]]; then
     mapfile -t targets < <(cargo "+$toolchain" fuzz list)
