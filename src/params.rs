@@ -92,12 +92,15 @@ impl Default for Params {
     }
 }
 
-/// Largest node count a surface accepts (2^28 nodes, about 10 GiB of state).
-pub const MAX_NODES: usize = 1 << 28;
+/// Largest node count a surface accepts: 2^26 nodes (8192×8192), about 7 GiB of state,
+/// so that a grid that passes validation also fits in a machine's memory instead of
+/// being killed while it is allocated.
+pub const MAX_NODES: usize = 1 << 26;
 
-/// Approximate bytes of state per node (positions and velocities double-buffered,
-/// forces, per-node and per-spring tables).
-pub(crate) const BYTES_PER_NODE: u128 = 4 * (12 + 3 + 2 + 8 + 1);
+/// Bytes of state per node: positions and velocities double-buffered (48), external
+/// forces (12), mass, 1/m and viscosity (12), the pinned flag (1) and the spring tables
+/// (32). The scalar reference adds 48 more the first time it runs.
+pub(crate) const BYTES_PER_NODE: u128 = 48 + 12 + 12 + 1 + 32;
 
 impl Params {
     /// The seed's parameters on a `cols × rows` grid.
