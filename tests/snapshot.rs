@@ -167,12 +167,12 @@ fn wrong_magic_and_version_are_refused() {
 #[test]
 fn lying_lengths_are_refused_without_allocating() {
     let bytes = Surface::new(Params::with_size(4, 4)).unwrap().to_bytes();
-    // A header announcing 2^28 nodes over a few hundred bytes: refused as truncated, and the
-    // reader path does not allocate the announced size.
+    // A header announcing 2^26 nodes (the most a surface may have) over a few hundred bytes:
+    // refused as truncated, and the reader path does not allocate the announced size.
     let mut b = bytes.clone();
-    b[24..32].copy_from_slice(&(1u64 << 14).to_le_bytes());
-    b[32..40].copy_from_slice(&(1u64 << 14).to_le_bytes());
-    b[16..24].copy_from_slice(&(116u64 + 77 * (1 << 28)).to_le_bytes());
+    b[24..32].copy_from_slice(&(1u64 << 13).to_le_bytes());
+    b[32..40].copy_from_slice(&(1u64 << 13).to_le_bytes());
+    b[16..24].copy_from_slice(&(116u64 + 77 * (1 << 26)).to_le_bytes());
     assert!(message(&b).contains("truncated"));
     assert!(Surface::load(&b[..]).is_err());
     // cols × rows overflowing u64.
