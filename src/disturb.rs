@@ -58,22 +58,8 @@ pub fn advance(
     frame_dt: f32,
     disturbances: &mut [&mut dyn Disturbance],
 ) -> Result<usize> {
-    params::non_negative("frame_dt", frame_dt)?;
-    let dt = surface.params().dt;
-    let substeps = (frame_dt / dt).ceil();
-    if substeps > crate::surface::MAX_SUBSTEPS as f32 {
-        return Err(Error::InvalidParam {
-            name: "frame_dt",
-            value: frame_dt as f64,
-            expected: "at most 10000 timesteps long",
-        });
-    }
-    let substeps = substeps as usize;
-    if substeps == 0 {
-        return Ok(0);
-    }
-    // Never past `dt` by a rounding error, so each `advance` below is one step.
-    let sub = (frame_dt / substeps as f32).min(dt);
+    // The same cut as `Surface::advance`, so each `advance` below is one step.
+    let (substeps, sub) = surface.split_frame(frame_dt)?;
     for _ in 0..substeps {
         for d in disturbances.iter_mut() {
             d.apply(surface, sub)?;

@@ -235,8 +235,19 @@ impl Surface {
     /// number of substeps taken. A failing substep stops the frame there (earlier substeps
     /// stay applied, the failing one is not) and returns its error.
     pub fn advance(&mut self, frame_dt: f32) -> Result<usize> {
+        let (substeps, dt) = self.split_frame(frame_dt)?;
+        for _ in 0..substeps {
+            self.step_dt(dt, Stepper::Engine)?;
+        }
+        Ok(substeps)
+    }
+
+    /// How [`Surface::advance`] cuts `frame_dt`: the number of equal substeps and their
+    /// length, never longer than `params().dt` (not even by a rounding error).
+    pub fn split_frame(&self, frame_dt: f32) -> Result<(usize, f32)> {
         params::non_negative("frame_dt", frame_dt)?;
-        let substeps = (frame_dt / self.params.dt).ceil();
+        let dt = self.params.dt;
+        let substeps = (frame_dt / dt).ceil();
         if substeps > MAX_SUBSTEPS as f32 {
             return Err(Error::InvalidParam {
                 name: "frame_dt",
@@ -245,14 +256,12 @@ impl Surface {
             });
         }
         let substeps = substeps as usize;
-        if substeps == 0 {
-            return Ok(0);
-        }
-        let dt = frame_dt / substeps as f32;
-        for _ in 0..substeps {
-            self.step_dt(dt, Stepper::Engine)?;
-        }
-        Ok(substeps)
+        let sub = if substeps == 0 {
+            0.0
+        } else {
+            (frame_dt / substeps as f32).min(dt)
+        };
+        Ok((substeps, sub))
     }
 
     /// Drops a disturbance: adds `height · exp(−d²/radius²)` to y of every free node,
