@@ -2,7 +2,7 @@
 
 use crate::error::{Error, Result};
 use crate::forces::{self, simd::Workspace, StepConfig};
-use crate::grid::{Family, Grid, SpringId};
+use crate::grid::{Grid, SpringId};
 use crate::mesh::MeshView;
 use crate::params::{self, Params};
 use crate::springs::{self, Band, Springs};
@@ -546,6 +546,3 @@ impl Surface {
         }
     }
 }
-
-/// All four spring families, re-exported for convenience in `set_spring` calls.
-pub const FAMILIES: [Family; 4] = Family::ALL;
