@@ -36,7 +36,7 @@
 use super::StepConfig;
 use crate::simd::{first_lanes, get, lanes, lanes_mut, put, Lane, LANES};
 use crate::springs::Springs;
-use crate::state::State;
+use crate::state::{State, Xyz};
 use std::cell::RefCell;
 
 /// Offset of column 0 in a row buffer: index `LEAD − 1` is a zero "column −1".
@@ -230,6 +230,18 @@ impl<'a> Rows<'a> {
     }
 }
 
+/// Every row of the back buffers (`next_pos`, `next_vel`), for the tasks to split.
+fn back_rows<'a>(pos: &'a mut Xyz, vel: &'a mut Xyz, cols: usize, n: usize) -> Rows<'a> {
+    let [px, py, pz] = pos;
+    let [vx, vy, vz] = vel;
+    let out = [px, py, pz, vx, vy, vz].map(|b| &mut b[..n]);
+    Rows {
+        first_row: 0,
+        cols,
+        out,
+    }
+}
+
 /// One engine step from the front into the back buffers. Returns the first non-finite
 /// node, if any.
 pub(crate) fn step(
@@ -262,42 +274,17 @@ pub(crate) fn step(
     let h = ws.prepare(cols, rows);
 
     // Colour 0: even bands, each paired with the odd band below it.
-    let [px, py, pz] = &mut state.next_pos;
-    let [vx, vy, vz] = &mut state.next_vel;
-    let out = [
-        &mut px[..n],
-        &mut py[..n],
-        &mut pz[..n],
-        &mut vx[..n],
-        &mut vy[..n],
-        &mut vz[..n],
-    ];
-    let all = Rows {
-        first_row: 0,
-        cols,
-        out,
-    };
-    let bad_even = for_each_pair(&mut ws.parked, 0, all, h, &|b, pair, rows| {
-        even_band(&inp, b, h, pair, rows)
-    });
+    let bad_even = for_each_pair(
+        &mut ws.parked,
+        0,
+        back_rows(&mut state.next_pos, &mut state.next_vel, cols, n),
+        h,
+        &|b, pair, rows| even_band(&inp, b, h, pair, rows),
+    );
 
     // Colour 1: odd bands, each paired with the even band below it.
-    let [px, py, pz] = &mut state.next_pos;
-    let [vx, vy, vz] = &mut state.next_vel;
-    let out = [
-        &mut px[..n],
-        &mut py[..n],
-        &mut pz[..n],
-        &mut vx[..n],
-        &mut vy[..n],
-        &mut vz[..n],
-    ];
-    let (_, from_band_1) = Rows {
-        first_row: 0,
-        cols,
-        out,
-    }
-    .split_at_row(h);
+    let (_, from_band_1) =
+        back_rows(&mut state.next_pos, &mut state.next_vel, cols, n).split_at_row(h);
     let bad_odd = match ws.parked.get_mut(1..) {
         Some(odd) if !odd.is_empty() => for_each_pair(odd, 1, from_band_1, h, &|b, pair, rows| {
             odd_band(&inp, b, h, pair, rows)
