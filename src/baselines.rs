@@ -9,6 +9,7 @@
 
 use crate::grid::Grid;
 use crate::params::{Boundary, Params};
+use crate::simd::Floats;
 use glam::Vec3;
 
 /// A node of the naive array-of-structs baseline.
@@ -119,14 +120,18 @@ impl NaiveSurface {
 /// Positions and velocities only, streamed once per pass.
 #[derive(Debug, Clone)]
 pub struct MemoryFloor {
-    pos: [Vec<f32>; 3],
-    vel: [Vec<f32>; 3],
+    pos: [Floats; 3],
+    vel: [Floats; 3],
 }
 
 impl MemoryFloor {
     /// Buffers for `nodes` nodes.
     pub fn new(nodes: usize) -> Self {
-        let v = || vec![0.5f32; nodes];
+        let v = || {
+            let mut b = Floats::zeros(nodes);
+            b.fill(0.5);
+            b
+        };
         Self {
             pos: [v(), v(), v()],
             vel: [v(), v(), v()],

@@ -48,6 +48,7 @@
 use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::params::{self, Boundary, Params, MAX_NODES};
+use crate::simd::Floats;
 use crate::springs::Springs;
 use crate::state::State;
 use crate::surface::Surface;
@@ -501,8 +502,8 @@ impl Surface {
     pub fn snapshot(&self) -> Snapshot {
         let n = self.len();
         let s = &self.state;
-        let cut3 = |a: &[Vec<f32>; 3]| [a[0][..n].to_vec(), a[1][..n].to_vec(), a[2][..n].to_vec()];
-        let cut4 = |a: &[Vec<f32>; 4]| std::array::from_fn(|f| a[f][..n].to_vec());
+        let cut3 = |a: &[Floats; 3]| [a[0][..n].to_vec(), a[1][..n].to_vec(), a[2][..n].to_vec()];
+        let cut4 = |a: &[Floats; 4]| std::array::from_fn(|f| a[f][..n].to_vec());
         Snapshot {
             params: *self.params(),
             steps: self.steps(),
@@ -530,7 +531,7 @@ impl Surface {
         let n = p.cols * p.rows;
         let mut state = State::new(&p);
         let mut springs = Springs::new(&p);
-        let fill3 = |dst: &mut [Vec<f32>; 3], src: &[Vec<f32>; 3]| {
+        let fill3 = |dst: &mut [Floats; 3], src: &[Vec<f32>; 3]| {
             for (d, s) in dst.iter_mut().zip(src) {
                 d[..n].copy_from_slice(s);
             }

@@ -58,9 +58,9 @@ pub fn band_rows(rows: usize, threads: usize) -> usize {
 #[derive(Debug, Clone)]
 pub(crate) struct Springs {
     /// Rest length `L0` per family, indexed by origin node.
-    pub rest: [Vec<f32>; 4],
+    pub rest: [crate::simd::Floats; 4],
     /// Coefficient `c` per family, indexed by origin node.
-    pub coef: [Vec<f32>; 4],
+    pub coef: [crate::simd::Floats; 4],
     /// `(c, L0)` shared by every spring of a family, if they all agree.
     uniform: [Option<(f32, f32)>; 4],
 }
@@ -70,8 +70,10 @@ impl Springs {
     pub fn new(params: &Params) -> Self {
         let grid = Grid::new(params.cols, params.rows);
         let len = padded_len(grid.len());
-        let mut rest: [Vec<f32>; 4] = std::array::from_fn(|_| vec![0.0; len]);
-        let mut coef: [Vec<f32>; 4] = std::array::from_fn(|_| vec![0.0; len]);
+        let mut rest: [crate::simd::Floats; 4] =
+            std::array::from_fn(|_| crate::simd::Floats::zeros(len));
+        let mut coef: [crate::simd::Floats; 4] =
+            std::array::from_fn(|_| crate::simd::Floats::zeros(len));
         for (id, _) in grid.springs() {
             let f = id.family as usize;
             rest[f][id.origin] = params.rest_ratio * id.family.initial_length() * params.spacing;

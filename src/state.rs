@@ -1,6 +1,6 @@
 //! The structure-of-arrays node state.
 //!
-//! Every per-node quantity is its own `f32` buffer: x, y, z, vx, vy, vz, external forces,
+//! Every per-node quantity is its own lane-aligned `f32` buffer ([`Floats`]): x, y, z, vx, vy, vz, external forces,
 //! mass, viscosity. (Spring forces live with the step that computes them: per family and
 //! row in the engine, per family and node in the scalar reference.) Node `i` lives at index `i` of each buffer. Buffers are padded past the
 //! last node by more than a lane so that a SIMD chunk starting at any node, or one node
@@ -12,13 +12,13 @@
 
 use crate::grid::Grid;
 use crate::params::{Boundary, Params};
-use crate::simd::{round_up, LANES};
+use crate::simd::{round_up, Floats, LANES};
 
 /// Three coordinate buffers, `[x, y, z]`.
-pub(crate) type Xyz = [Vec<f32>; 3];
+pub(crate) type Xyz = [Floats; 3];
 
 pub(crate) fn zeros3(len: usize) -> Xyz {
-    [vec![0.0; len], vec![0.0; len], vec![0.0; len]]
+    [Floats::zeros(len), Floats::zeros(len), Floats::zeros(len)]
 }
 
 /// Length of a padded per-node buffer for `nodes` nodes.
@@ -43,11 +43,11 @@ pub(crate) struct State {
     /// True when `ext` holds anything non-zero.
     pub ext_pending: bool,
     /// Nodal mass `m`.
-    pub mass: Vec<f32>,
+    pub mass: Floats,
     /// `1/m` for free nodes, `0` for pinned nodes: the integrator's only use of mass.
-    pub inv_mass: Vec<f32>,
+    pub inv_mass: Floats,
     /// Viscosity `γ`.
-    pub viscosity: Vec<f32>,
+    pub viscosity: Floats,
     /// Pinned nodes never move.
     pub pinned: Vec<bool>,
 }
@@ -65,9 +65,9 @@ impl State {
             *x = c as f32 * params.spacing;
             *z = r as f32 * params.spacing;
         }
-        let mut mass = vec![0.0; len];
+        let mut mass = Floats::zeros(len);
         mass[..n].fill(params.mass);
-        let mut viscosity = vec![0.0; len];
+        let mut viscosity = Floats::zeros(len);
         viscosity[..n].fill(params.viscosity);
         let pinned: Vec<bool> = (0..n)
             .map(|i| params.boundary == Boundary::Pinned && grid.is_border(i))
@@ -81,7 +81,7 @@ impl State {
             ext: zeros3(len),
             ext_pending: false,
             mass,
-            inv_mass: vec![0.0; len],
+            inv_mass: Floats::zeros(len),
             viscosity,
             pinned,
         };

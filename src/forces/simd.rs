@@ -50,7 +50,7 @@ const ALL: Lane = Lane::new([f32::from_bits(u32::MAX); LANES]);
 #[derive(Debug, Clone)]
 pub(crate) struct RowForces {
     cols: usize,
-    fam: [[Vec<f32>; 3]; 4],
+    fam: [[crate::simd::Floats; 3]; 4],
 }
 
 impl RowForces {
@@ -58,7 +58,7 @@ impl RowForces {
         let len = LEAD + crate::simd::round_up(cols) + LANES;
         Self {
             cols,
-            fam: std::array::from_fn(|_| std::array::from_fn(|_| vec![0.0; len])),
+            fam: std::array::from_fn(|_| std::array::from_fn(|_| crate::simd::Floats::zeros(len))),
         }
     }
 
