@@ -77,6 +77,7 @@ mod state;
 pub mod surface;
 
 pub use error::{Error, Result};
+pub use forces::simd::MAX_PASS_STEPS;
 pub use grid::{Family, Grid, SpringId};
 pub use mesh::MeshView;
 pub use params::{Boundary, Params};

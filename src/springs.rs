@@ -142,11 +142,85 @@ impl Band {
     }
 }
 
-/// The bands of a grid with `rows` rows, `band_rows` rows each (the last may be shorter).
+/// The bands of a grid with `rows` rows, `band_rows` rows each; the last band also takes
+/// the remainder (so it has `band_rows ..< 2·band_rows` rows), and a grid shorter than
+/// `band_rows` is one band.
 pub fn bands(rows: usize, band_rows: usize) -> impl Iterator<Item = Band> {
-    let band_rows = band_rows.max(1);
-    (0..rows.div_ceil(band_rows)).map(move |b| Band {
+    let tiling = Tiling::new(rows, band_rows, 1);
+    (0..tiling.bands()).map(move |b| Band {
         colour: b % 2,
-        rows: b * band_rows..((b + 1) * band_rows).min(rows),
+        rows: tiling.band_start(b)..tiling.band_start(b + 1),
     })
+}
+
+/// How one engine pass of `levels` steps cuts the rows among the bands.
+///
+/// A pass advances the state `levels` steps while each band streams its rows once (see
+/// [`crate::forces`]). Level `l` means the state after `l` steps. At each level every row
+/// is integrated by exactly one band, and the cut between two bands leans with the level,
+/// one row per step, always into the even band:
+///
+/// ```text
+///            band 0 (even)      band 1 (odd)       band 2 (even)
+/// level 0    [0, H)             [H, 2H)            [2H, 3H)
+/// level l    [0, H−l)           [H−l, 2H+l)        [2H+l, 3H−l)
+/// ```
+///
+/// So an even band (colour 0) shrinks as it climbs the levels: every row it integrates at
+/// level `l` needs rows it integrated itself at level `l−1`, and the even bands run in
+/// parallel first with nothing from anyone. An odd band (colour 1) grows: it runs second
+/// and borrows, at each level, the two rows on either side that the even bands beside it
+/// integrated and handed over. Bands of one colour never write the same row, so there are
+/// no atomics and no locks; the spring between the two rows at a cut is evaluated on both
+/// sides, each side applying it to its own node. The band height is at least `2·levels`,
+/// so an even band never shrinks below nothing.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Tiling {
+    /// Rows of the grid.
+    pub rows: usize,
+    /// Rows per band at level 0 (the last band also takes the remainder).
+    pub band_rows: usize,
+    /// Steps one pass takes.
+    pub levels: usize,
+}
+
+impl Tiling {
+    /// The tiling of `rows` rows for passes of `levels` steps, with bands of at least
+    /// `band_rows` rows (raised to `2·levels`).
+    pub fn new(rows: usize, band_rows: usize, levels: usize) -> Self {
+        let levels = levels.max(1);
+        Self {
+            rows,
+            band_rows: band_rows.max(2 * levels),
+            levels,
+        }
+    }
+
+    /// Number of bands.
+    pub fn bands(&self) -> usize {
+        (self.rows / self.band_rows).max(1)
+    }
+
+    /// First row of band `b` at level 0 (`rows` for `b ≥ bands()`).
+    pub fn band_start(&self, b: usize) -> usize {
+        self.cut(b, 0)
+    }
+
+    /// Where band `b` starts at `level`: the cut between bands `b−1` and `b`.
+    pub fn cut(&self, b: usize, level: usize) -> usize {
+        if b == 0 {
+            0
+        } else if b >= self.bands() {
+            self.rows
+        } else if b % 2 == 1 {
+            b * self.band_rows - level
+        } else {
+            b * self.band_rows + level
+        }
+    }
+
+    /// The rows band `b` integrates at `level` (`1..=levels`).
+    pub fn rows_at(&self, b: usize, level: usize) -> Range<usize> {
+        self.cut(b, level)..self.cut(b + 1, level)
+    }
 }

@@ -111,6 +111,16 @@ impl State {
         std::mem::swap(&mut self.vel, &mut self.next_vel);
     }
 
+    /// The first node whose back-buffer position or velocity is not finite.
+    pub fn first_non_finite_next(&self) -> Option<usize> {
+        (0..self.len()).find(|&i| {
+            self.next_pos
+                .iter()
+                .chain(&self.next_vel)
+                .any(|b| !b[i].is_finite())
+        })
+    }
+
     /// Clears the external force buffer after it has been applied.
     pub fn clear_ext(&mut self) {
         if self.ext_pending {

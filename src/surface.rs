@@ -114,7 +114,9 @@ impl Surface {
     /// [`springs::band_rows`]. Results do not change by a bit; for benchmarks and tests.
     #[doc(hidden)]
     pub fn set_band_rows(&mut self, band_rows: usize) {
+        let pass_steps = self.workspace.pass_steps;
         self.workspace = Workspace::new(Some(band_rows));
+        self.workspace.pass_steps = pass_steps;
     }
 
     /// The parameters the surface was built with.
@@ -200,33 +202,83 @@ impl Surface {
         self.step_dt(self.params.dt, stepper)
     }
 
-    fn step_dt(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
+    /// Advances `n` steps of `params().dt` with the engine, several per pass over memory
+    /// (see [`crate::forces`]). Bitwise the same as `n` calls of [`Surface::step`], and as
+    /// transactional per step: if a step would make the state non-finite, the steps before
+    /// it stay applied, that one is not, and its error is returned.
+    pub fn step_n(&mut self, n: u64) -> Result<()> {
+        self.engine_steps(n, self.params.dt)
+    }
+
+    /// Fixes how many steps one engine pass takes (`1..=8`, clamped; default 4). Results
+    /// do not change by a bit; for benchmarks and tests.
+    #[doc(hidden)]
+    pub fn set_pass_steps(&mut self, steps: usize) {
+        self.workspace.pass_steps = steps.clamp(1, forces::simd::MAX_PASS_STEPS);
+    }
+
+    fn config(&self, dt: f32) -> StepConfig {
         // `+ 0.0` turns a −0 acceleration into +0, which keeps a zero force's sign from
         // reaching the state (see `forces::simd::spring_force`).
-        let cfg = StepConfig {
+        StepConfig {
             dt,
             accel: self.params.acceleration.map(|a| a + 0.0),
-        };
-        let outcome = match stepper {
-            Stepper::Engine => {
-                forces::simd::step(&mut self.state, &self.springs, &mut self.workspace, cfg)
-            }
+        }
+    }
+
+    fn step_dt(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
+        match stepper {
+            Stepper::Engine => self.engine_steps(1, dt),
             Stepper::Reference => {
-                forces::scalar::step(&mut self.state, &self.springs, &mut self.reference, cfg)
+                let cfg = self.config(dt);
+                match forces::scalar::step(&mut self.state, &self.springs, &mut self.reference, cfg)
+                {
+                    Ok(()) => {
+                        self.commit(1, dt);
+                        Ok(())
+                    }
+                    Err(node) => Err(self.non_finite(node)),
+                }
             }
-        };
-        match outcome {
-            Ok(()) => {
-                self.state.swap();
-                self.state.clear_ext();
-                self.steps += 1;
-                self.time += dt as f64;
-                Ok(())
+        }
+    }
+
+    /// `n` engine steps, in passes of up to `pass_steps`. A pass that fails is redone one
+    /// step at a time, so the error names the exact step and node.
+    fn engine_steps(&mut self, n: u64, dt: f32) -> Result<()> {
+        let cfg = self.config(dt);
+        let mut left = n;
+        while left > 0 {
+            let k = left.min(self.workspace.pass_steps as u64) as usize;
+            if forces::simd::pass(&mut self.state, &self.springs, &mut self.workspace, cfg, k) {
+                self.commit(k, dt);
+            } else if k > 1 {
+                for _ in 0..k {
+                    self.engine_steps(1, dt)?;
+                }
+            } else {
+                let node = self.state.first_non_finite_next().unwrap_or(0);
+                return Err(self.non_finite(node));
             }
-            Err(node) => Err(Error::NonFinite {
-                step: self.steps,
-                node,
-            }),
+            left -= k as u64;
+        }
+        Ok(())
+    }
+
+    /// Makes `k` steps written to the back buffers the state.
+    fn commit(&mut self, k: usize, dt: f32) {
+        self.state.swap();
+        self.state.clear_ext();
+        self.steps += k as u64;
+        for _ in 0..k {
+            self.time += dt as f64;
+        }
+    }
+
+    fn non_finite(&self, node: usize) -> Error {
+        Error::NonFinite {
+            step: self.steps,
+            node,
         }
     }
 
@@ -236,9 +288,7 @@ impl Surface {
     /// stay applied, the failing one is not) and returns its error.
     pub fn advance(&mut self, frame_dt: f32) -> Result<usize> {
         let (substeps, dt) = self.split_frame(frame_dt)?;
-        for _ in 0..substeps {
-            self.step_dt(dt, Stepper::Engine)?;
-        }
+        self.engine_steps(substeps as u64, dt)?;
         Ok(substeps)
     }
 

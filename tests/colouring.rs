@@ -2,7 +2,7 @@
 //! touch the same node.
 
 use proptest::prelude::*;
-use springwater::springs::bands;
+use springwater::springs::{bands, Tiling};
 use springwater::{Grid, Params, Surface};
 use std::collections::{HashMap, HashSet};
 
@@ -64,4 +64,71 @@ fn the_surfaces_own_bands_are_a_valid_colouring() {
     assert!(all.len() > 2, "a 150-row grid has several bands");
     let band_rows = all[0].rows.len();
     check(33, 150, band_rows).unwrap();
+}
+
+/// A pass of several steps ([`Tiling`]): at every level the bands' rows cover the grid
+/// once; an even band (colour 0, run first) needs only rows it integrated itself one
+/// level down; an odd band (colour 1, run second) needs, beyond its own rows, only rows
+/// that an even band beside it integrated one level down, among the two it hands over
+/// next to each cut.
+fn check_tiling(rows: usize, band_rows: usize, levels: usize) -> Result<(), TestCaseError> {
+    let t = Tiling::new(rows, band_rows, levels);
+    let bands = t.bands();
+    for level in 1..=levels {
+        let mut next = 0;
+        for b in 0..bands {
+            let own = t.rows_at(b, level);
+            prop_assert_eq!(
+                own.start,
+                next,
+                "band {} at level {} leaves a gap",
+                b,
+                level
+            );
+            prop_assert!(own.start <= own.end);
+            next = own.end;
+            // Rows a level-`level` row needs: itself and its two neighbours.
+            let needed = own.start.saturating_sub(1)..(own.end + 1).min(rows);
+            let below_own = t.rows_at(b, level - 1);
+            for r in needed.clone().filter(|_| !own.is_empty()) {
+                if level == 1 || below_own.contains(&r) {
+                    continue; // level 0 is the front buffer; or its own row
+                }
+                prop_assert_eq!(
+                    b % 2,
+                    1,
+                    "even band {} needs row {} at level {}",
+                    b,
+                    r,
+                    level - 1
+                );
+                let other = if r < below_own.start { b - 1 } else { b + 1 };
+                let theirs = t.rows_at(other, level - 1);
+                let handed = if other < b {
+                    theirs.end.saturating_sub(2)..theirs.end
+                } else {
+                    theirs.start..(theirs.start + 2).min(theirs.end)
+                };
+                prop_assert!(
+                    handed.contains(&r),
+                    "odd band {} needs row {} at level {}, not handed over by band {}",
+                    b,
+                    r,
+                    level - 1,
+                    other
+                );
+            }
+        }
+        prop_assert_eq!(next, rows, "level {} does not reach the last row", level);
+    }
+    Ok(())
+}
+
+proptest! {
+    #[test]
+    fn passes_of_several_steps_cut_the_rows_without_conflicts(
+        rows in 2usize..200, band_rows in 1usize..40, levels in 1usize..=8,
+    ) {
+        check_tiling(rows, band_rows, levels)?;
+    }
 }

@@ -156,6 +156,41 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+
+    /// Several steps per pass: every level of the wavefront, the rows handed from colour 0
+    /// to colour 1 and the forces applied in a pass's first step only.
+    #[test]
+    fn passes_of_several_steps_match_the_reference_bitwise(
+        case in case(),
+        pass_steps in 1usize..=8,
+        chunks in prop::collection::vec(1u64..20, 1..4),
+    ) {
+        let mut engine = build(&case);
+        engine.set_pass_steps(pass_steps);
+        let mut reference = engine.clone();
+        for n in chunks {
+            add_forces(&mut engine, case.force_seed);
+            add_forces(&mut reference, case.force_seed);
+            let a = engine.step_n(n);
+            let mut b = Ok(());
+            for _ in 0..n {
+                b = reference.step_with(Stepper::Reference);
+                if b.is_err() {
+                    break;
+                }
+            }
+            prop_assert_eq!(&a, &b);
+            prop_assert_eq!(engine.steps(), reference.steps());
+            prop_assert!(state_bits(&engine) == state_bits(&reference), "states differ after {} steps", engine.steps());
+            if a.is_err() {
+                break;
+            }
+        }
+    }
+}
+
 #[test]
 fn band_height_does_not_change_a_bit() {
     let mut params = Params::with_size(47, 61);
@@ -173,4 +208,36 @@ fn band_height_does_not_change_a_bit() {
         })
         .collect();
     assert!(runs.windows(2).all(|w| w[0] == w[1]));
+}
+
+/// A pass whose later step blows up: the steps before it stay applied, the error names
+/// the same step and node as single steps do, and the state is the same bits.
+#[test]
+fn a_failing_pass_stops_at_the_same_step_as_single_steps() {
+    let mut p = Params::with_size(24, 40);
+    p.viscosity = 0.0;
+    p.dt = p.linear_dt_limit() * 1.05;
+    let mut single = Surface::new_unchecked_dt(p).unwrap();
+    let mut rng = Rng(7);
+    for i in 0..single.len() {
+        single
+            .add_velocity(i, [rng.next() * 1e-3, rng.next() * 1e-3, rng.next() * 1e-3])
+            .unwrap();
+    }
+    let mut passes = single.clone();
+    passes.set_pass_steps(8);
+    let err_single = (0..10_000)
+        .find_map(|_| single.step().err())
+        .expect("unstable above the linear limit");
+    let err_passes = passes
+        .step_n(10_000)
+        .expect_err("unstable above the linear limit");
+    assert_eq!(err_single, err_passes);
+    assert_eq!(single.steps(), passes.steps());
+    assert!(
+        !single.steps().is_multiple_of(8),
+        "the failure should fall inside a pass: step {}",
+        single.steps()
+    );
+    assert!(state_bits(&single) == state_bits(&passes));
 }

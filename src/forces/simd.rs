@@ -1,43 +1,55 @@
-//! The engine step: colour-partitioned bands of rows, SIMD across columns, rayon across bands.
+//! The engine: colour-partitioned bands of rows, SIMD across columns, rayon across bands,
+//! and several steps per pass over memory.
 //!
 //! # How a band streams its rows
 //!
-//! A band owns the springs whose origin lies in its rows (see [`crate::springs`]). For row
-//! `r` it evaluates, with lanes across columns, the E springs inside the row and the S, SE
-//! and SW springs down to row `r+1`, into per-family row buffers ([`RowForces`]). Row r
-//! then has everything it needs — its own springs and the ones arriving from row r−1,
-//! computed one row earlier — so it is summed and integrated at once while its data is
-//! still in cache, and the two row buffers rotate. Spring forces never travel to main
-//! memory: a step reads positions, velocities and tables once and writes the new
-//! positions and velocities once.
+//! For row `r`, [`row_springs`] evaluates with lanes across columns the E springs inside
+//! the row and the S, SE and SW springs down to row `r+1`, into per-family row buffers
+//! ([`RowForces`]). Row r then has everything it needs — its own springs and the ones
+//! arriving from row r−1, evaluated one row earlier — so [`integrate_row`] sums and
+//! integrates it at once while its data is still in cache. Spring forces never travel to
+//! main memory.
 //!
 //! A node's force is the same expression as in the scalar reference
-//! ([`super::scalar::node_force`]), so the two steps agree bit for bit.
+//! ([`super::scalar::node_force`]), so the two agree bit for bit, whatever the schedule.
+//!
+//! # Several steps per pass (levels)
+//!
+//! One step reads 56 B per node and writes 48 B, and on a grid larger than the caches
+//! that traffic, not arithmetic, sets the speed. A pass therefore advances `levels` steps
+//! while reading the state once: it runs a wavefront down the band. As soon as row `r` of
+//! level `l−1` (the state after `l−1` steps) exists, row `r−1` of level `l` can be
+//! integrated, because a row only needs the rows beside it. Level 0 is the front buffer,
+//! the last level goes to the back buffer, and every level in between lives in a ring of
+//! two rows per level ([`Scratch`]) that stays in cache. Only the last level is written
+//! to memory.
 //!
 //! # The two colours
 //!
-//! Only the first row of a band needs springs from outside it (from the last row of the
-//! band above). The step runs in two phases:
+//! Which band integrates which row at which level is [`crate::springs::Tiling`]: the cut
+//! between two bands leans one row per level into the even band. Colour 0 (even bands)
+//! runs first, in parallel: each needs only its own rows. It also hands over, at each
+//! level below the last, its first two and last two rows ([`Handoff`]). Colour 1 (odd
+//! bands) runs second, in parallel: it reads those rows wherever it needs a row at a level
+//! that it did not integrate itself.
 //!
-//! 1. **Colour 0, even bands, in parallel.** Each integrates its rows except its first,
-//!    whose own spring forces it parks in the band's [`RowForces`]; it also parks the
-//!    forces its last row sends down, in the next (odd) band's slot.
-//! 2. **Colour 1, odd bands, in parallel.** Each starts from the forces parked for it,
-//!    integrates all its rows, then the first row of the even band below (from that band's
-//!    parked forces and the ones it has just sent down).
-//!
-//! Bands of one colour touch disjoint rows, so each task gets `&mut` slices of its own rows
-//! (split with `split_at_mut`: no `unsafe`, no atomics, no locks). Every node's arithmetic
-//! is fixed by the expression above, not by the schedule or the band height, so results
-//! are bitwise identical for any thread count and with the `parallel` feature off. A step
-//! allocates nothing: parked rows live in [`Workspace`], and each worker thread keeps its
-//! two rotating row buffers from step to step.
+//! Bands of one colour write disjoint rows, so each task gets `&mut` slices of its own rows
+//! of the back buffer and of its own handoff slots (split with `split_at_mut`: no atomics,
+//! no locks). A step allocates nothing: handoffs live in [`Workspace`], and each worker
+//! thread keeps its rings from pass to pass.
 
 use super::StepConfig;
-use crate::simd::{first_lanes, get, lanes, lanes_mut, put, Lane, LANES};
-use crate::springs::Springs;
+use crate::simd::{first_lanes, get, lanes, lanes_mut, put, round_up, Floats, Lane, LANES};
+use crate::springs::{Springs, Tiling};
 use crate::state::{State, Xyz};
 use std::cell::RefCell;
+use std::ops::Range;
+
+/// Most steps one pass takes.
+pub const MAX_PASS_STEPS: usize = 8;
+
+/// Steps per pass when the caller does not fix it (see the crate's performance notes).
+pub const DEFAULT_PASS_STEPS: usize = 4;
 
 /// Offset of column 0 in a row buffer: index `LEAD − 1` is a zero "column −1".
 const LEAD: usize = LANES;
@@ -45,32 +57,27 @@ const LEAD: usize = LANES;
 /// A lane mask with every lane on.
 const ALL: Lane = Lane::new([f32::from_bits(u32::MAX); LANES]);
 
+/// Length of a row buffer: the lead, the columns rounded up to lanes, one spare lane.
+fn row_len(cols: usize) -> usize {
+    LEAD + round_up(cols) + LANES
+}
+
 /// Spring forces of one row, by family (E, S, SE, SW) and axis, on the row's origin nodes.
 /// Column `c` is at `LEAD + c`; the columns before 0 and after the row read as zero.
 #[derive(Debug, Clone)]
 pub(crate) struct RowForces {
-    cols: usize,
-    fam: [[crate::simd::Floats; 3]; 4],
+    fam: [[Floats; 3]; 4],
 }
 
 impl RowForces {
     fn new(cols: usize) -> Self {
-        let len = LEAD + crate::simd::round_up(cols) + LANES;
         Self {
-            cols,
-            fam: std::array::from_fn(|_| std::array::from_fn(|_| crate::simd::Floats::zeros(len))),
+            fam: std::array::from_fn(|_| std::array::from_fn(|_| Floats::zeros(row_len(cols)))),
         }
     }
 
-    /// Copies the forces of the families in `families` from `other`.
-    fn copy_from(&mut self, other: &RowForces, families: std::ops::Range<usize>) {
-        for f in families {
-            for k in 0..3 {
-                self.fam[f][k].copy_from_slice(&other.fam[f][k]);
-            }
-        }
-    }
-
+    /// Clears the springs a row sends down (what a band's first row receives from above
+    /// when it is the grid's first row).
     fn zero_down(&mut self) {
         for f in 1..4 {
             for c in &mut self.fam[f] {
@@ -80,42 +87,100 @@ impl RowForces {
     }
 }
 
-/// The engine's reusable buffers: one parked [`RowForces`] per band.
+/// One row of positions and velocities outside the state buffers: a level in flight, or
+/// a row handed from colour 0 to colour 1. Column `c` is at `LEAD + c` of `[x, y, z, vx,
+/// vy, vz]`; everything else stays zero.
+#[derive(Debug, Clone)]
+pub(crate) struct Row {
+    v: [Floats; 6],
+}
+
+impl Row {
+    fn new(cols: usize) -> Self {
+        Self {
+            v: std::array::from_fn(|_| Floats::zeros(row_len(cols))),
+        }
+    }
+
+    fn view(&self) -> RowRef<'_> {
+        let [x, y, z, vx, vy, vz] = &self.v;
+        RowRef {
+            pos: [x, y, z],
+            vel: [vx, vy, vz],
+            at: LEAD,
+        }
+    }
+
+    fn out(&mut self, cols: usize) -> [&mut [f32]; 6] {
+        self.v.each_mut().map(|b| &mut b[LEAD..LEAD + cols])
+    }
+
+    fn copy_from(&mut self, other: &Row) {
+        for (d, s) in self.v.iter_mut().zip(&other.v) {
+            d.copy_from_slice(s);
+        }
+    }
+}
+
+/// A row of positions and velocities wherever it lives: column `c` of axis `a` at
+/// `pos[a][at + c]`. Element `at − 1` and `LANES` elements past the row are readable.
+#[derive(Clone, Copy)]
+struct RowRef<'a> {
+    pos: [&'a [f32]; 3],
+    vel: [&'a [f32]; 3],
+    at: usize,
+}
+
+/// What an even band hands to the odd band across one cut: for each level `1..levels`,
+/// the two rows next to the cut (upper first).
+pub(crate) type Handoff = Vec<[Row; 2]>;
+
+/// The engine's reusable buffers: the tiling in use and one [`Handoff`] per cut.
 #[derive(Debug, Clone)]
 pub(crate) struct Workspace {
     /// A band height fixed by the caller, or `None` to follow [`crate::springs::band_rows`].
-    fixed: Option<usize>,
-    band_rows: usize,
-    parked: Vec<RowForces>,
+    fixed_band_rows: Option<usize>,
+    /// Steps per pass.
+    pub pass_steps: usize,
+    tiling: Option<(Tiling, usize)>,
+    /// Slot `b` holds what crosses the cut above band `b` (slot 0 is unused).
+    handoffs: Vec<Handoff>,
 }
 
 impl Workspace {
-    pub fn new(fixed: Option<usize>) -> Self {
+    pub fn new(fixed_band_rows: Option<usize>) -> Self {
         Self {
-            fixed: fixed.map(|h| h.max(1)),
-            band_rows: 0,
-            parked: Vec::new(),
+            fixed_band_rows: fixed_band_rows.map(|h| h.max(1)),
+            pass_steps: DEFAULT_PASS_STEPS,
+            tiling: None,
+            handoffs: Vec::new(),
         }
     }
 
-    /// The band height for this grid and the current thread count; rebuilds the parked
-    /// rows when it changes (only when the thread count does).
-    fn prepare(&mut self, cols: usize, rows: usize) -> usize {
-        let h = self.band_rows_for(rows);
-        if h != self.band_rows
-            || self.parked.first().is_some_and(|p| p.cols != cols)
-            || self.parked.is_empty()
-        {
-            self.band_rows = h;
-            self.parked = (0..rows.div_ceil(h))
-                .map(|_| RowForces::new(cols))
+    /// The tiling for a pass of `levels` steps; rebuilds the handoff slots when it changes.
+    fn prepare(&mut self, cols: usize, rows: usize, levels: usize) -> Tiling {
+        let tiling = Tiling::new(rows, self.band_rows_for(rows), levels);
+        if self.tiling != Some((tiling, cols)) {
+            self.tiling = Some((tiling, cols));
+            let slots = if tiling.bands() > 1 {
+                tiling.bands()
+            } else {
+                0
+            };
+            self.handoffs = (0..slots)
+                .map(|b| {
+                    let levels = if b == 0 { 0 } else { levels - 1 };
+                    (0..levels)
+                        .map(|_| [Row::new(cols), Row::new(cols)])
+                        .collect()
+                })
                 .collect();
         }
-        h
+        tiling
     }
 
     pub fn band_rows_for(&self, rows: usize) -> usize {
-        self.fixed
+        self.fixed_band_rows
             .unwrap_or_else(|| crate::springs::band_rows(rows, threads()))
     }
 }
@@ -130,21 +195,43 @@ fn threads() -> usize {
     1
 }
 
-thread_local! {
-    /// Each worker's two rotating row buffers (previous row, current row), reused across
-    /// bands and steps; reallocated only when a wider grid comes along.
-    static RING: RefCell<[RowForces; 2]> = RefCell::new([RowForces::new(0), RowForces::new(0)]);
+/// A worker's buffers for the levels in flight, reused across bands and passes.
+struct Scratch {
+    cols: usize,
+    /// `rings[l]`: the last two rows of level `l` (row `r` in slot `r % 2`), for
+    /// `l in 1..levels` (`rings[0]` is unused: level 0 is the front buffer).
+    rings: Vec<[Row; 2]>,
+    /// `prev[l]`: the springs of the row before the one level `l` integrates next.
+    prev: Vec<RowForces>,
+    /// The row being evaluated; swapped into `prev[l]` once its row is integrated.
+    cur: RowForces,
 }
 
-/// Runs `f` with this thread's row buffers sized and zeroed for `cols` columns.
-fn with_ring<T>(cols: usize, f: impl FnOnce(&mut [RowForces; 2]) -> T) -> T {
-    RING.with(|ring| {
-        let mut ring = ring.borrow_mut();
-        if ring[0].cols != cols {
-            *ring = [RowForces::new(cols), RowForces::new(cols)];
+impl Scratch {
+    fn new(cols: usize, levels: usize) -> Self {
+        Self {
+            cols,
+            rings: (0..levels)
+                .map(|_| [Row::new(cols), Row::new(cols)])
+                .collect(),
+            prev: (0..=levels).map(|_| RowForces::new(cols)).collect(),
+            cur: RowForces::new(cols),
         }
-        ring[0].zero_down();
-        f(&mut ring)
+    }
+}
+
+thread_local! {
+    static SCRATCH: RefCell<Scratch> = RefCell::new(Scratch::new(0, 0));
+}
+
+/// Runs `f` with this thread's scratch sized for `cols` columns and `levels` levels.
+fn with_scratch<T>(cols: usize, levels: usize, f: impl FnOnce(&mut Scratch) -> T) -> T {
+    SCRATCH.with(|s| {
+        let mut s = s.borrow_mut();
+        if s.cols != cols || s.rings.len() < levels {
+            *s = Scratch::new(cols, levels);
+        }
+        f(&mut s)
     })
 }
 
@@ -156,6 +243,7 @@ struct Inputs<'a> {
     vel: [&'a [f32]; 3],
     inv_mass: &'a [f32],
     viscosity: &'a [f32],
+    /// External forces, applied in the first step of the pass only.
     ext: Option<[&'a [f32]; 3]>,
     springs: &'a Springs,
     cfg: StepConfig,
@@ -175,6 +263,15 @@ impl Inputs<'_> {
             m &= self.head_sw;
         }
         m
+    }
+
+    /// Row `r` of the front buffers (level 0).
+    fn front(&self, r: usize) -> RowRef<'_> {
+        RowRef {
+            pos: self.pos,
+            vel: self.vel,
+            at: r * self.cols,
+        }
     }
 }
 
@@ -228,6 +325,13 @@ impl<'a> Rows<'a> {
         };
         (head, tail)
     }
+
+    /// Row `r` (held by this task), for [`integrate_row`] to write.
+    fn row(&mut self, r: usize) -> [&mut [f32]; 6] {
+        let at = (r - self.first_row) * self.cols;
+        let cols = self.cols;
+        self.out.each_mut().map(|s| &mut s[at..at + cols])
+    }
 }
 
 /// Every row of the back buffers (`next_pos`, `next_vel`), for the tasks to split.
@@ -242,14 +346,16 @@ fn back_rows<'a>(pos: &'a mut Xyz, vel: &'a mut Xyz, cols: usize, n: usize) -> R
     }
 }
 
-/// One engine step from the front into the back buffers. Returns the first non-finite
-/// node, if any.
-pub(crate) fn step(
+/// One engine pass of `levels` steps (`1..=MAX_PASS_STEPS`) from the front into the back
+/// buffers. Returns `false` if any new value, at any level, is not finite.
+pub(crate) fn pass(
     state: &mut State,
     springs: &Springs,
     ws: &mut Workspace,
     cfg: StepConfig,
-) -> Result<(), usize> {
+    levels: usize,
+) -> bool {
+    debug_assert!((1..=MAX_PASS_STEPS).contains(&levels));
     let grid = state.grid;
     let (cols, rows, n) = (grid.cols, grid.rows, grid.len());
     let inp = Inputs {
@@ -271,59 +377,100 @@ pub(crate) fn step(
         },
         head_sw: !first_lanes(1),
     };
-    let h = ws.prepare(cols, rows);
+    let t = ws.prepare(cols, rows, levels);
+    let bands = t.bands();
 
-    // Colour 0: even bands, each paired with the odd band below it.
-    let bad_even = for_each_pair(
-        &mut ws.parked,
-        0,
+    // Colour 0: even bands, each writing the handoff slots on both of its cuts.
+    let ok_even = for_each_band(
+        &t,
+        0..bands,
+        Slots {
+            first: 0,
+            slots: &mut ws.handoffs,
+        },
         back_rows(&mut state.next_pos, &mut state.next_vel, cols, n),
-        h,
-        &|b, pair, rows| even_band(&inp, b, h, pair, rows),
+        &|slots: Slots, b| slots.split(b),
+        &|b, slots: Slots, mut rows| {
+            let (above, below) = slots.of_band(b);
+            band(&inp, &t, b, Handoffs::Give(above, below), &mut rows)
+        },
     );
 
-    // Colour 1: odd bands, each paired with the even band below it.
+    // Colour 1: odd bands, reading what the even bands handed over.
+    let handoffs = &ws.handoffs[..];
     let (_, from_band_1) =
-        back_rows(&mut state.next_pos, &mut state.next_vel, cols, n).split_at_row(h);
-    let bad_odd = match ws.parked.get_mut(1..) {
-        Some(odd) if !odd.is_empty() => for_each_pair(odd, 1, from_band_1, h, &|b, pair, rows| {
-            odd_band(&inp, b, h, pair, rows)
-        }),
-        _ => None,
-    };
-    match (bad_even, bad_odd) {
-        (None, None) => Ok(()),
-        (a, b) => Err(a.unwrap_or(usize::MAX).min(b.unwrap_or(usize::MAX))),
+        back_rows(&mut state.next_pos, &mut state.next_vel, cols, n).split_at_row(t.cut(1, levels));
+    let ok_odd = for_each_band(
+        &t,
+        1..bands,
+        (),
+        from_band_1,
+        &|(), _| ((), ()),
+        &|b, (), mut rows| {
+            let take = |s: usize| handoffs.get(s).filter(|_| s < bands);
+            band(&inp, &t, b, Handoffs::Take(take(b), take(b + 1)), &mut rows)
+        },
+    );
+    ok_even && ok_odd
+}
+
+/// Handoff slots `first ..` for the even bands of one task.
+struct Slots<'a> {
+    first: usize,
+    slots: &'a mut [Handoff],
+}
+
+impl<'a> Slots<'a> {
+    /// Slots before band `b`'s and from it.
+    fn split(self, b: usize) -> (Slots<'a>, Slots<'a>) {
+        let at = (b - self.first).min(self.slots.len());
+        let (l, r) = self.slots.split_at_mut(at);
+        (
+            Slots {
+                first: self.first,
+                slots: l,
+            },
+            Slots {
+                first: self.first + at,
+                slots: r,
+            },
+        )
+    }
+
+    /// The slots on band `b`'s two cuts (above, below), where there is a cut.
+    fn of_band(self, b: usize) -> (Option<&'a mut Handoff>, Option<&'a mut Handoff>) {
+        let mut it = self.slots[b - self.first..].iter_mut();
+        let above = it.next().filter(|_| b > 0);
+        (above, it.next())
     }
 }
 
-/// Runs `f` on consecutive pairs of bands (`parked[0..2]`, `parked[2..4]`, …) with the
-/// rows of each pair, splitting recursively with `rayon::join` (in order without the
-/// `parallel` feature). Returns the smallest non-finite node reported.
-fn for_each_pair<F>(
-    parked: &mut [RowForces],
-    first_band: usize,
+/// Runs `f` on the bands `bands.start, bands.start + 2, …` (one colour), splitting the
+/// range, the shared part `s` and the back-buffer rows recursively with `rayon::join` (in
+/// order without the `parallel` feature). Returns `false` if any band did.
+fn for_each_band<S: Send>(
+    t: &Tiling,
+    bands: Range<usize>,
+    s: S,
     rows: Rows<'_>,
-    band_rows: usize,
-    f: &F,
-) -> Option<usize>
-where
-    F: Fn(usize, &mut [RowForces], Rows<'_>) -> Option<usize> + Sync,
-{
-    if parked.len() <= 2 {
-        return f(first_band, parked, rows);
+    split: &(impl Fn(S, usize) -> (S, S) + Sync),
+    f: &(impl Fn(usize, S, Rows<'_>) -> bool + Sync),
+) -> bool {
+    let count = bands.len().div_ceil(2);
+    if count == 0 {
+        return true;
     }
-    let left = 2 * (parked.len().div_ceil(2) / 2);
-    let (pl, pr) = parked.split_at_mut(left);
-    let (rl, rr) = rows.split_at_row((first_band + left) * band_rows);
+    if count == 1 {
+        return f(bands.start, s, rows);
+    }
+    let mid = bands.start + 2 * (count / 2);
+    let (sl, sr) = split(s, mid);
+    let (rl, rr) = rows.split_at_row(t.cut(mid, t.levels));
     let (a, b) = join(
-        || for_each_pair(pl, first_band, rl, band_rows, f),
-        || for_each_pair(pr, first_band + left, rr, band_rows, f),
+        || for_each_band(t, bands.start..mid, sl, rl, split, f),
+        || for_each_band(t, mid..bands.end, sr, rr, split, f),
     );
-    match (a, b) {
-        (Some(a), Some(b)) => Some(a.min(b)),
-        (a, b) => a.or(b),
-    }
+    a && b
 }
 
 #[cfg(feature = "parallel")]
@@ -336,60 +483,114 @@ fn join<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
     (a(), b())
 }
 
-/// Colour 0: band `b` (even). `pair[0]` is its parked row, `pair.get(1)` the odd band's.
-fn even_band(
-    inp: &Inputs,
-    b: usize,
-    h: usize,
-    pair: &mut [RowForces],
-    mut rows: Rows,
-) -> Option<usize> {
-    let r0 = b * h;
-    let r1 = ((b + 1) * h).min(inp.rows);
-    with_ring(inp.cols, |ring| {
-        let [prev, cur] = ring;
-        let (mut prev, mut cur) = (prev, cur);
-        let mut bad = None;
-        for r in r0..r1 {
-            row_springs(inp, r, cur);
-            if r == r0 && b > 0 {
-                pair[0].copy_from(cur, 0..4); // finished by the odd band above
-            } else {
-                bad = bad.or(integrate_row(inp, r, cur, prev, &mut rows));
-            }
-            std::mem::swap(&mut prev, &mut cur);
-        }
-        if let Some(odd) = pair.get_mut(1) {
-            odd.copy_from(prev, 1..4); // what the last row sends down
-        }
-        bad
-    })
+/// A band's handoff slots on its two cuts (above, below): written by an even band, read
+/// by an odd one.
+enum Handoffs<'a> {
+    Give(Option<&'a mut Handoff>, Option<&'a mut Handoff>),
+    Take(Option<&'a Handoff>, Option<&'a Handoff>),
 }
 
-/// Colour 1: band `b` (odd). `pair[0]` is its parked row, `pair.get(1)` the even band's.
-fn odd_band(
-    inp: &Inputs,
-    b: usize,
-    h: usize,
-    pair: &mut [RowForces],
-    mut rows: Rows,
-) -> Option<usize> {
-    let r0 = b * h;
-    let r1 = ((b + 1) * h).min(inp.rows);
-    with_ring(inp.cols, |ring| {
-        let [prev, cur] = ring;
-        let (mut prev, mut cur) = (prev, cur);
-        prev.copy_from(&pair[0], 1..4);
-        let mut bad = None;
-        for r in r0..r1 {
-            row_springs(inp, r, cur);
-            bad = bad.or(integrate_row(inp, r, cur, prev, &mut rows));
-            std::mem::swap(&mut prev, &mut cur);
+/// Band `b`'s part of a pass: a wavefront over rows and levels. Level `l` handles row `r`
+/// at time `r + l − 1`, after level `l−1` has produced rows `r` and `r+1` (earlier in the
+/// same time, or before). Handling a row means, in order: taking it from a handoff if it
+/// is a row of another band that the next level needs (odd bands); evaluating its springs
+/// if it is the row just above the band's rows (their S, SE, SW arrive at the first row);
+/// or evaluating and integrating it if it is the band's own, then handing it over if it
+/// is one of the two rows next to a cut (even bands).
+fn band(inp: &Inputs, t: &Tiling, b: usize, mut handoffs: Handoffs, rows: &mut Rows) -> bool {
+    let last = t.levels;
+    let own: [Range<usize>; MAX_PASS_STEPS + 1] =
+        std::array::from_fn(|l| if l <= last { t.rows_at(b, l) } else { 0..0 });
+    let odd = matches!(handoffs, Handoffs::Take(..));
+    // Rows level `l` handles: its own, the row above them, and for an odd band below the
+    // last level the two rows beyond each cut that the next level borrows.
+    let handled = |l: usize| {
+        let own = &own[l];
+        let borrow = if odd && l < last { 2 } else { 1 };
+        let below = if odd && l < last && own.end < inp.rows {
+            2
+        } else {
+            0
+        };
+        own.start.saturating_sub(borrow)..(own.end + below).min(inp.rows)
+    };
+    let first_time = (1..=last).map(|l| handled(l).start + l - 1).min();
+    let end_time = (1..=last).map(|l| handled(l).end + l - 1).max();
+    let (Some(first_time), Some(end_time)) = (first_time, end_time) else {
+        return true;
+    };
+    with_scratch(inp.cols, last, |s| {
+        let Scratch {
+            rings, prev, cur, ..
+        } = s;
+        for l in 1..=last {
+            if own[l].start == 0 {
+                prev[l].zero_down();
+            }
         }
-        if let Some(even) = pair.get(1) {
-            bad = bad.or(integrate_row(inp, r1, even, prev, &mut rows));
+        let mut ok = true;
+        for time in first_time..end_time {
+            for l in 1..=last {
+                let Some(r) = (time + 1).checked_sub(l) else {
+                    continue;
+                };
+                if !handled(l).contains(&r) {
+                    continue;
+                }
+                let (lower, upper) = rings.split_at_mut(l);
+                // Row `r` of level `l − 1`.
+                let src = |r: usize| {
+                    if l == 1 {
+                        inp.front(r)
+                    } else {
+                        lower[l - 1][r % 2].view()
+                    }
+                };
+                let down = (r + 1 < inp.rows).then(|| src(r + 1));
+                let own_l = &own[l];
+                if !own_l.contains(&r) {
+                    if r + 1 == own_l.start {
+                        // The row above the band: its springs arrive at the first row.
+                        row_springs(inp, r, src(r), down, cur);
+                        std::mem::swap(cur, &mut prev[l]);
+                    }
+                    if let Handoffs::Take(above, below) = &handoffs {
+                        if l < last {
+                            let from = if r < own_l.start {
+                                above.map(|h| &h[l - 1][r + 2 - own_l.start])
+                            } else {
+                                below.map(|h| &h[l - 1][r - own_l.end])
+                            };
+                            if let Some(from) = from {
+                                upper[0][r % 2].copy_from(from);
+                            }
+                        }
+                    }
+                    continue;
+                }
+                row_springs(inp, r, src(r), down, cur);
+                let ext = if l == 1 { inp.ext } else { None };
+                let dst = if l == last {
+                    rows.row(r)
+                } else {
+                    upper[0][r % 2].out(inp.cols)
+                };
+                ok &= integrate_row(inp, r, src(r), ext, cur, &prev[l], dst);
+                std::mem::swap(cur, &mut prev[l]);
+                if let Handoffs::Give(above, below) = &mut handoffs {
+                    if l < last {
+                        let row = &upper[0][r % 2];
+                        if let Some(h) = above.as_deref_mut().filter(|_| r < own_l.start + 2) {
+                            h[l - 1][r - own_l.start].copy_from(row);
+                        }
+                        if let Some(h) = below.as_deref_mut().filter(|_| r + 2 >= own_l.end) {
+                            h[l - 1][r + 2 - own_l.end].copy_from(row);
+                        }
+                    }
+                }
+            }
         }
-        bad
+        ok
     })
 }
 
@@ -405,47 +606,37 @@ fn spring_force(pi: [Lane; 3], pj: [Lane; 3], coef: Lane, rest: Lane) -> [Lane; 
     [s * d[0], s * d[1], s * d[2]]
 }
 
-/// Evaluates row `r`'s springs into `out`: E inside the row, S/SE/SW down to row r+1
-/// (zero on the last row).
+/// Evaluates row `r`'s springs into `out`: E inside the row (`here`), S/SE/SW down to row
+/// r+1 (`down`; zero on the last row).
 #[inline(always)]
-fn row_springs(inp: &Inputs, r: usize, out: &mut RowForces) {
+fn row_springs(inp: &Inputs, r: usize, here: RowRef, down: Option<RowRef>, out: &mut RowForces) {
     let cols = inp.cols;
     let chunks = cols.div_ceil(LANES);
     let base = r * cols;
-    let has_down = r + 1 < inp.rows;
-    // Chunk views (see `crate::simd`): chunk k of `view(start)` holds the nodes
-    // `start + k·LANES ..`, so `view(base + 1)` is the east neighbour of `view(base)`.
-    let view = |start: usize| inp.pos.map(|p| lanes(p, start, chunks));
-    let here = view(base);
+    // Chunk views (see `crate::simd`): chunk k of `view(row, d)` holds columns
+    // `d + k·LANES ..` of the row, so `view(here, 1)` is the east neighbour of `view(here, 0)`.
+    #[inline(always)]
+    fn view<'a>(row: RowRef<'a>, d: isize, chunks: usize) -> [&'a [[f32; LANES]]; 3] {
+        let at = row.at.wrapping_add_signed(d);
+        row.pos.map(|p| lanes(p, at, chunks))
+    }
+    let view = |row, d| view(row, d, chunks);
+    let h = view(here, 0);
     // (family, the view of each spring's other end)
     let families = [
-        (0, view(base + 1)),
-        (1, if has_down { view(base + cols) } else { here }),
-        (
-            2,
-            if has_down {
-                view(base + cols + 1)
-            } else {
-                here
-            },
-        ),
-        (
-            3,
-            if has_down {
-                view(base + cols - 1)
-            } else {
-                here
-            },
-        ),
+        (0, Some(view(here, 1))),
+        (1, down.map(|d| view(d, 0))),
+        (2, down.map(|d| view(d, 1))),
+        (3, down.map(|d| view(d, -1))),
     ];
     for (fam, there) in families {
         let mut out = out.fam[fam].each_mut().map(|c| lanes_mut(c, LEAD, chunks));
-        if fam > 0 && !has_down {
+        let Some(there) = there else {
             for c in &mut out {
                 c.fill([0.0; LANES]);
             }
             continue;
-        }
+        };
         let sp = inp.springs;
         let table = match sp.uniform(fam) {
             Some((c, r)) => Table::Uniform(Lane::splat(c), Lane::splat(r)),
@@ -458,7 +649,7 @@ fn row_springs(inp: &Inputs, r: usize, out: &mut RowForces) {
             // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
             unsafe {
                 let (coef, rest) = table.at(k);
-                let mut f = spring_force(load3(here, k), load3(there, k), coef, rest);
+                let mut f = spring_force(load3(h, k), load3(there, k), coef, rest);
                 // Lanes without a spring (only in a row's first and last chunk) hold other
                 // rows' nodes or padding; they get exactly +0, like the reference's absent
                 // spring. A coefficient of 0 is not enough: `0 · ∞` is NaN once those
@@ -488,29 +679,33 @@ unsafe fn load3(v: [&[[f32; LANES]]; 3], k: usize) -> [Lane; 3] {
 }
 
 /// Sums row `r`'s spring forces (`cur`: its own springs, `prev`: the ones arriving from
-/// row r−1) and integrates the row into the back buffers. Returns the first node whose
-/// new state is not finite.
+/// row r−1) and integrates the row from `src` into `dst` (x, y, z, vx, vy, vz; `cols`
+/// values each). Returns `false` if a new value is not finite.
 #[inline(always)]
 fn integrate_row(
     inp: &Inputs,
     r: usize,
+    src: RowRef,
+    ext: Option<[&[f32]; 3]>,
     cur: &RowForces,
     prev: &RowForces,
-    rows: &mut Rows,
-) -> Option<usize> {
+    mut dst: [&mut [f32]; 6],
+) -> bool {
     let cols = inp.cols;
     let chunks = cols.div_ceil(LANES);
     let full = cols / LANES;
     let base = r * cols;
-    let out_base = (r - rows.first_row) * cols;
     let node = |s| lanes(s, base, chunks);
     let (inv_mass, viscosity) = (node(inp.inv_mass), node(inp.viscosity));
     let dt = Lane::splat(inp.cfg.dt);
+    // Only the row's own lanes count: lanes past it hold other rows or padding.
+    let real = inp.tail[1];
     let mut finite = Lane::ZERO;
-    let (xs, vs) = rows.out.split_at_mut(3);
+    let (xs, vs) = dst.split_at_mut(3);
     for (axis, (x_out, v_out)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
-        let (pos, vel) = (node(inp.pos[axis]), node(inp.vel[axis]));
-        let ext = inp.ext.map(|e| node(e[axis]));
+        let pos = lanes(src.pos[axis], src.at, chunks);
+        let vel = lanes(src.vel[axis], src.at, chunks);
+        let ext = ext.map(|e| node(e[axis]));
         let g = Lane::splat(inp.cfg.accel[axis]);
         fn family(
             rf: &RowForces,
@@ -528,8 +723,8 @@ fn integrate_row(
         let (s, s_n) = (f(cur, 1, LEAD), f(prev, 1, LEAD));
         let (se, se_nw) = (f(cur, 2, LEAD), f(prev, 2, LEAD - 1));
         let (sw, sw_ne) = (f(cur, 3, LEAD), f(prev, 3, LEAD + 1));
-        let (x_full, x_tail) = x_out[out_base..out_base + cols].split_at_mut(full * LANES);
-        let (v_full, v_tail) = v_out[out_base..out_base + cols].split_at_mut(full * LANES);
+        let (x_full, x_tail) = x_out[..cols].split_at_mut(full * LANES);
+        let (v_full, v_tail) = v_out[..cols].split_at_mut(full * LANES);
         let (x_full, v_full) = (
             x_full.as_chunks_mut::<LANES>().0,
             v_full.as_chunks_mut::<LANES>().0,
@@ -550,24 +745,17 @@ fn integrate_row(
             let v1 = v + acc * dt;
             let x1 = l(pos) + v1 * dt;
             // Fused finiteness check: `x·0` is 0 for finite x and NaN otherwise, and x' is
-            // non-finite whenever v' is. Lanes past the row hold other rows' values or zero
-            // padding; a non-finite one there is reported when its own row is checked.
-            finite += x1 * Lane::ZERO;
+            // non-finite whenever v' is.
             if k < full {
+                finite += x1 * Lane::ZERO;
                 x_full[k] = x1.to_array();
                 v_full[k] = v1.to_array();
             } else {
+                finite += real.select(x1 * Lane::ZERO, Lane::ZERO);
                 x_tail.copy_from_slice(&x1.to_array()[..x_tail.len()]);
                 v_tail.copy_from_slice(&v1.to_array()[..v_tail.len()]);
             }
         }
     }
-    if !finite.is_nan().any() {
-        return None;
-    }
-    (0..cols).find_map(|c| {
-        (0..6)
-            .any(|k| !rows.out[k][out_base + c].is_finite())
-            .then_some(base + c)
-    })
+    !finite.is_nan().any()
 }

@@ -11,6 +11,7 @@ use std::time::Instant;
 #[derive(Debug, Clone, Copy, PartialEq)]
 enum Kernel {
     Engine,
+    SingleSteps,
     Reference,
     Naive,
     Floor,
@@ -20,6 +21,7 @@ impl Kernel {
     fn name(self) -> &'static str {
         match self {
             Kernel::Engine => "engine",
+            Kernel::SingleSteps => "engine-1step",
             Kernel::Reference => "reference",
             Kernel::Naive => "naive",
             Kernel::Floor => "memory-floor",
@@ -31,7 +33,13 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut model = ModelArgs::default();
     let mut repeats: usize = 5;
     let mut band_rows: Option<usize> = None;
-    let mut compare = vec![Kernel::Reference, Kernel::Naive, Kernel::Floor];
+    let mut pass_steps: Option<usize> = None;
+    let mut compare = vec![
+        Kernel::SingleSteps,
+        Kernel::Reference,
+        Kernel::Naive,
+        Kernel::Floor,
+    ];
     while let Some(arg) = next_flag(p)? {
         if model.parse_flag(&arg, p)? {
             continue;
@@ -50,16 +58,27 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                 }
                 band_rows = Some(h);
             }
+            Flag::Long(l) if l == "pass-steps" => {
+                let k: usize = value(p, "--pass-steps")?;
+                if !(1..=springwater::MAX_PASS_STEPS).contains(&k) {
+                    return Err(format!(
+                        "--pass-steps must be between 1 and {}",
+                        springwater::MAX_PASS_STEPS
+                    ));
+                }
+                pass_steps = Some(k);
+            }
             Flag::Long(l) if l == "compare" => {
                 compare = string(p, "--compare")?
                     .split(',')
                     .filter(|s| !s.is_empty() && *s != "none")
                     .map(|s| match s {
                         "reference" => Ok(Kernel::Reference),
+                        "1step" => Ok(Kernel::SingleSteps),
                         "naive" => Ok(Kernel::Naive),
                         "floor" => Ok(Kernel::Floor),
                         other => Err(format!(
-                            "--compare: unknown kernel '{other}' (reference, naive, floor, none)"
+                            "--compare: unknown kernel '{other}' (reference, naive, floor, 1step, none)"
                         )),
                     })
                     .collect::<CliResult<_>>()?;
@@ -73,6 +92,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut surface = model.surface()?;
     if let Some(h) = band_rows {
         surface.set_band_rows(h);
+    }
+    if let Some(k) = pass_steps {
+        surface.set_pass_steps(k);
     }
     if model.drops.is_empty() {
         let p = surface.params();
@@ -108,6 +130,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         let mut reference = kernels
             .contains(&Kernel::Reference)
             .then(|| surface.clone());
+        let mut single = kernels
+            .contains(&Kernel::SingleSteps)
+            .then(|| surface.clone());
         let mut floor = kernels
             .contains(&Kernel::Floor)
             .then(|| MemoryFloor::new(nodes));
@@ -122,8 +147,13 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                 let start = Instant::now();
                 let steps = match kernel {
                     Kernel::Engine => {
+                        surface.step_n(model.steps).map_err(|e| e.to_string())?;
+                        model.steps
+                    }
+                    Kernel::SingleSteps => {
+                        let s: &mut Surface = single.as_mut().expect("built above");
                         for _ in 0..model.steps {
-                            surface.step().map_err(|e| e.to_string())?;
+                            s.step().map_err(|e| e.to_string())?;
                         }
                         model.steps
                     }
