@@ -1,8 +1,9 @@
 //! Criterion benches of one simulation step, reported in nodes per second.
 //!
-//! `step/<kernel>/<cols>x<rows>` for the scalar reference, the engine on 1 and 2 threads,
-//! the naive array-of-structs baseline and the memory-floor kernel; `band_rows/<h>` sweeps
-//! the colour granularity. Run: `cargo bench --bench step` (add
+//! `step/<kernel>/<cols>x<rows>` for the scalar reference, the engine on 1 and 2 threads
+//! (single steps, and passes of 4 steps per sweep over memory), the naive array-of-structs
+//! baseline and the memory-floor kernel; `band_rows/<h>` sweeps the colour granularity and
+//! `pass_steps/<k>` the steps per pass. Throughput counts node updates (nodes × steps). Run: `cargo bench --bench step` (add
 //! `RUSTFLAGS="-C target-cpu=native"` for the AVX-512 build).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
@@ -46,6 +47,16 @@ fn step(c: &mut Criterion) {
                 pool.install(|| b.iter(|| s.step().unwrap()))
             });
         }
+        group.throughput(Throughput::Elements((4 * n * n) as u64));
+        for threads in [1, 2] {
+            let mut s = surface(n);
+            let pool = pool(threads);
+            group.bench_function(
+                BenchmarkId::new(format!("engine_pass4_{threads}t"), &id),
+                |b| pool.install(|| b.iter(|| s.step_n(4).unwrap())),
+            );
+        }
+        group.throughput(Throughput::Elements((n * n) as u64));
         let mut naive = NaiveSurface::new(&Params::with_size(n, n));
         naive.drop_at(n, n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0);
         group.bench_function(BenchmarkId::new("naive_aos", &id), |b| {
@@ -80,5 +91,24 @@ fn band_rows(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, step, band_rows);
+fn pass_steps(c: &mut Criterion) {
+    let mut group = c.benchmark_group("pass_steps");
+    group
+        .sample_size(10)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(2));
+    let pool = pool(2);
+    let n = 2048;
+    group.throughput(Throughput::Elements((8 * n * n) as u64));
+    for k in [1, 2, 4, 8] {
+        let mut s = surface(n);
+        s.set_pass_steps(k);
+        group.bench_function(BenchmarkId::new(format!("{n}x{n}"), k), |b| {
+            pool.install(|| b.iter(|| s.step_n(8).unwrap()))
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, step, band_rows, pass_steps);
 criterion_main!(benches);

@@ -10,25 +10,30 @@
 //! # Colours
 //!
 //! A spring touches two nodes, and two threads adding into one node's force at once would
-//! race. The springs are therefore cut into *bands*: band `b` owns every spring whose
-//! origin lies in rows `[b·H, (b+1)·H)`, and so touches rows `b·H ..= (b+1)·H`. Even bands
-//! are colour 0, odd bands colour 1. Two bands of one colour are at least one band apart,
-//! so they touch disjoint node sets and run in parallel with no atomics and no locks;
-//! inside a band, rows are processed in order with SIMD across columns.
+//! race. The rows are therefore cut into *bands* of `H` rows ([`bands`]); even bands are
+//! colour 0, odd bands colour 1. A band integrates its own rows and evaluates every spring
+//! that ends in them, adding each spring only to its own node (a spring across a cut is
+//! evaluated by both bands, each for its own end). Bands of one colour are at least one
+//! band apart, so they write disjoint rows and run in parallel with no atomics and no
+//! locks; inside a band, rows are processed in order with SIMD across columns. When a
+//! pass advances several steps, the cuts lean with the step ([`Tiling`]) so that colour 0
+//! needs nothing from colour 1 and colour 1 only what colour 0 handed over.
 //!
 //! Why bands rather than single springs by family and parity (8 colours)? A colour pass
 //! over single springs is a full sweep over memory, so 8 colours read the state 8 times
-//! per step; a band streams its rows once and keeps the forces of the two rows in flight
-//! in cache.
+//! per step; a band streams its rows once and keeps the forces of the rows in flight in
+//! cache.
 //!
-//! The band height trades per-band overhead (each band parks and restores one row of
-//! forces, about 1/height of its work) against load balance (each colour needs a few
-//! bands per thread). `springwater bench --band-rows H` measures it: on 256² with 2
-//! threads (native build) 16 rows gave 7.5·10⁸ node updates/s, 32 rows 7.5·10⁸, 64 rows
-//! 5.9·10⁸ (2 bands a colour) and 128 rows 4.1·10⁸; heights below 8 lost 10% or more in
-//! earlier runs. So the engine picks, per step, [`band_rows`]`(rows, threads)`: about 4
-//! bands per thread, clamped to 8..=64 rows. The choice never changes a bit of the result
-//! (the per-node arithmetic does not depend on it), so it may follow the thread count.
+//! The band height trades per-band overhead (one extra row of springs per band and level,
+//! about 1/height of its work, and the rows handed across the cuts) against load balance
+//! (each colour needs a few bands per thread). `springwater bench --band-rows H` measures
+//! it. On 256² with 2 threads (native build, single steps) 16 and 32 rows gave 7.5·10⁸
+//! node updates/s, 64 rows 5.9·10⁸ (2 bands a colour) and 128 rows 4.1·10⁸; on 2048² with
+//! passes of 4 steps, 16 rows gave 7.0·10⁸, 32 rows 7.4·10⁸ and 64 rows 7.3·10⁸. So the
+//! engine picks [`band_rows`]`(rows, threads)`: about 4 bands per thread, clamped to
+//! 8..=64 rows (and at least 2 rows per step of a pass). The choice never changes a bit of
+//! the result (the per-node arithmetic does not depend on it), so it may follow the
+//! thread count.
 
 use crate::grid::{Family, Grid, SpringId};
 use crate::params::Params;

@@ -23,11 +23,13 @@
 //! * [`scalar`] is the oracle: a loop over every spring adding into full force buffers,
 //!   then a loop over every node. Plain and easy to check.
 //! * [`simd`] is the engine: colour-partitioned bands ([`crate::springs`]) run on the
-//!   rayon pool, each streaming its rows once with `wide` lanes across columns.
+//!   rayon pool, each streaming its rows once with `wide` lanes across columns, and
+//!   advancing up to [`simd::MAX_PASS_STEPS`] steps per pass over memory.
 //!
-//! Both use the same operations in the same order per spring and per node, and never
-//! FMA, so they differ only in the order in which a node's (up to 8) spring forces are
-//! summed: a few ULP per step. Tests bound the difference.
+//! Both use the same operations in the same order per spring and per node, never FMA,
+//! and sum a node's spring forces in the same order (each family's leaving spring minus
+//! the same family's arriving one, see [`scalar::node_force`]). So they agree bit for bit,
+//! and the parity tests hold them to tolerance zero.
 //!
 //! Both write the back buffers, check every new value for finiteness, and report the first
 //! non-finite node instead of swapping: the front buffers are never touched.
