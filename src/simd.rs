@@ -129,3 +129,44 @@ impl std::fmt::Debug for Floats {
         f.debug_list().entries(self.iter()).finish()
     }
 }
+
+/// Lanes `1..` of `lo` then lane 0 of `hi`: with `hi` the chunk after `lo`, the east
+/// neighbour of every column of `lo`. One register shuffle instead of a load that
+/// straddles two cache lines.
+#[inline(always)]
+pub fn east(lo: Lane, hi: Lane) -> Lane {
+    #[cfg(target_feature = "avx512f")]
+    {
+        use core::arch::x86_64::{_mm512_alignr_epi32, _mm512_castps_si512, _mm512_castsi512_ps};
+        // SAFETY: these intrinsics only need AVX-512F, which this build enables (`cfg` above).
+        unsafe {
+            let (lo, hi) = (_mm512_castps_si512(lo.into()), _mm512_castps_si512(hi.into()));
+            Lane::from(_mm512_castsi512_ps(_mm512_alignr_epi32::<1>(hi, lo)))
+        }
+    }
+    #[cfg(not(target_feature = "avx512f"))]
+    {
+        let (lo, hi) = (lo.to_array(), hi.to_array());
+        Lane::new(core::array::from_fn(|i| if i + 1 < LANES { lo[i + 1] } else { hi[0] }))
+    }
+}
+
+/// Lane `LANES − 1` of `lo` then lanes `..LANES − 1` of `hi`: with `lo` the chunk before
+/// `hi`, the west neighbour of every column of `hi`.
+#[inline(always)]
+pub fn west(lo: Lane, hi: Lane) -> Lane {
+    #[cfg(target_feature = "avx512f")]
+    {
+        use core::arch::x86_64::{_mm512_alignr_epi32, _mm512_castps_si512, _mm512_castsi512_ps};
+        // SAFETY: these intrinsics only need AVX-512F, which this build enables (`cfg` above).
+        unsafe {
+            let (lo, hi) = (_mm512_castps_si512(lo.into()), _mm512_castps_si512(hi.into()));
+            Lane::from(_mm512_castsi512_ps(_mm512_alignr_epi32::<15>(hi, lo)))
+        }
+    }
+    #[cfg(not(target_feature = "avx512f"))]
+    {
+        let (lo, hi) = (lo.to_array(), hi.to_array());
+        Lane::new(core::array::from_fn(|i| if i == 0 { lo[LANES - 1] } else { hi[i - 1] }))
+    }
+}

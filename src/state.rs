@@ -23,7 +23,7 @@ pub(crate) fn zeros3(len: usize) -> Xyz {
 
 /// Length of a padded per-node buffer for `nodes` nodes.
 pub(crate) fn padded_len(nodes: usize) -> usize {
-    round_up(nodes + LANES + 1)
+    round_up(nodes + 2 * LANES)
 }
 
 /// Node state and per-node tables.

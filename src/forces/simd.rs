@@ -39,7 +39,7 @@
 //! thread keeps its rings from pass to pass.
 
 use super::StepConfig;
-use crate::simd::{first_lanes, get, lanes, lanes_mut, put, round_up, Floats, Lane, LANES};
+use crate::simd::{east, first_lanes, get, lanes, lanes_mut, put, round_up, west, Floats, Lane, LANES};
 use crate::springs::{Springs, Tiling};
 use crate::state::{State, Xyz};
 use std::cell::RefCell;
@@ -613,55 +613,75 @@ fn row_springs(inp: &Inputs, r: usize, here: RowRef, down: Option<RowRef>, out: 
     let cols = inp.cols;
     let chunks = cols.div_ceil(LANES);
     let base = r * cols;
-    // Chunk views (see `crate::simd`): chunk k of `view(row, d)` holds columns
-    // `d + k·LANES ..` of the row, so `view(here, 1)` is the east neighbour of `view(here, 0)`.
-    #[inline(always)]
-    fn view<'a>(row: RowRef<'a>, d: isize, chunks: usize) -> [&'a [[f32; LANES]]; 3] {
-        let at = row.at.wrapping_add_signed(d);
-        row.pos.map(|p| lanes(p, at, chunks))
+    // Chunk views (see `crate::simd`) of a row's positions, one chunk longer than the row:
+    // the east neighbours of chunk k are `east(chunk k, chunk k+1)`, the west ones
+    // `west(chunk k−1, chunk k)`. Aligned loads and a shuffle, where a load one column off
+    // would straddle two cache lines.
+    fn view(row: RowRef<'_>, chunks: usize) -> [&[[f32; LANES]]; 3] {
+        row.pos.map(|p| lanes(p, row.at, chunks + 1))
     }
-    let view = |row, d| view(row, d, chunks);
-    let h = view(here, 0);
-    // (family, the view of each spring's other end)
-    let families = [
-        (0, Some(view(here, 1))),
-        (1, down.map(|d| view(d, 0))),
-        (2, down.map(|d| view(d, 1))),
-        (3, down.map(|d| view(d, -1))),
-    ];
-    for (fam, there) in families {
-        let mut out = out.fam[fam].each_mut().map(|c| lanes_mut(c, LEAD, chunks));
-        let Some(there) = there else {
-            for c in &mut out {
-                c.fill([0.0; LANES]);
+    let h = view(here, chunks);
+    let sp = inp.springs;
+    let table = |fam: usize| match sp.uniform(fam) {
+        Some((c, r)) => Table::Uniform(Lane::splat(c), Lane::splat(r)),
+        None => Table::PerSpring(
+            lanes(&sp.coef[fam], base, chunks),
+            lanes(&sp.rest[fam], base, chunks),
+        ),
+    };
+    // SAFETY (every closure below): `k < chunks` and the views hold `chunks + 1` chunks.
+    family(inp, 0, table(0), h, out, |k| unsafe {
+        let (a, b) = (load3(h, k), load3(h, k + 1));
+        [0, 1, 2].map(|i| east(a[i], b[i]))
+    });
+    let Some(down) = down else {
+        for c in out.fam[1..].iter_mut().flatten() {
+            c.fill(0.0);
+        }
+        return;
+    };
+    let d = view(down, chunks);
+    family(inp, 1, table(1), h, out, |k| unsafe { load3(d, k) });
+    family(inp, 2, table(2), h, out, |k| unsafe {
+        let (a, b) = (load3(d, k), load3(d, k + 1));
+        [0, 1, 2].map(|i| east(a[i], b[i]))
+    });
+    family(inp, 3, table(3), h, out, |k| unsafe {
+        // Lane 0 of chunk 0 has no SW spring (column 0): its west neighbour is never used.
+        let a = if k == 0 { [Lane::ZERO; 3] } else { load3(d, k - 1) };
+        let b = load3(d, k);
+        [0, 1, 2].map(|i| west(a[i], b[i]))
+    });
+}
+
+/// One family's springs along a row: from the nodes of `h` to `there(k)`, into `out`.
+#[inline(always)]
+fn family(
+    inp: &Inputs,
+    fam: usize,
+    table: Table,
+    h: [&[[f32; LANES]]; 3],
+    out: &mut RowForces,
+    there: impl Fn(usize) -> [Lane; 3],
+) {
+    let chunks = inp.cols.div_ceil(LANES);
+    let mut out = out.fam[fam].each_mut().map(|c| lanes_mut(c, LEAD, chunks));
+    for k in 0..chunks {
+        // SAFETY: `h` and the tables hold at least `chunks` chunks, `out` exactly `chunks`.
+        unsafe {
+            let (coef, rest) = table.at(k);
+            let mut f = spring_force(load3(h, k), there(k), coef, rest);
+            // Lanes without a spring (only in a row's first and last chunk) hold other
+            // rows' nodes or padding; they get exactly +0, like the reference's absent
+            // spring. A coefficient of 0 is not enough: `0 · ∞` is NaN once those
+            // positions are far apart (the `params` fuzz target found a surface beyond
+            // ~1e19 from the origin whose step the engine refused and the reference took).
+            if k + 1 == chunks || (fam == 3 && k == 0) {
+                let exists = inp.exists(fam, k, chunks);
+                f = f.map(|c| exists.select(c, Lane::ZERO));
             }
-            continue;
-        };
-        let sp = inp.springs;
-        let table = match sp.uniform(fam) {
-            Some((c, r)) => Table::Uniform(Lane::splat(c), Lane::splat(r)),
-            None => Table::PerSpring(
-                lanes(&sp.coef[fam], base, chunks),
-                lanes(&sp.rest[fam], base, chunks),
-            ),
-        };
-        for k in 0..chunks {
-            // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
-            unsafe {
-                let (coef, rest) = table.at(k);
-                let mut f = spring_force(load3(h, k), load3(there, k), coef, rest);
-                // Lanes without a spring (only in a row's first and last chunk) hold other
-                // rows' nodes or padding; they get exactly +0, like the reference's absent
-                // spring. A coefficient of 0 is not enough: `0 · ∞` is NaN once those
-                // positions are far apart (the `params` fuzz target found a surface beyond
-                // ~1e19 from the origin whose step the engine refused and the reference took).
-                if k + 1 == chunks || (fam == 3 && k == 0) {
-                    let exists = inp.exists(fam, k, chunks);
-                    f = f.map(|c| exists.select(c, Lane::ZERO));
-                }
-                for (o, fk) in out.iter_mut().zip(f) {
-                    put(o, k, fk);
-                }
+            for (o, fk) in out.iter_mut().zip(f) {
+                put(o, k, fk);
             }
         }
     }
@@ -707,22 +727,10 @@ fn integrate_row(
         let vel = lanes(src.vel[axis], src.at, chunks);
         let ext = ext.map(|e| node(e[axis]));
         let g = Lane::splat(inp.cfg.accel[axis]);
-        fn family(
-            rf: &RowForces,
-            fam: usize,
-            axis: usize,
-            start: usize,
-            chunks: usize,
-        ) -> &[[f32; LANES]] {
-            lanes(&rf.fam[fam][axis], start, chunks)
-        }
-        let f = |rf, fam, start| family(rf, fam, axis, start, chunks);
-        // Leaving (this row's springs at this node) and arriving (the same family's spring
-        // from the west, north, north-west and north-east neighbour).
-        let (e, e_w) = (f(cur, 0, LEAD), f(cur, 0, LEAD - 1));
-        let (s, s_n) = (f(cur, 1, LEAD), f(prev, 1, LEAD));
-        let (se, se_nw) = (f(cur, 2, LEAD), f(prev, 2, LEAD - 1));
-        let (sw, sw_ne) = (f(cur, 3, LEAD), f(prev, 3, LEAD + 1));
+        // A family's row of forces as chunks from the zero lead on: chunk `k + 1` holds
+        // columns `k·LANES ..`, chunks 0 and `chunks + 1` are zero.
+        let [e, s, se, sw] = cur.fam.each_ref().map(|f| lanes(&f[axis], 0, chunks + 2));
+        let [_, s_n, se_n, sw_n] = prev.fam.each_ref().map(|f| lanes(&f[axis], 0, chunks + 2));
         let (x_full, x_tail) = x_out[..cols].split_at_mut(full * LANES);
         let (v_full, v_tail) = v_out[..cols].split_at_mut(full * LANES);
         let (x_full, v_full) = (
@@ -730,11 +738,20 @@ fn integrate_row(
             v_full.as_chunks_mut::<LANES>().0,
         );
         for k in 0..chunks {
-            // SAFETY: every view above was made with exactly `chunks` chunks, and k < chunks.
+            // SAFETY: the node views hold `chunks` chunks, the force views `chunks + 2`,
+            // and k < chunks.
             let l = |v: &[[f32; LANES]]| unsafe { get(v, k) };
+            let m = |v: &[[f32; LANES]], j: usize| unsafe { get(v, j) };
+            // Leaving (this row's springs at this node) and arriving (the same family's
+            // spring from the west, north, north-west and north-east neighbour).
+            let e_w = west(m(e, k), m(e, k + 1));
+            let se_nw = west(m(se_n, k), m(se_n, k + 1));
+            let sw_ne = east(m(sw_n, k + 1), m(sw_n, k + 2));
             // Same expression as `scalar::node_force`.
-            let mut force =
-                (l(e) - l(e_w)) + (l(s) - l(s_n)) + (l(se) - l(se_nw)) + (l(sw) - l(sw_ne));
+            let mut force = (m(e, k + 1) - e_w)
+                + (m(s, k + 1) - m(s_n, k + 1))
+                + (m(se, k + 1) - se_nw)
+                + (m(sw, k + 1) - sw_ne);
             if let Some(ext) = ext {
                 force += l(ext);
             }
