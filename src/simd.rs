@@ -131,42 +131,189 @@ impl std::fmt::Debug for Floats {
 }
 
 /// Lanes `1..` of `lo` then lane 0 of `hi`: with `hi` the chunk after `lo`, the east
-/// neighbour of every column of `lo`. One register shuffle instead of a load that
-/// straddles two cache lines.
+/// neighbour of every column of `lo`. A register shuffle or two instead of a load one
+/// column off, which with 64-byte lanes straddles two cache lines.
 #[inline(always)]
 pub fn east(lo: Lane, hi: Lane) -> Lane {
-    #[cfg(target_feature = "avx512f")]
-    {
-        use core::arch::x86_64::{_mm512_alignr_epi32, _mm512_castps_si512, _mm512_castsi512_ps};
-        // SAFETY: these intrinsics only need AVX-512F, which this build enables (`cfg` above).
-        unsafe {
-            let (lo, hi) = (_mm512_castps_si512(lo.into()), _mm512_castps_si512(hi.into()));
-            Lane::from(_mm512_castsi512_ps(_mm512_alignr_epi32::<1>(hi, lo)))
-        }
-    }
-    #[cfg(not(target_feature = "avx512f"))]
-    {
-        let (lo, hi) = (lo.to_array(), hi.to_array());
-        Lane::new(core::array::from_fn(|i| if i + 1 < LANES { lo[i + 1] } else { hi[0] }))
-    }
+    shift::east(lo, hi)
 }
 
 /// Lane `LANES − 1` of `lo` then lanes `..LANES − 1` of `hi`: with `lo` the chunk before
 /// `hi`, the west neighbour of every column of `hi`.
 #[inline(always)]
 pub fn west(lo: Lane, hi: Lane) -> Lane {
-    #[cfg(target_feature = "avx512f")]
-    {
-        use core::arch::x86_64::{_mm512_alignr_epi32, _mm512_castps_si512, _mm512_castsi512_ps};
-        // SAFETY: these intrinsics only need AVX-512F, which this build enables (`cfg` above).
+    shift::west(lo, hi)
+}
+
+/// [`east`] and [`west`] for each lane type `wide` may pick: one `valignd` with AVX-512,
+/// a lane-crossing permute and a byte align with AVX2, two shuffles per half with SSE2.
+#[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+mod shift {
+    use super::Lane;
+    use core::arch::x86_64::{_mm512_alignr_epi32, _mm512_castps_si512, _mm512_castsi512_ps};
+
+    #[inline(always)]
+    pub fn east(lo: Lane, hi: Lane) -> Lane {
+        // SAFETY: AVX-512F is enabled for this build (the `cfg` on this module).
         unsafe {
-            let (lo, hi) = (_mm512_castps_si512(lo.into()), _mm512_castps_si512(hi.into()));
+            let (lo, hi) = (
+                _mm512_castps_si512(lo.into()),
+                _mm512_castps_si512(hi.into()),
+            );
+            Lane::from(_mm512_castsi512_ps(_mm512_alignr_epi32::<1>(hi, lo)))
+        }
+    }
+
+    #[inline(always)]
+    pub fn west(lo: Lane, hi: Lane) -> Lane {
+        // SAFETY: AVX-512F is enabled for this build (the `cfg` on this module).
+        unsafe {
+            let (lo, hi) = (
+                _mm512_castps_si512(lo.into()),
+                _mm512_castps_si512(hi.into()),
+            );
             Lane::from(_mm512_castsi512_ps(_mm512_alignr_epi32::<15>(hi, lo)))
         }
     }
-    #[cfg(not(target_feature = "avx512f"))]
-    {
+}
+
+#[cfg(all(
+    target_arch = "x86_64",
+    not(target_feature = "avx512f"),
+    target_feature = "avx2"
+))]
+mod shift {
+    use super::Lane;
+    use core::arch::x86_64::{
+        _mm256_alignr_epi8, _mm256_castps_si256, _mm256_castsi256_ps, _mm256_permute2f128_ps,
+    };
+
+    #[inline(always)]
+    pub fn east(lo: Lane, hi: Lane) -> Lane {
+        // SAFETY: AVX2 is enabled for this build (the `cfg` on this module).
+        unsafe {
+            // `mid` = lo[4..8], hi[0..4]; each 128-bit half then shifts by one f32.
+            let mid = _mm256_permute2f128_ps::<0x21>(lo.into(), hi.into());
+            let (lo, mid) = (_mm256_castps_si256(lo.into()), _mm256_castps_si256(mid));
+            Lane::from(_mm256_castsi256_ps(_mm256_alignr_epi8::<4>(mid, lo)))
+        }
+    }
+
+    #[inline(always)]
+    pub fn west(lo: Lane, hi: Lane) -> Lane {
+        // SAFETY: AVX2 is enabled for this build (the `cfg` on this module).
+        unsafe {
+            let mid = _mm256_permute2f128_ps::<0x21>(lo.into(), hi.into());
+            let (hi, mid) = (_mm256_castps_si256(hi.into()), _mm256_castps_si256(mid));
+            Lane::from(_mm256_castsi256_ps(_mm256_alignr_epi8::<12>(hi, mid)))
+        }
+    }
+}
+
+#[cfg(all(
+    target_arch = "x86_64",
+    not(target_feature = "avx512f"),
+    not(target_feature = "avx2"),
+    not(target_feature = "avx")
+))]
+mod shift {
+    //! `wide`'s 8-lane type here is two SSE registers, `[a, b]`.
+    use super::Lane;
+    use core::arch::x86_64::{__m128, _mm_shuffle_ps};
+    use wide::f32x4;
+
+    fn halves(v: Lane) -> [__m128; 2] {
+        bytemuck::cast::<Lane, [f32x4; 2]>(v).map(Into::into)
+    }
+
+    fn join(h: [__m128; 2]) -> Lane {
+        bytemuck::cast::<[f32x4; 2], Lane>(h.map(f32x4::from))
+    }
+
+    /// `[x1, x2, x3, y0]`.
+    #[inline(always)]
+    fn east4(x: __m128, y: __m128) -> __m128 {
+        // SAFETY: SSE is part of the x86_64 baseline.
+        unsafe {
+            let t = _mm_shuffle_ps::<0b00_00_11_11>(x, y); // x3 x3 y0 y0
+            _mm_shuffle_ps::<0b10_00_10_01>(x, t) // x1 x2 x3 y0
+        }
+    }
+
+    /// `[x3, y0, y1, y2]`.
+    #[inline(always)]
+    fn west4(x: __m128, y: __m128) -> __m128 {
+        // SAFETY: SSE is part of the x86_64 baseline.
+        unsafe {
+            let t = _mm_shuffle_ps::<0b00_00_11_11>(x, y); // x3 x3 y0 y0
+            _mm_shuffle_ps::<0b10_01_10_00>(t, y) // x3 y0 y1 y2
+        }
+    }
+
+    #[inline(always)]
+    pub fn east(lo: Lane, hi: Lane) -> Lane {
+        let ([a, b], [c, _]) = (halves(lo), halves(hi));
+        join([east4(a, b), east4(b, c)])
+    }
+
+    #[inline(always)]
+    pub fn west(lo: Lane, hi: Lane) -> Lane {
+        let ([_, b], [c, d]) = (halves(lo), halves(hi));
+        join([west4(b, c), west4(c, d)])
+    }
+}
+
+#[cfg(not(any(
+    all(target_arch = "x86_64", target_feature = "avx512f"),
+    all(target_arch = "x86_64", target_feature = "avx2"),
+    all(
+        target_arch = "x86_64",
+        not(target_feature = "avx2"),
+        not(target_feature = "avx")
+    )
+)))]
+mod shift {
+    //! Any other target: plain lane arithmetic, left to the compiler.
+    use super::{Lane, LANES};
+
+    #[inline(always)]
+    pub fn east(lo: Lane, hi: Lane) -> Lane {
         let (lo, hi) = (lo.to_array(), hi.to_array());
-        Lane::new(core::array::from_fn(|i| if i == 0 { lo[LANES - 1] } else { hi[i - 1] }))
+        Lane::new(core::array::from_fn(|i| {
+            if i + 1 < LANES {
+                lo[i + 1]
+            } else {
+                hi[0]
+            }
+        }))
+    }
+
+    #[inline(always)]
+    pub fn west(lo: Lane, hi: Lane) -> Lane {
+        let (lo, hi) = (lo.to_array(), hi.to_array());
+        Lane::new(core::array::from_fn(|i| {
+            if i == 0 {
+                lo[LANES - 1]
+            } else {
+                hi[i - 1]
+            }
+        }))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn east_and_west_shift_by_one_column() {
+        let lo = Lane::new(core::array::from_fn(|i| i as f32));
+        let hi = Lane::new(core::array::from_fn(|i| (LANES + i) as f32));
+        let e = east(lo, hi).to_array();
+        let w = west(lo, hi).to_array();
+        for i in 0..LANES {
+            assert_eq!(e[i], (i + 1) as f32, "east lane {i}");
+            assert_eq!(w[i], (LANES + i) as f32 - 1.0, "west lane {i}");
+        }
     }
 }

@@ -3,12 +3,18 @@
 //!
 //! # How a band streams its rows
 //!
-//! For row `r`, [`row_springs`] evaluates with lanes across columns the E springs inside
-//! the row and the S, SE and SW springs down to row `r+1`, into per-family row buffers
-//! ([`RowForces`]). Row r then has everything it needs — its own springs and the ones
-//! arriving from row r−1, evaluated one row earlier — so [`integrate_row`] sums and
-//! integrates it at once while its data is still in cache. Spring forces never travel to
-//! main memory.
+//! [`advance_row`] takes row `r` in one pass over its chunks of `LANES` columns: it
+//! evaluates the chunk's E spring inside the row and its S, SE and SW springs down to row
+//! r+1, adds the springs arriving from row r−1 (evaluated one row earlier and kept in a
+//! [`RowForces`]), integrates, and keeps the chunk's S, SE and SW forces for row r+1.
+//! Spring forces never travel to main memory. A neighbour one column off comes from
+//! aligned chunks and a register shuffle ([`crate::simd::east`], [`crate::simd::west`]):
+//! with 64-byte lanes a load one column off straddles two cache lines.
+//!
+//! The first version evaluated a whole row's springs into row buffers, then summed and
+//! integrated in a second loop: at 256² it was 7% faster (its loops are smaller), at 2048²
+//! (native, 2 threads) 40% slower, because its buffers for a 2048-column row no longer fit
+//! in cache.
 //!
 //! A node's force is the same expression as in the scalar reference
 //! ([`super::scalar::node_force`]), so the two agree bit for bit, whatever the schedule.
@@ -39,7 +45,9 @@
 //! thread keeps its rings from pass to pass.
 
 use super::StepConfig;
-use crate::simd::{east, first_lanes, get, lanes, lanes_mut, put, round_up, west, Floats, Lane, LANES};
+use crate::simd::{
+    east, first_lanes, get, lanes, lanes_mut, put, round_up, west, Floats, Lane, LANES,
+};
 use crate::springs::{Springs, Tiling};
 use crate::state::{State, Xyz};
 use std::cell::RefCell;
@@ -62,11 +70,12 @@ fn row_len(cols: usize) -> usize {
     LEAD + round_up(cols) + LANES
 }
 
-/// Spring forces of one row, by family (E, S, SE, SW) and axis, on the row's origin nodes.
-/// Column `c` is at `LEAD + c`; the columns before 0 and after the row read as zero.
+/// The forces a row sends down: its S, SE and SW springs by axis, on the row's origin
+/// nodes (`fam[f − 1]` for family `f`). Column `c` is at `LEAD + c`; the columns before 0
+/// and after the row read as zero.
 #[derive(Debug, Clone)]
 pub(crate) struct RowForces {
-    fam: [[Floats; 3]; 4],
+    fam: [[Floats; 3]; 3],
 }
 
 impl RowForces {
@@ -76,13 +85,11 @@ impl RowForces {
         }
     }
 
-    /// Clears the springs a row sends down (what a band's first row receives from above
-    /// when it is the grid's first row).
+    /// Clears the forces (what a band's first row receives from above when it is the
+    /// grid's first row, and what the last row sends).
     fn zero_down(&mut self) {
-        for f in 1..4 {
-            for c in &mut self.fam[f] {
-                c.fill(0.0);
-            }
+        for c in self.fam.iter_mut().flatten() {
+            c.fill(0.0);
         }
     }
 }
@@ -284,7 +291,19 @@ enum Table<'a> {
     PerSpring(&'a [[f32; LANES]], &'a [[f32; LANES]]),
 }
 
-impl Table<'_> {
+impl<'a> Table<'a> {
+    /// Family `fam`'s table for the `chunks` chunks of the row starting at node `base`.
+    #[inline(always)]
+    fn of(sp: &'a Springs, fam: usize, base: usize, chunks: usize) -> Self {
+        match sp.uniform(fam) {
+            Some((c, r)) => Table::Uniform(Lane::splat(c), Lane::splat(r)),
+            None => Table::PerSpring(
+                lanes(&sp.coef[fam], base, chunks),
+                lanes(&sp.rest[fam], base, chunks),
+            ),
+        }
+    }
+
     /// `(coefficient, rest length)` of chunk `k`.
     ///
     /// # Safety
@@ -326,7 +345,7 @@ impl<'a> Rows<'a> {
         (head, tail)
     }
 
-    /// Row `r` (held by this task), for [`integrate_row`] to write.
+    /// Row `r` (held by this task), for [`advance_row`] to write.
     fn row(&mut self, r: usize) -> [&mut [f32]; 6] {
         let at = (r - self.first_row) * self.cols;
         let cols = self.cols;
@@ -551,8 +570,7 @@ fn band(inp: &Inputs, t: &Tiling, b: usize, mut handoffs: Handoffs, rows: &mut R
                 if !own_l.contains(&r) {
                     if r + 1 == own_l.start {
                         // The row above the band: its springs arrive at the first row.
-                        row_springs(inp, r, src(r), down, cur);
-                        std::mem::swap(cur, &mut prev[l]);
+                        down_springs(inp, r, src(r), down, &mut prev[l]);
                     }
                     if let Handoffs::Take(above, below) = &handoffs {
                         if l < last {
@@ -568,14 +586,13 @@ fn band(inp: &Inputs, t: &Tiling, b: usize, mut handoffs: Handoffs, rows: &mut R
                     }
                     continue;
                 }
-                row_springs(inp, r, src(r), down, cur);
                 let ext = if l == 1 { inp.ext } else { None };
                 let dst = if l == last {
                     rows.row(r)
                 } else {
                     upper[0][r % 2].out(inp.cols)
                 };
-                ok &= integrate_row(inp, r, src(r), ext, cur, &prev[l], dst);
+                ok &= advance_row(inp, r, src(r), down, ext, &prev[l], cur, dst);
                 std::mem::swap(cur, &mut prev[l]);
                 if let Handoffs::Give(above, below) = &mut handoffs {
                     if l < last {
@@ -606,55 +623,52 @@ fn spring_force(pi: [Lane; 3], pj: [Lane; 3], coef: Lane, rest: Lane) -> [Lane; 
     [s * d[0], s * d[1], s * d[2]]
 }
 
-/// Evaluates row `r`'s springs into `out`: E inside the row (`here`), S/SE/SW down to row
-/// r+1 (`down`; zero on the last row).
-#[inline(always)]
-fn row_springs(inp: &Inputs, r: usize, here: RowRef, down: Option<RowRef>, out: &mut RowForces) {
+/// Evaluates the S, SE and SW springs from row `r` (`here`) down to row r+1 (`down`;
+/// zero on the last row) into `out`: what row r sends to the next row. Only for the row
+/// just above a band's rows; [`advance_row`] does this for its own rows on the way.
+fn down_springs(inp: &Inputs, r: usize, here: RowRef, down: Option<RowRef>, out: &mut RowForces) {
     let cols = inp.cols;
     let chunks = cols.div_ceil(LANES);
     let base = r * cols;
-    // Chunk views (see `crate::simd`) of a row's positions, one chunk longer than the row:
-    // the east neighbours of chunk k are `east(chunk k, chunk k+1)`, the west ones
-    // `west(chunk k−1, chunk k)`. Aligned loads and a shuffle, where a load one column off
-    // would straddle two cache lines.
-    fn view(row: RowRef<'_>, chunks: usize) -> [&[[f32; LANES]]; 3] {
-        row.pos.map(|p| lanes(p, row.at, chunks + 1))
-    }
-    let h = view(here, chunks);
-    let sp = inp.springs;
-    let table = |fam: usize| match sp.uniform(fam) {
-        Some((c, r)) => Table::Uniform(Lane::splat(c), Lane::splat(r)),
-        None => Table::PerSpring(
-            lanes(&sp.coef[fam], base, chunks),
-            lanes(&sp.rest[fam], base, chunks),
-        ),
-    };
-    // SAFETY (every closure below): `k < chunks` and the views hold `chunks + 1` chunks.
-    family(inp, 0, table(0), h, out, |k| unsafe {
-        let (a, b) = (load3(h, k), load3(h, k + 1));
-        [0, 1, 2].map(|i| east(a[i], b[i]))
-    });
     let Some(down) = down else {
-        for c in out.fam[1..].iter_mut().flatten() {
-            c.fill(0.0);
-        }
+        out.zero_down();
         return;
     };
-    let d = view(down, chunks);
+    let (h, d) = (row_view(here, chunks), row_view(down, chunks));
+    let sp = inp.springs;
+    let table = |fam| Table::of(sp, fam, base, chunks);
+    // `family` calls these with `k < chunks`; the views hold `chunks + 1` chunks.
+    // SAFETY: `k < chunks`.
     family(inp, 1, table(1), h, out, |k| unsafe { load3(d, k) });
+    // SAFETY: `k + 1 ≤ chunks`.
     family(inp, 2, table(2), h, out, |k| unsafe {
         let (a, b) = (load3(d, k), load3(d, k + 1));
         [0, 1, 2].map(|i| east(a[i], b[i]))
     });
+    // SAFETY: `k − 1` (for k > 0) and `k` are below `chunks`.
     family(inp, 3, table(3), h, out, |k| unsafe {
         // Lane 0 of chunk 0 has no SW spring (column 0): its west neighbour is never used.
-        let a = if k == 0 { [Lane::ZERO; 3] } else { load3(d, k - 1) };
+        let a = if k == 0 {
+            [Lane::ZERO; 3]
+        } else {
+            load3(d, k - 1)
+        };
         let b = load3(d, k);
         [0, 1, 2].map(|i| west(a[i], b[i]))
     });
 }
 
-/// One family's springs along a row: from the nodes of `h` to `there(k)`, into `out`.
+/// Chunk views of a row's positions, one chunk longer than the row: the east neighbours
+/// of chunk k are `east(chunk k, chunk k+1)`, the west ones `west(chunk k−1, chunk k)` —
+/// aligned loads and a register shuffle, where a load one column off would straddle two
+/// cache lines.
+#[inline(always)]
+fn row_view(row: RowRef<'_>, chunks: usize) -> [&[[f32; LANES]]; 3] {
+    row.pos.map(|p| lanes(p, row.at, chunks + 1))
+}
+
+/// One down family's springs (`fam` in 1..4) along a row: from the nodes of `h` to
+/// `there(k)`, into `out`.
 #[inline(always)]
 fn family(
     inp: &Inputs,
@@ -665,7 +679,9 @@ fn family(
     there: impl Fn(usize) -> [Lane; 3],
 ) {
     let chunks = inp.cols.div_ceil(LANES);
-    let mut out = out.fam[fam].each_mut().map(|c| lanes_mut(c, LEAD, chunks));
+    let mut out = out.fam[fam - 1]
+        .each_mut()
+        .map(|c| lanes_mut(c, LEAD, chunks));
     for k in 0..chunks {
         // SAFETY: `h` and the tables hold at least `chunks` chunks, `out` exactly `chunks`.
         unsafe {
@@ -698,18 +714,25 @@ unsafe fn load3(v: [&[[f32; LANES]]; 3], k: usize) -> [Lane; 3] {
     unsafe { [get(v[0], k), get(v[1], k), get(v[2], k)] }
 }
 
-/// Sums row `r`'s spring forces (`cur`: its own springs, `prev`: the ones arriving from
-/// row r−1) and integrates the row from `src` into `dst` (x, y, z, vx, vy, vz; `cols`
-/// values each). Returns `false` if a new value is not finite.
+/// Advances row `r` one level: evaluates its four springs (E inside the row, S, SE, SW
+/// down to row r+1 from `down`, none on the last row), sums each node's force with the
+/// springs arriving from row r−1 (`prev`, evaluated one row earlier), integrates from
+/// `src` into `dst` (x, y, z, vx, vy, vz; `cols` values each), and leaves the S, SE and SW
+/// forces in `next` for row r+1. Returns `false` if a new value is not finite.
+///
+/// One pass over the row's chunks: the E force of the chunk before, and the neighbour
+/// chunks the shuffles need, stay in registers.
+#[allow(clippy::too_many_arguments)]
 #[inline(always)]
-fn integrate_row(
+fn advance_row(
     inp: &Inputs,
     r: usize,
     src: RowRef,
+    down: Option<RowRef>,
     ext: Option<[&[f32]; 3]>,
-    cur: &RowForces,
     prev: &RowForces,
-    mut dst: [&mut [f32]; 6],
+    next: &mut RowForces,
+    dst: [&mut [f32]; 6],
 ) -> bool {
     let cols = inp.cols;
     let chunks = cols.div_ceil(LANES);
@@ -717,62 +740,120 @@ fn integrate_row(
     let base = r * cols;
     let node = |s| lanes(s, base, chunks);
     let (inv_mass, viscosity) = (node(inp.inv_mass), node(inp.viscosity));
+    let vel = src.vel.map(|v| lanes(v, src.at, chunks));
+    let ext = ext.map(|e| e.map(node));
     let dt = Lane::splat(inp.cfg.dt);
-    // Only the row's own lanes count: lanes past it hold other rows or padding.
+    let g = inp.cfg.accel.map(Lane::splat);
+    let sp = inp.springs;
+    let tables: [Table; 4] = std::array::from_fn(|fam| Table::of(sp, fam, base, chunks));
+    let h = row_view(src, chunks);
+    // On the last row the "row below" is the row itself: its springs are masked off.
+    let d = row_view(down.unwrap_or(src), chunks);
+    let has_down = down.is_some();
+    // What row r−1 sent down, as chunks from the zero lead on (chunk `k + 1` holds
+    // columns `k·LANES ..`; chunks 0 and `chunks + 1` are zero).
+    let from = |f: usize| prev.fam[f - 1].each_ref().map(|a| lanes(a, 0, chunks + 2));
+    let (s_n, se_n, sw_n) = (from(1), from(2), from(3));
+    let sent = next
+        .fam
+        .each_mut()
+        .map(|f| f.each_mut().map(|a| lanes_mut(a, LEAD, chunks)));
+    let mut out = dst.map(|d| {
+        let (whole, tail) = d[..cols].split_at_mut(full * LANES);
+        (whole.as_chunks_mut::<LANES>().0, tail)
+    });
+    // Only the row's own lanes count in the finiteness check.
     let real = inp.tail[1];
     let mut finite = Lane::ZERO;
-    let (xs, vs) = dst.split_at_mut(3);
-    for (axis, (x_out, v_out)) in xs.iter_mut().zip(vs.iter_mut()).enumerate() {
-        let pos = lanes(src.pos[axis], src.at, chunks);
-        let vel = lanes(src.vel[axis], src.at, chunks);
-        let ext = ext.map(|e| node(e[axis]));
-        let g = Lane::splat(inp.cfg.accel[axis]);
-        // A family's row of forces as chunks from the zero lead on: chunk `k + 1` holds
-        // columns `k·LANES ..`, chunks 0 and `chunks + 1` are zero.
-        let [e, s, se, sw] = cur.fam.each_ref().map(|f| lanes(&f[axis], 0, chunks + 2));
-        let [_, s_n, se_n, sw_n] = prev.fam.each_ref().map(|f| lanes(&f[axis], 0, chunks + 2));
-        let (x_full, x_tail) = x_out[..cols].split_at_mut(full * LANES);
-        let (v_full, v_tail) = v_out[..cols].split_at_mut(full * LANES);
-        let (x_full, v_full) = (
-            x_full.as_chunks_mut::<LANES>().0,
-            v_full.as_chunks_mut::<LANES>().0,
-        );
-        for k in 0..chunks {
-            // SAFETY: the node views hold `chunks` chunks, the force views `chunks + 2`,
-            // and k < chunks.
-            let l = |v: &[[f32; LANES]]| unsafe { get(v, k) };
+    // The E force of the chunk before (zero before column 0: no spring there).
+    let mut e_west = [Lane::ZERO; 3];
+    // Unchecked accesses below: the row views hold `chunks + 1` chunks, the `prev` views
+    // `chunks + 2`, the node and table views and `sent` exactly `chunks`; `k < chunks`.
+    for k in 0..chunks {
+        // SAFETY: `k + 1 ≤ chunks`, within the row views.
+        let (h0, d0, h1, d1) =
+            unsafe { (load3(h, k), load3(d, k), load3(h, k + 1), load3(d, k + 1)) };
+        let d_west = if k == 0 {
+            [Lane::ZERO; 3]
+        } else {
+            // SAFETY: `k − 1 < chunks`.
+            unsafe { load3(d, k - 1) }
+        };
+        let spring = |fam: usize, there: [Lane; 3]| {
+            // SAFETY: `k < chunks`, within the table views.
+            let (coef, rest) = unsafe { tables[fam].at(k) };
+            let mut f = spring_force(h0, there, coef, rest);
+            // Lanes without a spring (only in a row's first and last chunk, and every
+            // lane of S, SE, SW on the last row) hold other rows' nodes or padding; they
+            // get exactly +0, like the reference's absent spring. A coefficient of 0 is
+            // not enough: `0 · ∞` is NaN once those positions are far apart (the `params`
+            // fuzz target found a surface beyond ~1e19 from the origin whose step the
+            // engine refused and the reference took).
+            let edge = k + 1 == chunks || (fam == 3 && k == 0);
+            if edge || (fam > 0 && !has_down) {
+                let mut exists = if fam > 0 && !has_down {
+                    Lane::ZERO
+                } else {
+                    ALL
+                };
+                if edge {
+                    exists &= inp.exists(fam, k, chunks);
+                }
+                f = f.map(|c| exists.select(c, Lane::ZERO));
+            }
+            f
+        };
+        let e = spring(0, [0, 1, 2].map(|i| east(h0[i], h1[i])));
+        let s = spring(1, d0);
+        let se = spring(2, [0, 1, 2].map(|i| east(d0[i], d1[i])));
+        let sw = spring(3, [0, 1, 2].map(|i| west(d_west[i], d0[i])));
+        // SAFETY: `k < chunks`, within the node views.
+        let (inv_mass, viscosity) = unsafe { (get(inv_mass, k), get(viscosity, k)) };
+        let free = inv_mass.simd_gt(Lane::ZERO);
+        for axis in 0..3 {
+            // SAFETY: called with `j = k` on node views and `j ≤ k + 2 ≤ chunks + 1` on
+            // the `prev` views.
             let m = |v: &[[f32; LANES]], j: usize| unsafe { get(v, j) };
+            // SAFETY: `k < chunks`, within `sent`.
+            unsafe {
+                put(sent[0][axis], k, s[axis]);
+                put(sent[1][axis], k, se[axis]);
+                put(sent[2][axis], k, sw[axis]);
+            }
             // Leaving (this row's springs at this node) and arriving (the same family's
             // spring from the west, north, north-west and north-east neighbour).
-            let e_w = west(m(e, k), m(e, k + 1));
-            let se_nw = west(m(se_n, k), m(se_n, k + 1));
-            let sw_ne = east(m(sw_n, k + 1), m(sw_n, k + 2));
+            let e_w = west(e_west[axis], e[axis]);
+            let se_nw = west(m(se_n[axis], k), m(se_n[axis], k + 1));
+            let sw_ne = east(m(sw_n[axis], k + 1), m(sw_n[axis], k + 2));
             // Same expression as `scalar::node_force`.
-            let mut force = (m(e, k + 1) - e_w)
-                + (m(s, k + 1) - m(s_n, k + 1))
-                + (m(se, k + 1) - se_nw)
-                + (m(sw, k + 1) - sw_ne);
+            let mut force = (e[axis] - e_w)
+                + (s[axis] - m(s_n[axis], k + 1))
+                + (se[axis] - se_nw)
+                + (sw[axis] - sw_ne);
             if let Some(ext) = ext {
-                force += l(ext);
+                force += m(ext[axis], k);
             }
-            let inv_mass = l(inv_mass);
-            let v = l(vel);
-            let acc = (force - l(viscosity) * v) * inv_mass
-                + inv_mass.simd_gt(Lane::ZERO).select(g, Lane::ZERO);
+            let v = m(vel[axis], k);
+            let acc = (force - viscosity * v) * inv_mass + free.select(g[axis], Lane::ZERO);
             let v1 = v + acc * dt;
-            let x1 = l(pos) + v1 * dt;
+            let x1 = h0[axis] + v1 * dt;
             // Fused finiteness check: `x·0` is 0 for finite x and NaN otherwise, and x' is
             // non-finite whenever v' is.
-            if k < full {
-                finite += x1 * Lane::ZERO;
-                x_full[k] = x1.to_array();
-                v_full[k] = v1.to_array();
-            } else {
-                finite += real.select(x1 * Lane::ZERO, Lane::ZERO);
-                x_tail.copy_from_slice(&x1.to_array()[..x_tail.len()]);
-                v_tail.copy_from_slice(&v1.to_array()[..v_tail.len()]);
+            for (o, value) in [(axis, x1), (axis + 3, v1)] {
+                let (whole, tail) = &mut out[o];
+                if k < full {
+                    whole[k] = value.to_array();
+                } else {
+                    tail.copy_from_slice(&value.to_array()[..tail.len()]);
+                }
             }
+            finite += if k < full {
+                x1 * Lane::ZERO
+            } else {
+                real.select(x1 * Lane::ZERO, Lane::ZERO)
+            };
         }
+        e_west = e;
     }
     !finite.is_nan().any()
 }
