@@ -29,7 +29,7 @@
 //! (each colour needs a few bands per thread). `springwater bench --band-rows H` measures
 //! it. On 256² with 2 threads (native build, single steps) 16 and 32 rows gave 7.5·10⁸
 //! node updates/s, 64 rows 5.9·10⁸ (2 bands a colour) and 128 rows 4.1·10⁸; on 2048² with
-//! passes of 4 steps, 16 rows gave 7.0·10⁸, 32 rows 7.4·10⁸ and 64 rows 7.3·10⁸. So the
+//! passes of 4 steps, 16 rows gave 9.3·10⁸, 32 rows 9.8·10⁸ and 64 rows 1.0·10⁹. So the
 //! engine picks [`band_rows`]`(rows, threads)`: about 4 bands per thread, clamped to
 //! 8..=64 rows (and at least 2 rows per step of a pass). The choice never changes a bit of
 //! the result (the per-node arithmetic does not depend on it), so it may follow the

@@ -111,6 +111,23 @@ fn exercise(s: &mut Surface, input: &Input) {
             reference.clear_forces();
         }
     }
+    // Several steps per pass: the same bits, and a failure at the same step.
+    let _ = s.add_force(node, [v, v, -v]);
+    let _ = reference.add_force(node, [v, v, -v]);
+    s.set_pass_steps(input.node as usize % 8 + 1);
+    let passes = s.step_n(6);
+    let mut single = Ok(());
+    for _ in 0..6 {
+        single = reference.step_with(springwater::Stepper::Reference);
+        if single.is_err() {
+            break;
+        }
+    }
+    assert_eq!(passes, single);
+    assert!(
+        s.to_bytes() == reference.to_bytes(),
+        "passes and reference differ"
+    );
     let (qx, qz) = (input.drop[0], input.drop[1]);
     if let Ok(y) = s.height_at(qx, qz) {
         assert!(y.is_finite());

@@ -56,7 +56,10 @@ use std::ops::Range;
 /// Most steps one pass takes.
 pub const MAX_PASS_STEPS: usize = 8;
 
-/// Steps per pass when the caller does not fix it (see the crate's performance notes).
+/// Steps per pass when the caller does not fix it. Measured on 2048², native build, 2
+/// threads, 64-row bands: 2 steps gave 8.8·10⁸ node updates/s, 3 gave 9.3·10⁸, 4 gave
+/// 1.0·10⁹, 6 gave 1.0·10⁹ and 8 gave 9.3·10⁸ (single steps: 5.5·10⁸). Past 4 the rows in
+/// flight of a 2048-column pass outgrow the 1 MB L2.
 pub const DEFAULT_PASS_STEPS: usize = 4;
 
 /// Offset of column 0 in a row buffer: index `LEAD − 1` is a zero "column −1".
