@@ -12,9 +12,11 @@
 //! with 64-byte lanes a load one column off straddles two cache lines.
 //!
 //! The first version evaluated a whole row's springs into row buffers, then summed and
-//! integrated in a second loop: at 256² it was 7% faster (its loops are smaller), at 2048²
-//! (native, 2 threads) 40% slower, because its buffers for a 2048-column row no longer fit
-//! in cache.
+//! integrated in a second loop: at 256² it was 7% faster, at 2048² (native, 2 threads)
+//! 40% slower. Cutting its rows into strips whose buffers fit in L1 made 2048² slower
+//! still, so cache capacity is not the reason; the one-pass loop stores 15 chunks per
+//! chunk of nodes instead of 18 and loads about 30 instead of 45, but this machine has no
+//! hardware counters to say more.
 //!
 //! A node's force is the same expression as in the scalar reference
 //! ([`super::scalar::node_force`]), so the two agree bit for bit, whatever the schedule.
