@@ -140,8 +140,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         // One warm-up round, then `repeats` interleaved rounds so drift hits every kernel.
         // Every kernel runs the same steps from the same start, so each round times all of
         // them on the same stage of the simulation: the early steps of a drop carry
-        // subnormal values at the wavefront, which slow scalar code (not the engine's
-        // lanes) by up to 1.6x here, so comparing different stages would skew the ratios.
+        // subnormal values at the wavefront, which slow scalar code by up to 1.6x here (the
+        // engine by a few percent at that stage), so comparing different stages would skew
+        // the ratios.
         for round in 0..=repeats {
             for (k, kernel) in kernels.iter().enumerate() {
                 let start = Instant::now();
