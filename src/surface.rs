@@ -553,12 +553,15 @@ impl Surface {
     }
 
     /// The colour batches the engine uses on the current thread pool: bands of rows, even
-    /// bands colour 0, odd bands colour 1 (see [`crate::springs`]).
+    /// bands colour 0, odd bands colour 1 (see [`crate::springs`]), as they stand at the
+    /// start of a pass ([`springs::Tiling`] says how they lean through its steps).
     pub fn bands(&self) -> impl Iterator<Item = Band> {
-        springs::bands(
+        let tiling = springs::Tiling::new(
             self.params.rows,
             self.workspace.band_rows_for(self.params.rows),
-        )
+            self.workspace.pass_steps,
+        );
+        springs::bands(self.params.rows, tiling.band_rows)
     }
 
     /// Kinetic plus spring potential energy, a diagnostic (`O(nodes)`).
