@@ -277,6 +277,34 @@ impl Inputs<'_> {
         m
     }
 
+    /// Family `fam`'s forces `f` on chunk `k`, with exactly +0 in the lanes that hold no
+    /// spring: in a row's first and last chunk, and every lane of S, SE and SW when there
+    /// is no row below (`has_down` false). Those lanes hold other rows' nodes or padding,
+    /// and get +0 like the reference's absent spring. A coefficient of 0 is not enough:
+    /// `0 · ∞` is NaN once those positions are far apart (the `params` fuzz target found a
+    /// surface beyond ~1e19 from the origin whose step the engine refused and the
+    /// reference took).
+    #[inline(always)]
+    fn only_springs(
+        &self,
+        fam: usize,
+        k: usize,
+        chunks: usize,
+        has_down: bool,
+        f: [Lane; 3],
+    ) -> [Lane; 3] {
+        let edge = k + 1 == chunks || (fam == 3 && k == 0);
+        let none_below = fam > 0 && !has_down;
+        if !edge && !none_below {
+            return f;
+        }
+        let mut exists = if none_below { Lane::ZERO } else { ALL };
+        if edge {
+            exists &= self.exists(fam, k, chunks);
+        }
+        f.map(|c| exists.select(c, Lane::ZERO))
+    }
+
     /// Row `r` of the front buffers (level 0).
     fn front(&self, r: usize) -> RowRef<'_> {
         RowRef {
@@ -691,16 +719,8 @@ fn family(
         // SAFETY: `h` and the tables hold at least `chunks` chunks, `out` exactly `chunks`.
         unsafe {
             let (coef, rest) = table.at(k);
-            let mut f = spring_force(load3(h, k), there(k), coef, rest);
-            // Lanes without a spring (only in a row's first and last chunk) hold other
-            // rows' nodes or padding; they get exactly +0, like the reference's absent
-            // spring. A coefficient of 0 is not enough: `0 · ∞` is NaN once those
-            // positions are far apart (the `params` fuzz target found a surface beyond
-            // ~1e19 from the origin whose step the engine refused and the reference took).
-            if k + 1 == chunks || (fam == 3 && k == 0) {
-                let exists = inp.exists(fam, k, chunks);
-                f = f.map(|c| exists.select(c, Lane::ZERO));
-            }
+            let f = spring_force(load3(h, k), there(k), coef, rest);
+            let f = inp.only_springs(fam, k, chunks, true, f);
             for (o, fk) in out.iter_mut().zip(f) {
                 put(o, k, fk);
             }
@@ -787,26 +807,8 @@ fn advance_row(
         let spring = |fam: usize, there: [Lane; 3]| {
             // SAFETY: `k < chunks`, within the table views.
             let (coef, rest) = unsafe { tables[fam].at(k) };
-            let mut f = spring_force(h0, there, coef, rest);
-            // Lanes without a spring (only in a row's first and last chunk, and every
-            // lane of S, SE, SW on the last row) hold other rows' nodes or padding; they
-            // get exactly +0, like the reference's absent spring. A coefficient of 0 is
-            // not enough: `0 · ∞` is NaN once those positions are far apart (the `params`
-            // fuzz target found a surface beyond ~1e19 from the origin whose step the
-            // engine refused and the reference took).
-            let edge = k + 1 == chunks || (fam == 3 && k == 0);
-            if edge || (fam > 0 && !has_down) {
-                let mut exists = if fam > 0 && !has_down {
-                    Lane::ZERO
-                } else {
-                    ALL
-                };
-                if edge {
-                    exists &= inp.exists(fam, k, chunks);
-                }
-                f = f.map(|c| exists.select(c, Lane::ZERO));
-            }
-            f
+            let f = spring_force(h0, there, coef, rest);
+            inp.only_springs(fam, k, chunks, has_down, f)
         };
         let e = spring(0, [0, 1, 2].map(|i| east(h0[i], h1[i])));
         let s = spring(1, d0);
