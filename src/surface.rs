@@ -556,11 +556,9 @@ impl Surface {
     /// bands colour 0, odd bands colour 1 (see [`crate::springs`]), as they stand at the
     /// start of a pass ([`springs::Tiling`] says how they lean through its steps).
     pub fn bands(&self) -> impl Iterator<Item = Band> {
-        let tiling = springs::Tiling::new(
-            self.params.rows,
-            self.workspace.band_rows_for(self.params.rows),
-            self.workspace.pass_steps,
-        );
+        let tiling = self
+            .workspace
+            .tiling(self.params.rows, self.workspace.pass_steps);
         springs::bands(self.params.rows, tiling.band_rows)
     }
 

@@ -171,7 +171,7 @@ impl Workspace {
 
     /// The tiling for a pass of `levels` steps; rebuilds the handoff slots when it changes.
     fn prepare(&mut self, cols: usize, rows: usize, levels: usize) -> Tiling {
-        let tiling = Tiling::new(rows, self.band_rows_for(rows), levels);
+        let tiling = self.tiling(rows, levels);
         if self.tiling != Some((tiling, cols)) {
             self.tiling = Some((tiling, cols));
             let slots = if tiling.bands() > 1 {
@@ -191,9 +191,12 @@ impl Workspace {
         tiling
     }
 
-    pub fn band_rows_for(&self, rows: usize) -> usize {
-        self.fixed_band_rows
-            .unwrap_or_else(|| crate::springs::band_rows(rows, threads()))
+    /// How a pass of `levels` steps cuts `rows` rows on the current thread pool.
+    pub fn tiling(&self, rows: usize, levels: usize) -> Tiling {
+        let band_rows = self
+            .fixed_band_rows
+            .unwrap_or_else(|| crate::springs::band_rows(rows, threads()));
+        Tiling::new(rows, band_rows, levels)
     }
 }
 
