@@ -749,7 +749,10 @@ unsafe fn load3(v: [&[[f32; LANES]]; 3], k: usize) -> [Lane; 3] {
 /// forces in `next` for row r+1. Returns `false` if a new value is not finite.
 ///
 /// One pass over the row's chunks: the E force of the chunk before, and the neighbour
-/// chunks the shuffles need, stay in registers.
+/// chunks the shuffles need, stay in registers. The first and last chunk (and every chunk
+/// of the grid's last row) mask the lanes without a spring; the chunks between them run a
+/// loop with no mask, no partial store and no call, so nothing forces the compiler to
+/// spill the registers it carries from chunk to chunk.
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn advance_row(
@@ -767,62 +770,152 @@ fn advance_row(
     let full = cols / LANES;
     let base = r * cols;
     let node = |s| lanes(s, base, chunks);
-    let (inv_mass, viscosity) = (node(inp.inv_mass), node(inp.viscosity));
-    let vel = src.vel.map(|v| lanes(v, src.at, chunks));
-    let ext = ext.map(|e| e.map(node));
-    let dt = Lane::splat(inp.cfg.dt);
-    let g = inp.cfg.accel.map(Lane::splat);
     let sp = inp.springs;
-    let tables: [Table; 4] = std::array::from_fn(|fam| Table::of(sp, fam, base, chunks));
-    let h = row_view(src, chunks);
-    // On the last row the "row below" is the row itself: its springs are masked off.
-    let d = row_view(down.unwrap_or(src), chunks);
-    let has_down = down.is_some();
     // What row r−1 sent down, as chunks from the zero lead on (chunk `k + 1` holds
     // columns `k·LANES ..`; chunks 0 and `chunks + 1` are zero).
     let from = |f: usize| prev.fam[f - 1].each_ref().map(|a| lanes(a, 0, chunks + 2));
-    let (s_n, se_n, sw_n) = (from(1), from(2), from(3));
-    let sent = next
+    let row = RowKernel {
+        inp,
+        chunks,
+        has_down: down.is_some(),
+        h: row_view(src, chunks),
+        // On the last row the "row below" is the row itself: its springs are masked off.
+        d: row_view(down.unwrap_or(src), chunks),
+        tables: std::array::from_fn(|fam| Table::of(sp, fam, base, chunks)),
+        inv_mass: node(inp.inv_mass),
+        viscosity: node(inp.viscosity),
+        vel: src.vel.map(|v| lanes(v, src.at, chunks)),
+        ext: ext.map(|e| e.map(node)),
+        arriving: [from(1), from(2), from(3)],
+        dt: Lane::splat(inp.cfg.dt),
+        g: inp.cfg.accel.map(Lane::splat),
+    };
+    let mut sent = next
         .fam
         .each_mut()
         .map(|f| f.each_mut().map(|a| lanes_mut(a, LEAD, chunks)));
-    let mut out = dst.map(|d| {
-        let (whole, tail) = d[..cols].split_at_mut(full * LANES);
-        (whole.as_chunks_mut::<LANES>().0, tail)
-    });
-    // Only the row's own lanes count in the finiteness check.
-    let real = inp.tail[1];
+    let [x, y, z, vx, vy, vz] = dst.map(|d| d[..cols].split_at_mut(full * LANES));
+    let mut whole = [x.0, y.0, z.0, vx.0, vy.0, vz.0].map(|d| d.as_chunks_mut::<LANES>().0);
     let mut finite = Lane::ZERO;
     // The E force of the chunk before (zero before column 0: no spring there).
     let mut e_west = [Lane::ZERO; 3];
-    // Unchecked accesses below: the row views hold `chunks + 1` chunks, the `prev` views
-    // `chunks + 2`, the node and table views and `sent` exactly `chunks`; `k < chunks`.
-    for k in 0..chunks {
+    let last = chunks - 1;
+    // Every chunk but the last is whole: `k < last ≤ full`.
+    let mut store = |k: usize, new: [Lane; 6], finite: &mut Lane| {
+        for (o, v) in whole.iter_mut().zip(new) {
+            // SAFETY: `k < full`, the length of `whole`.
+            unsafe { put(o, k, v) };
+        }
+        // Fused finiteness check: `x·0` is 0 for finite x and NaN otherwise, and x' is
+        // non-finite whenever v' is.
+        for x in &new[..3] {
+            *finite += *x * Lane::ZERO;
+        }
+    };
+    if row.has_down {
+        if last > 0 {
+            // SAFETY: `0 < last < chunks`.
+            let new = unsafe { row.chunk::<true>(0, &mut e_west, &mut sent) };
+            store(0, new, &mut finite);
+        }
+        for k in 1..last {
+            // SAFETY: `1 ≤ k < chunks`.
+            let new = unsafe { row.chunk::<false>(k, &mut e_west, &mut sent) };
+            store(k, new, &mut finite);
+        }
+    } else {
+        for k in 0..last {
+            // SAFETY: `k < chunks`.
+            let new = unsafe { row.chunk::<true>(k, &mut e_west, &mut sent) };
+            store(k, new, &mut finite);
+        }
+    }
+    // SAFETY: `last < chunks`.
+    let new = unsafe { row.chunk::<true>(last, &mut e_west, &mut sent) };
+    if last < full {
+        store(last, new, &mut finite);
+    } else {
+        // A partial chunk: only the row's own lanes are written and checked.
+        let tails = [x.1, y.1, z.1, vx.1, vy.1, vz.1];
+        for (t, v) in tails.into_iter().zip(new) {
+            t.copy_from_slice(&v.to_array()[..t.len()]);
+        }
+        for x in &new[..3] {
+            finite += inp.tail[1].select(*x * Lane::ZERO, Lane::ZERO);
+        }
+    }
+    !finite.is_nan().any()
+}
+
+/// The chunk views one row's advance reads (see [`advance_row`]).
+struct RowKernel<'a> {
+    inp: &'a Inputs<'a>,
+    chunks: usize,
+    has_down: bool,
+    /// Positions of the row (`chunks + 1` chunks) and of the row below.
+    h: [&'a [[f32; LANES]]; 3],
+    d: [&'a [[f32; LANES]]; 3],
+    tables: [Table<'a>; 4],
+    inv_mass: &'a [[f32; LANES]],
+    viscosity: &'a [[f32; LANES]],
+    vel: [&'a [[f32; LANES]]; 3],
+    ext: Option<[&'a [[f32; LANES]]; 3]>,
+    /// The S, SE and SW forces row r−1 sent, by axis (`chunks + 2` chunks each).
+    arriving: [[&'a [[f32; LANES]]; 3]; 3],
+    dt: Lane,
+    g: [Lane; 3],
+}
+
+impl RowKernel<'_> {
+    /// Chunk `k`: its springs, its new positions and velocities `[x, y, z, vx, vy, vz]`.
+    /// Sends its S, SE and SW forces into `sent` and leaves its E force in `e_west` for
+    /// chunk `k + 1`. With `EDGE` false the chunk is neither the first nor the last and
+    /// has a row below: every lane holds a spring of every family.
+    ///
+    /// # Safety
+    ///
+    /// `k < chunks`, and `k ≥ 1` when `EDGE` is false. (The row views hold `chunks + 1`
+    /// chunks, the arriving views `chunks + 2`, the node and table views and `sent`
+    /// exactly `chunks`.)
+    #[inline(always)]
+    unsafe fn chunk<const EDGE: bool>(
+        &self,
+        k: usize,
+        e_west: &mut [Lane; 3],
+        sent: &mut [[&mut [[f32; LANES]]; 3]; 3],
+    ) -> [Lane; 6] {
+        let (h, d) = (self.h, self.d);
         // SAFETY: `k + 1 ≤ chunks`, within the row views.
         let (h0, d0, h1, d1) =
             unsafe { (load3(h, k), load3(d, k), load3(h, k + 1), load3(d, k + 1)) };
-        let d_west = if k == 0 {
+        let d_west = if EDGE && k == 0 {
             [Lane::ZERO; 3]
         } else {
-            // SAFETY: `k − 1 < chunks`.
+            // SAFETY: `k ≥ 1` here, so `k − 1 < chunks`.
             unsafe { load3(d, k - 1) }
         };
         let spring = |fam: usize, there: [Lane; 3]| {
             // SAFETY: `k < chunks`, within the table views.
-            let (coef, rest) = unsafe { tables[fam].at(k) };
+            let (coef, rest) = unsafe { self.tables[fam].at(k) };
             let f = spring_force(h0, there, coef, rest);
-            inp.only_springs(fam, k, chunks, has_down, f)
+            if EDGE {
+                self.inp.only_springs(fam, k, self.chunks, self.has_down, f)
+            } else {
+                f
+            }
         };
         let e = spring(0, [0, 1, 2].map(|i| east(h0[i], h1[i])));
         let s = spring(1, d0);
         let se = spring(2, [0, 1, 2].map(|i| east(d0[i], d1[i])));
         let sw = spring(3, [0, 1, 2].map(|i| west(d_west[i], d0[i])));
         // SAFETY: `k < chunks`, within the node views.
-        let (inv_mass, viscosity) = unsafe { (get(inv_mass, k), get(viscosity, k)) };
+        let (inv_mass, viscosity) = unsafe { (get(self.inv_mass, k), get(self.viscosity, k)) };
         let free = inv_mass.simd_gt(Lane::ZERO);
+        let [s_n, se_n, sw_n] = self.arriving;
+        let mut new = [Lane::ZERO; 6];
         for axis in 0..3 {
             // SAFETY: called with `j = k` on node views and `j ≤ k + 2 ≤ chunks + 1` on
-            // the `prev` views.
+            // the arriving views.
             let m = |v: &[[f32; LANES]], j: usize| unsafe { get(v, j) };
             // SAFETY: `k < chunks`, within `sent`.
             unsafe {
@@ -840,30 +933,16 @@ fn advance_row(
                 + (s[axis] - m(s_n[axis], k + 1))
                 + (se[axis] - se_nw)
                 + (sw[axis] - sw_ne);
-            if let Some(ext) = ext {
+            if let Some(ext) = self.ext {
                 force += m(ext[axis], k);
             }
-            let v = m(vel[axis], k);
-            let acc = (force - viscosity * v) * inv_mass + free.select(g[axis], Lane::ZERO);
-            let v1 = v + acc * dt;
-            let x1 = h0[axis] + v1 * dt;
-            // Fused finiteness check: `x·0` is 0 for finite x and NaN otherwise, and x' is
-            // non-finite whenever v' is.
-            for (o, value) in [(axis, x1), (axis + 3, v1)] {
-                let (whole, tail) = &mut out[o];
-                if k < full {
-                    whole[k] = value.to_array();
-                } else {
-                    tail.copy_from_slice(&value.to_array()[..tail.len()]);
-                }
-            }
-            finite += if k < full {
-                x1 * Lane::ZERO
-            } else {
-                real.select(x1 * Lane::ZERO, Lane::ZERO)
-            };
+            let v = m(self.vel[axis], k);
+            let acc = (force - viscosity * v) * inv_mass + free.select(self.g[axis], Lane::ZERO);
+            let v1 = v + acc * self.dt;
+            new[axis] = h0[axis] + v1 * self.dt;
+            new[axis + 3] = v1;
         }
-        e_west = e;
+        *e_west = e;
+        new
     }
-    !finite.is_nan().any()
 }
