@@ -55,10 +55,11 @@ pub fn band_rows(rows: usize, threads: usize) -> usize {
 /// Rest length and coefficient of every spring, one buffer per family.
 ///
 /// The tables are the truth. Beside them each family keeps a summary: the one
-/// `(coefficient, rest length)` pair all its springs share, while they do. The engine then
-/// reads those two numbers instead of the two tables, which saves 32 of the ~100 bytes a
-/// step moves per node; the first [`Springs::set`] that breaks the agreement switches the
-/// family to its tables. The scalar reference always reads the tables, so the parity tests
+/// `(coefficient, rest length)` pair all its springs share, while they do. While every
+/// family has one, the engine keeps those eight numbers in registers instead of reading
+/// the tables, which saves 32 of the ~100 bytes a step moves per node and a branch per
+/// spring; the first [`Springs::set`] that breaks one family's agreement switches the
+/// engine to the tables. The scalar reference always reads the tables, so the parity tests
 /// check the summaries too.
 #[derive(Debug, Clone)]
 pub(crate) struct Springs {
@@ -119,9 +120,12 @@ impl Springs {
         }
     }
 
-    /// The `(coefficient, rest length)` every spring of `family` shares, if they all agree.
-    pub fn uniform(&self, family: usize) -> Option<(f32, f32)> {
-        self.uniform[family]
+    /// Every family's shared `(coefficient, rest length)`, if each family has one.
+    pub fn all_uniform(&self) -> Option<[(f32, f32); 4]> {
+        match self.uniform {
+            [Some(e), Some(s), Some(se), Some(sw)] => Some([e, s, se, sw]),
+            _ => None,
+        }
     }
 }
 

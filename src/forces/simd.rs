@@ -261,6 +261,9 @@ struct Inputs<'a> {
     /// External forces, applied in the first step of the pass only.
     ext: Option<[&'a [f32]; 3]>,
     springs: &'a Springs,
+    /// Each family's shared coefficient and rest length, when every family has them
+    /// (the usual case: no spring was edited). The hot loop then keeps them in registers.
+    uniform: Option<[(Lane, Lane); 4]>,
     cfg: StepConfig,
     /// Lane masks of the springs that exist in the last chunk of a row, per family (no E
     /// or SE spring leaves the last column; columns past the row are off).
@@ -318,25 +321,21 @@ impl Inputs<'_> {
     }
 }
 
-/// Where a family's coefficients and rest lengths come from for one row.
+/// One family's coefficients and rest lengths along one row, as chunk views of its
+/// tables.
 #[derive(Clone, Copy)]
-enum Table<'a> {
-    /// Every spring of the family shares these lanes.
-    Uniform(Lane, Lane),
-    /// Per-spring chunk views of the coefficient and rest-length tables.
-    PerSpring(&'a [[f32; LANES]], &'a [[f32; LANES]]),
+struct Table<'a> {
+    coef: &'a [[f32; LANES]],
+    rest: &'a [[f32; LANES]],
 }
 
 impl<'a> Table<'a> {
     /// Family `fam`'s table for the `chunks` chunks of the row starting at node `base`.
     #[inline(always)]
     fn of(sp: &'a Springs, fam: usize, base: usize, chunks: usize) -> Self {
-        match sp.uniform(fam) {
-            Some((c, r)) => Table::Uniform(Lane::splat(c), Lane::splat(r)),
-            None => Table::PerSpring(
-                lanes(&sp.coef[fam], base, chunks),
-                lanes(&sp.rest[fam], base, chunks),
-            ),
+        Table {
+            coef: lanes(&sp.coef[fam], base, chunks),
+            rest: lanes(&sp.rest[fam], base, chunks),
         }
     }
 
@@ -344,14 +343,11 @@ impl<'a> Table<'a> {
     ///
     /// # Safety
     ///
-    /// For `PerSpring`, `k` is below the length of both views.
+    /// `k < chunks`.
     #[inline(always)]
     unsafe fn at(self, k: usize) -> (Lane, Lane) {
-        match self {
-            Table::Uniform(c, r) => (c, r),
-            // SAFETY: the caller guarantees `k` is in range of both views.
-            Table::PerSpring(c, r) => unsafe { (get(c, k), get(r, k)) },
-        }
+        // SAFETY: the caller guarantees `k` is in range of both views.
+        unsafe { (get(self.coef, k), get(self.rest, k)) }
     }
 }
 
@@ -413,6 +409,7 @@ pub(crate) fn pass(
     debug_assert!((1..=MAX_PASS_STEPS).contains(&levels));
     let grid = state.grid;
     let (cols, rows, n) = (grid.cols, grid.rows, grid.len());
+    let t = ws.prepare(cols, rows, levels);
     let inp = Inputs {
         cols,
         rows,
@@ -424,6 +421,9 @@ pub(crate) fn pass(
             .ext_pending
             .then(|| [&state.ext[0][..], &state.ext[1][..], &state.ext[2][..]]),
         springs,
+        uniform: springs
+            .all_uniform()
+            .map(|u| u.map(|(c, r)| (Lane::splat(c), Lane::splat(r)))),
         cfg,
         tail: {
             let last = cols - (cols - 1) / LANES * LANES; // columns in the last chunk
@@ -432,7 +432,6 @@ pub(crate) fn pass(
         },
         head_sw: !first_lanes(1),
     };
-    let t = ws.prepare(cols, rows, levels);
     let bands = t.bands();
 
     // Colour 0: even bands, each writing the handoff slots on both of its cuts.
@@ -671,8 +670,7 @@ fn down_springs(inp: &Inputs, r: usize, here: RowRef, down: Option<RowRef>, out:
         return;
     };
     let (h, d) = (row_view(here, chunks), row_view(down, chunks));
-    let sp = inp.springs;
-    let table = |fam| Table::of(sp, fam, base, chunks);
+    let table = |fam| Table::of(inp.springs, fam, base, chunks);
     // `family` calls these with `k < chunks`; the views hold `chunks + 1` chunks.
     // SAFETY: `k < chunks`.
     family(inp, 1, table(1), h, out, |k| unsafe { load3(d, k) });
@@ -767,10 +765,8 @@ fn advance_row(
 ) -> bool {
     let cols = inp.cols;
     let chunks = cols.div_ceil(LANES);
-    let full = cols / LANES;
     let base = r * cols;
     let node = |s| lanes(s, base, chunks);
-    let sp = inp.springs;
     // What row r−1 sent down, as chunks from the zero lead on (chunk `k + 1` holds
     // columns `k·LANES ..`; chunks 0 and `chunks + 1` are zero).
     let from = |f: usize| prev.fam[f - 1].each_ref().map(|a| lanes(a, 0, chunks + 2));
@@ -781,7 +777,8 @@ fn advance_row(
         h: row_view(src, chunks),
         // On the last row the "row below" is the row itself: its springs are masked off.
         d: row_view(down.unwrap_or(src), chunks),
-        tables: std::array::from_fn(|fam| Table::of(sp, fam, base, chunks)),
+        tables: std::array::from_fn(|fam| Table::of(inp.springs, fam, base, chunks)),
+        uniform: inp.uniform,
         inv_mass: node(inp.inv_mass),
         viscosity: node(inp.viscosity),
         vel: src.vel.map(|v| lanes(v, src.at, chunks)),
@@ -790,61 +787,15 @@ fn advance_row(
         dt: Lane::splat(inp.cfg.dt),
         g: inp.cfg.accel.map(Lane::splat),
     };
-    let mut sent = next
+    let sent = next
         .fam
         .each_mut()
         .map(|f| f.each_mut().map(|a| lanes_mut(a, LEAD, chunks)));
-    let [x, y, z, vx, vy, vz] = dst.map(|d| d[..cols].split_at_mut(full * LANES));
-    let mut whole = [x.0, y.0, z.0, vx.0, vy.0, vz.0].map(|d| d.as_chunks_mut::<LANES>().0);
-    let mut finite = Lane::ZERO;
-    // The E force of the chunk before (zero before column 0: no spring there).
-    let mut e_west = [Lane::ZERO; 3];
-    let last = chunks - 1;
-    // Every chunk but the last is whole: `k < last ≤ full`.
-    let mut store = |k: usize, new: [Lane; 6], finite: &mut Lane| {
-        for (o, v) in whole.iter_mut().zip(new) {
-            // SAFETY: `k < full`, the length of `whole`.
-            unsafe { put(o, k, v) };
-        }
-        // Fused finiteness check: `x·0` is 0 for finite x and NaN otherwise, and x' is
-        // non-finite whenever v' is.
-        for x in &new[..3] {
-            *finite += *x * Lane::ZERO;
-        }
-    };
-    if row.has_down {
-        if last > 0 {
-            // SAFETY: `0 < last < chunks`.
-            let new = unsafe { row.chunk::<true>(0, &mut e_west, &mut sent) };
-            store(0, new, &mut finite);
-        }
-        for k in 1..last {
-            // SAFETY: `1 ≤ k < chunks`.
-            let new = unsafe { row.chunk::<false>(k, &mut e_west, &mut sent) };
-            store(k, new, &mut finite);
-        }
+    if row.uniform.is_some() {
+        row.run::<true>(sent, dst)
     } else {
-        for k in 0..last {
-            // SAFETY: `k < chunks`.
-            let new = unsafe { row.chunk::<true>(k, &mut e_west, &mut sent) };
-            store(k, new, &mut finite);
-        }
+        row.run::<false>(sent, dst)
     }
-    // SAFETY: `last < chunks`.
-    let new = unsafe { row.chunk::<true>(last, &mut e_west, &mut sent) };
-    if last < full {
-        store(last, new, &mut finite);
-    } else {
-        // A partial chunk: only the row's own lanes are written and checked.
-        let tails = [x.1, y.1, z.1, vx.1, vy.1, vz.1];
-        for (t, v) in tails.into_iter().zip(new) {
-            t.copy_from_slice(&v.to_array()[..t.len()]);
-        }
-        for x in &new[..3] {
-            finite += inp.tail[1].select(*x * Lane::ZERO, Lane::ZERO);
-        }
-    }
-    !finite.is_nan().any()
 }
 
 /// The chunk views one row's advance reads (see [`advance_row`]).
@@ -856,6 +807,8 @@ struct RowKernel<'a> {
     h: [&'a [[f32; LANES]]; 3],
     d: [&'a [[f32; LANES]]; 3],
     tables: [Table<'a>; 4],
+    /// [`Inputs::uniform`].
+    uniform: Option<[(Lane, Lane); 4]>,
     inv_mass: &'a [[f32; LANES]],
     viscosity: &'a [[f32; LANES]],
     vel: [&'a [[f32; LANES]]; 3],
@@ -867,6 +820,69 @@ struct RowKernel<'a> {
 }
 
 impl RowKernel<'_> {
+    /// Runs every chunk of the row (see [`advance_row`]) and writes the new values into
+    /// `dst`; `UNIFORM` says every family's springs share one coefficient and rest length.
+    #[inline(always)]
+    fn run<const UNIFORM: bool>(
+        &self,
+        mut sent: [[&mut [[f32; LANES]]; 3]; 3],
+        dst: [&mut [f32]; 6],
+    ) -> bool {
+        let (inp, chunks) = (self.inp, self.chunks);
+        let full = inp.cols / LANES;
+        let [x, y, z, vx, vy, vz] = dst.map(|d| d[..inp.cols].split_at_mut(full * LANES));
+        let mut whole = [x.0, y.0, z.0, vx.0, vy.0, vz.0].map(|d| d.as_chunks_mut::<LANES>().0);
+        let mut finite = Lane::ZERO;
+        // The E force of the chunk before (zero before column 0: no spring there).
+        let mut e_west = [Lane::ZERO; 3];
+        let last = chunks - 1;
+        // Every chunk but the last is whole: `k < last ≤ full`.
+        let mut store = |k: usize, new: [Lane; 6], finite: &mut Lane| {
+            for (o, v) in whole.iter_mut().zip(new) {
+                // SAFETY: `k < full`, the length of `whole`.
+                unsafe { put(o, k, v) };
+            }
+            // Fused finiteness check: `x·0` is 0 for finite x and NaN otherwise, and x' is
+            // non-finite whenever v' is.
+            for x in &new[..3] {
+                *finite += *x * Lane::ZERO;
+            }
+        };
+        if self.has_down {
+            if last > 0 {
+                // SAFETY: `0 < last < chunks`.
+                let new = unsafe { self.chunk::<true, UNIFORM>(0, &mut e_west, &mut sent) };
+                store(0, new, &mut finite);
+            }
+            for k in 1..last {
+                // SAFETY: `1 ≤ k < chunks`.
+                let new = unsafe { self.chunk::<false, UNIFORM>(k, &mut e_west, &mut sent) };
+                store(k, new, &mut finite);
+            }
+        } else {
+            for k in 0..last {
+                // SAFETY: `k < chunks`.
+                let new = unsafe { self.chunk::<true, UNIFORM>(k, &mut e_west, &mut sent) };
+                store(k, new, &mut finite);
+            }
+        }
+        // SAFETY: `last < chunks`.
+        let new = unsafe { self.chunk::<true, UNIFORM>(last, &mut e_west, &mut sent) };
+        if last < full {
+            store(last, new, &mut finite);
+        } else {
+            // A partial chunk: only the row's own lanes are written and checked.
+            let tails = [x.1, y.1, z.1, vx.1, vy.1, vz.1];
+            for (t, v) in tails.into_iter().zip(new) {
+                t.copy_from_slice(&v.to_array()[..t.len()]);
+            }
+            for x in &new[..3] {
+                finite += inp.tail[1].select(*x * Lane::ZERO, Lane::ZERO);
+            }
+        }
+        !finite.is_nan().any()
+    }
+
     /// Chunk `k`: its springs, its new positions and velocities `[x, y, z, vx, vy, vz]`.
     /// Sends its S, SE and SW forces into `sent` and leaves its E force in `e_west` for
     /// chunk `k + 1`. With `EDGE` false the chunk is neither the first nor the last and
@@ -878,7 +894,7 @@ impl RowKernel<'_> {
     /// chunks, the arriving views `chunks + 2`, the node and table views and `sent`
     /// exactly `chunks`.)
     #[inline(always)]
-    unsafe fn chunk<const EDGE: bool>(
+    unsafe fn chunk<const EDGE: bool, const UNIFORM: bool>(
         &self,
         k: usize,
         e_west: &mut [Lane; 3],
@@ -895,8 +911,11 @@ impl RowKernel<'_> {
             unsafe { load3(d, k - 1) }
         };
         let spring = |fam: usize, there: [Lane; 3]| {
-            // SAFETY: `k < chunks`, within the table views.
-            let (coef, rest) = unsafe { self.tables[fam].at(k) };
+            let (coef, rest) = match self.uniform {
+                Some(uniform) if UNIFORM => uniform[fam],
+                // SAFETY: `k < chunks`, within the table views.
+                _ => unsafe { self.tables[fam].at(k) },
+            };
             let f = spring_force(h0, there, coef, rest);
             if EDGE {
                 self.inp.only_springs(fam, k, self.chunks, self.has_down, f)
