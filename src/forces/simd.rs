@@ -61,7 +61,7 @@
 //! thread keeps its rings from pass to pass.
 
 use super::StepConfig;
-use crate::simd::{east, first_lanes, get, lanes, put, round_up, west, Floats, Lane, LANES};
+use crate::simd::{east, first_lanes, get, lanes, put, west, Lane, LANES};
 use crate::springs::{Springs, Tiling};
 use crate::state::{State, Xyz};
 use std::cell::RefCell;
@@ -76,16 +76,8 @@ pub const MAX_PASS_STEPS: usize = 8;
 /// flight of a 2048-column pass outgrow the 1 MB L2.
 pub const DEFAULT_PASS_STEPS: usize = 4;
 
-/// Offset of column 0 in a row buffer: index `LEAD − 1` is a zero "column −1".
-const LEAD: usize = LANES;
-
 /// A lane mask with every lane on.
 const ALL: Lane = Lane::new([f32::from_bits(u32::MAX); LANES]);
-
-/// Length of a row buffer: the lead, the columns rounded up to lanes, one spare lane.
-fn row_len(cols: usize) -> usize {
-    LEAD + round_up(cols) + LANES
-}
 
 /// The forces a row sends down: its S, SE and SW springs, chunk-major. Group `j` holds
 /// columns `(j − 1)·LANES ..` as `[family − 1][axis]` lanes; groups 0 and `chunks + 1`,
@@ -114,47 +106,158 @@ impl RowForces {
 }
 
 /// One row of positions and velocities outside the state buffers: a level in flight, or
-/// a row handed from colour 0 to colour 1. Column `c` is at `LEAD + c` of `[x, y, z, vx,
-/// vy, vz]`; everything else stays zero.
+/// a row handed from colour 0 to colour 1. Chunk-major like [`RowForces`]: group `j` holds
+/// columns `(j − 1)·LANES ..` as `[x, y, z, vx, vy, vz]` lanes; groups 0 and `chunks + 1`,
+/// and the lanes past the row, stay zero.
 #[derive(Debug, Clone)]
 pub(crate) struct Row {
-    v: [Floats; 6],
+    groups: Vec<[Lane; 6]>,
 }
 
 impl Row {
     fn new(cols: usize) -> Self {
         Self {
-            v: std::array::from_fn(|_| Floats::zeros(row_len(cols))),
+            groups: vec![[Lane::ZERO; 6]; cols.div_ceil(LANES) + 2],
         }
-    }
-
-    fn view(&self) -> RowRef<'_> {
-        let [x, y, z, vx, vy, vz] = &self.v;
-        RowRef {
-            pos: [x, y, z],
-            vel: [vx, vy, vz],
-            at: LEAD,
-        }
-    }
-
-    fn out(&mut self, cols: usize) -> [&mut [f32]; 6] {
-        self.v.each_mut().map(|b| &mut b[LEAD..LEAD + cols])
     }
 
     fn copy_from(&mut self, other: &Row) {
-        for (d, s) in self.v.iter_mut().zip(&other.v) {
-            d.copy_from_slice(s);
+        self.groups.copy_from_slice(&other.groups);
+    }
+}
+
+/// Where the rows of the level a row is advanced from live.
+#[derive(Clone, Copy)]
+enum Level<'a> {
+    /// Level 0: the front buffers.
+    Front,
+    /// A level in flight: row `r` in slot `r % 2` of its ring.
+    Ring(&'a [Row; 2]),
+}
+
+/// Where a row's new values go.
+enum RowOut<'a> {
+    /// The back buffers' row: x, y, z, vx, vy, vz, `cols` values each.
+    Back([&'a mut [f32]; 6]),
+    /// A ring row.
+    Ring(&'a mut Row),
+}
+
+/// Chunk access to a row's positions and velocities, whatever its layout. Chunk `chunks`
+/// (one past the row) is readable for positions: it holds padding or zeros, which only
+/// ever meet masked-off springs.
+trait Source: Copy {
+    /// Positions of chunk `k`.
+    ///
+    /// # Safety
+    ///
+    /// `k ≤ chunks`.
+    unsafe fn pos(self, k: usize) -> [Lane; 3];
+
+    /// Velocities of chunk `k`.
+    ///
+    /// # Safety
+    ///
+    /// `k < chunks`.
+    unsafe fn vel(self, k: usize) -> [Lane; 3];
+}
+
+/// A row of the front buffers as chunk views: positions `chunks + 1` chunks long,
+/// velocities `chunks`.
+#[derive(Clone, Copy)]
+struct FrontRow<'a> {
+    pos: [&'a [[f32; LANES]]; 3],
+    vel: [&'a [[f32; LANES]]; 3],
+}
+
+impl Source for FrontRow<'_> {
+    #[inline(always)]
+    unsafe fn pos(self, k: usize) -> [Lane; 3] {
+        // SAFETY: `k ≤ chunks`, the views hold `chunks + 1`.
+        unsafe { load3(self.pos, k) }
+    }
+
+    #[inline(always)]
+    unsafe fn vel(self, k: usize) -> [Lane; 3] {
+        // SAFETY: `k < chunks`.
+        unsafe { load3(self.vel, k) }
+    }
+}
+
+/// A [`Row`]'s groups (`chunks + 2`; chunk `k` is group `k + 1`).
+impl Source for &[[Lane; 6]] {
+    #[inline(always)]
+    unsafe fn pos(self, k: usize) -> [Lane; 3] {
+        // SAFETY: `k + 1 ≤ chunks + 1`.
+        let g = unsafe { self.get_unchecked(k + 1) };
+        [g[0], g[1], g[2]]
+    }
+
+    #[inline(always)]
+    unsafe fn vel(self, k: usize) -> [Lane; 3] {
+        // SAFETY: `k + 1 ≤ chunks`.
+        let g = unsafe { self.get_unchecked(k + 1) };
+        [g[3], g[4], g[5]]
+    }
+}
+
+/// Where [`RowKernel::run`] writes a row's new `[x, y, z, vx, vy, vz]`.
+trait Sink {
+    /// Whole chunk `k`.
+    ///
+    /// # Safety
+    ///
+    /// `k < cols / LANES`.
+    unsafe fn put(&mut self, k: usize, new: [Lane; 6]);
+
+    /// The last chunk `k`, partial: only the lanes on in `real` belong to the row.
+    fn put_partial(&mut self, k: usize, new: [Lane; 6], real: Lane);
+}
+
+/// A back-buffer row: its whole chunks and the columns after them.
+struct BackRow<'a> {
+    whole: [&'a mut [[f32; LANES]]; 6],
+    tail: [&'a mut [f32]; 6],
+}
+
+impl<'a> BackRow<'a> {
+    fn new(dst: [&'a mut [f32]; 6], cols: usize) -> Self {
+        let [x, y, z, vx, vy, vz] = dst.map(|d| d[..cols].split_at_mut(cols / LANES * LANES));
+        BackRow {
+            whole: [x.0, y.0, z.0, vx.0, vy.0, vz.0].map(|d| d.as_chunks_mut::<LANES>().0),
+            tail: [x.1, y.1, z.1, vx.1, vy.1, vz.1],
         }
     }
 }
 
-/// A row of positions and velocities wherever it lives: column `c` of axis `a` at
-/// `pos[a][at + c]`. Element `at − 1` and `LANES` elements past the row are readable.
-#[derive(Clone, Copy)]
-struct RowRef<'a> {
-    pos: [&'a [f32]; 3],
-    vel: [&'a [f32]; 3],
-    at: usize,
+impl Sink for BackRow<'_> {
+    #[inline(always)]
+    unsafe fn put(&mut self, k: usize, new: [Lane; 6]) {
+        for (o, v) in self.whole.iter_mut().zip(new) {
+            // SAFETY: `k < cols / LANES`, the length of `whole`.
+            unsafe { put(o, k, v) };
+        }
+    }
+
+    fn put_partial(&mut self, _: usize, new: [Lane; 6], _: Lane) {
+        for (t, v) in self.tail.iter_mut().zip(new) {
+            t.copy_from_slice(&v.to_array()[..t.len()]);
+        }
+    }
+}
+
+/// A [`Row`]'s groups.
+impl Sink for &mut [[Lane; 6]] {
+    #[inline(always)]
+    unsafe fn put(&mut self, k: usize, new: [Lane; 6]) {
+        // SAFETY: `k + 1 ≤ chunks`.
+        unsafe { *self.get_unchecked_mut(k + 1) = new };
+    }
+
+    fn put_partial(&mut self, k: usize, new: [Lane; 6], real: Lane) {
+        // The lanes past the row stay zero.
+        self[k + 1] = new.map(|v| real.select(v, Lane::ZERO));
+    }
 }
 
 /// What an even band hands to the odd band across one cut: for each level `1..levels`,
@@ -326,11 +429,12 @@ impl Inputs<'_> {
     }
 
     /// Row `r` of the front buffers (level 0).
-    fn front(&self, r: usize) -> RowRef<'_> {
-        RowRef {
-            pos: self.pos,
-            vel: self.vel,
-            at: r * self.cols,
+    #[inline(always)]
+    fn front(&self, r: usize) -> FrontRow<'_> {
+        let chunks = self.cols.div_ceil(LANES);
+        FrontRow {
+            pos: self.pos.map(|p| lanes(p, r * self.cols, chunks + 1)),
+            vel: self.vel.map(|v| lanes(v, r * self.cols, chunks)),
         }
     }
 }
@@ -606,20 +710,17 @@ fn band(inp: &Inputs, t: &Tiling, b: usize, mut handoffs: Handoffs, rows: &mut R
                     continue;
                 }
                 let (lower, upper) = rings.split_at_mut(l);
-                // Row `r` of level `l − 1`.
-                let src = |r: usize| {
-                    if l == 1 {
-                        inp.front(r)
-                    } else {
-                        lower[l - 1][r % 2].view()
-                    }
+                // The rows of level `l − 1`.
+                let from = if l == 1 {
+                    Level::Front
+                } else {
+                    Level::Ring(&lower[l - 1])
                 };
-                let down = (r + 1 < inp.rows).then(|| src(r + 1));
                 let own_l = &own[l];
                 if !own_l.contains(&r) {
                     if r + 1 == own_l.start {
                         // The row above the band: its springs arrive at the first row.
-                        down_springs(inp, r, src(r), down, &mut prev[l]);
+                        down_springs(inp, r, from, &mut prev[l]);
                     }
                     if let Handoffs::Take(above, below) = &handoffs {
                         if l < last {
@@ -637,11 +738,11 @@ fn band(inp: &Inputs, t: &Tiling, b: usize, mut handoffs: Handoffs, rows: &mut R
                 }
                 let ext = if l == 1 { inp.ext } else { None };
                 let dst = if l == last {
-                    rows.row(r)
+                    RowOut::Back(rows.row(r))
                 } else {
-                    upper[0][r % 2].out(inp.cols)
+                    RowOut::Ring(&mut upper[0][r % 2])
                 };
-                ok &= advance_row(inp, r, src(r), down, ext, &prev[l], cur, dst);
+                ok &= advance_row(inp, r, from, ext, &prev[l], cur, dst);
                 std::mem::swap(cur, &mut prev[l]);
                 if let Handoffs::Give(above, below) = &mut handoffs {
                     if l < last {
@@ -672,66 +773,65 @@ fn spring_force(pi: [Lane; 3], pj: [Lane; 3], coef: Lane, rest: Lane) -> [Lane; 
     [s * d[0], s * d[1], s * d[2]]
 }
 
-/// Evaluates the S, SE and SW springs from row `r` (`here`) down to row r+1 (`down`;
-/// zero on the last row) into `out`: what row r sends to the next row. Only for the row
-/// just above a band's rows; [`advance_row`] does this for its own rows on the way.
-fn down_springs(inp: &Inputs, r: usize, here: RowRef, down: Option<RowRef>, out: &mut RowForces) {
-    let cols = inp.cols;
-    let chunks = cols.div_ceil(LANES);
-    let base = r * cols;
-    let Some(down) = down else {
+/// Evaluates the S, SE and SW springs from row `r` of level `from` down to row r+1 (zero
+/// on the last row) into `out`: what row r sends to the next row. Only for the row just
+/// above a band's rows; [`advance_row`] does this for its own rows on the way.
+fn down_springs(inp: &Inputs, r: usize, from: Level, out: &mut RowForces) {
+    if r + 1 == inp.rows {
         out.zero_down();
         return;
-    };
-    let (h, d) = (row_view(here, chunks), row_view(down, chunks));
-    let table = |fam| Table::of(inp.springs, fam, base, chunks);
-    // `family` calls these with `k < chunks`; the views hold `chunks + 1` chunks.
+    }
+    match from {
+        Level::Front => down_springs_from(inp, r, inp.front(r), inp.front(r + 1), out),
+        Level::Ring(ring) => {
+            let [here, down] = [r % 2, (r + 1) % 2].map(|i| &ring[i].groups[..]);
+            down_springs_from(inp, r, here, down, out)
+        }
+    }
+}
+
+/// [`down_springs`] from row `here` to row `down`.
+fn down_springs_from<S: Source>(inp: &Inputs, r: usize, here: S, down: S, out: &mut RowForces) {
+    let chunks = inp.cols.div_ceil(LANES);
+    let table = |fam| Table::of(inp.springs, fam, r * inp.cols, chunks);
+    // `family` calls these with `k < chunks`; positions are readable up to chunk `chunks`.
     // SAFETY: `k < chunks`.
-    family(inp, 1, table(1), h, out, |k| unsafe { load3(d, k) });
+    family(inp, 1, table(1), here, out, |k| unsafe { down.pos(k) });
     // SAFETY: `k + 1 ≤ chunks`.
-    family(inp, 2, table(2), h, out, |k| unsafe {
-        let (a, b) = (load3(d, k), load3(d, k + 1));
+    family(inp, 2, table(2), here, out, |k| unsafe {
+        let (a, b) = (down.pos(k), down.pos(k + 1));
         [0, 1, 2].map(|i| east(a[i], b[i]))
     });
     // SAFETY: `k − 1` (for k > 0) and `k` are below `chunks`.
-    family(inp, 3, table(3), h, out, |k| unsafe {
+    family(inp, 3, table(3), here, out, |k| unsafe {
         // Lane 0 of chunk 0 has no SW spring (column 0): its west neighbour is never used.
         let a = if k == 0 {
             [Lane::ZERO; 3]
         } else {
-            load3(d, k - 1)
+            down.pos(k - 1)
         };
-        let b = load3(d, k);
+        let b = down.pos(k);
         [0, 1, 2].map(|i| west(a[i], b[i]))
     });
-}
-
-/// Chunk views of a row's positions, one chunk longer than the row: the east neighbours
-/// of chunk k are `east(chunk k, chunk k+1)`, the west ones `west(chunk k−1, chunk k)` —
-/// aligned loads and a register shuffle, where a load one column off would straddle two
-/// cache lines.
-#[inline(always)]
-fn row_view(row: RowRef<'_>, chunks: usize) -> [&[[f32; LANES]]; 3] {
-    row.pos.map(|p| lanes(p, row.at, chunks + 1))
 }
 
 /// One down family's springs (`fam` in 1..4) along a row: from the nodes of `h` to
 /// `there(k)`, into `out`.
 #[inline(always)]
-fn family(
+fn family<S: Source>(
     inp: &Inputs,
     fam: usize,
     table: Table,
-    h: [&[[f32; LANES]]; 3],
+    h: S,
     out: &mut RowForces,
     there: impl Fn(usize) -> [Lane; 3],
 ) {
     let chunks = inp.cols.div_ceil(LANES);
     for (k, group) in out.groups[1..=chunks].iter_mut().enumerate() {
-        // SAFETY: `h` and the tables hold at least `chunks` chunks.
+        // SAFETY: `k < chunks`.
         let f = unsafe {
             let (coef, rest) = table.at(k);
-            spring_force(load3(h, k), there(k), coef, rest)
+            spring_force(h.pos(k), there(k), coef, rest)
         };
         group[fam - 1] = inp.only_springs(fam, k, chunks, true, f);
     }
@@ -749,71 +849,55 @@ unsafe fn load3(v: [&[[f32; LANES]]; 3], k: usize) -> [Lane; 3] {
 }
 
 /// Advances row `r` one level: evaluates its four springs (E inside the row, S, SE, SW
-/// down to row r+1 from `down`, none on the last row), sums each node's force with the
-/// springs arriving from row r−1 (`prev`, evaluated one row earlier), integrates from
-/// `src` into `dst` (x, y, z, vx, vy, vz; `cols` values each), and leaves the S, SE and SW
-/// forces in `next` for row r+1. Returns `false` if a new value is not finite.
+/// down to row r+1, none on the last row), sums each node's force with the springs
+/// arriving from row r−1 (`prev`, evaluated one row earlier), integrates from level
+/// `from` into `dst`, and leaves the S, SE and SW forces in `next` for row r+1. Returns
+/// `false` if a new value is not finite.
 ///
 /// One pass over the row's chunks: the E force of the chunk before, and the neighbour
 /// chunks the shuffles need, stay in registers. The first and last chunk (and every chunk
 /// of the grid's last row) mask the lanes without a spring; the chunks between them run a
 /// loop with no mask, no partial store and no call, so nothing forces the compiler to
 /// spill the registers it carries from chunk to chunk.
-#[allow(clippy::too_many_arguments)]
 #[inline(always)]
 fn advance_row(
     inp: &Inputs,
     r: usize,
-    src: RowRef,
-    down: Option<RowRef>,
+    from: Level,
     ext: Option<[&[f32]; 3]>,
     prev: &RowForces,
     next: &mut RowForces,
-    dst: [&mut [f32]; 6],
+    dst: RowOut,
 ) -> bool {
-    let cols = inp.cols;
-    let chunks = cols.div_ceil(LANES);
-    let base = r * cols;
-    let node = |s| lanes(s, base, chunks);
-    let row = RowKernel {
-        inp,
-        chunks,
-        has_down: down.is_some(),
-        h: row_view(src, chunks),
-        // On the last row the "row below" is the row itself: its springs are masked off.
-        d: row_view(down.unwrap_or(src), chunks),
-        tables: std::array::from_fn(|fam| Table::of(inp.springs, fam, base, chunks)),
-        uniform: inp.uniform,
-        inv_mass: node(inp.inv_mass),
-        viscosity: node(inp.viscosity),
-        vel: src.vel.map(|v| lanes(v, src.at, chunks)),
-        ext: ext.map(|e| e.map(node)),
-        arriving: &prev.groups,
-        dt: Lane::splat(inp.cfg.dt),
-        g: inp.cfg.accel.map(Lane::splat),
-    };
+    // On the last row the "row below" is the row itself: its springs are masked off.
+    let has_down = r + 1 < inp.rows;
+    let below = if has_down { r + 1 } else { r };
     let sent = &mut next.groups[..];
-    if row.uniform.is_some() {
-        row.run::<true>(sent, dst)
-    } else {
-        row.run::<false>(sent, dst)
+    match from {
+        Level::Front => {
+            let (h, d) = (inp.front(r), inp.front(below));
+            RowKernel::new(inp, r, h, d, has_down, ext, prev).run(sent, dst)
+        }
+        Level::Ring(ring) => {
+            let [h, d] = [r % 2, below % 2].map(|i| &ring[i].groups[..]);
+            RowKernel::new(inp, r, h, d, has_down, ext, prev).run(sent, dst)
+        }
     }
 }
 
 /// The chunk views one row's advance reads (see [`advance_row`]).
-struct RowKernel<'a> {
+struct RowKernel<'a, S> {
     inp: &'a Inputs<'a>,
     chunks: usize,
     has_down: bool,
-    /// Positions of the row (`chunks + 1` chunks) and of the row below.
-    h: [&'a [[f32; LANES]]; 3],
-    d: [&'a [[f32; LANES]]; 3],
+    /// The row and the row below.
+    h: S,
+    d: S,
     tables: [Table<'a>; 4],
     /// [`Inputs::uniform`].
     uniform: Option<[(Lane, Lane); 4]>,
     inv_mass: &'a [[f32; LANES]],
     viscosity: &'a [[f32; LANES]],
-    vel: [&'a [[f32; LANES]]; 3],
     ext: Option<[&'a [[f32; LANES]]; 3]>,
     /// What row r−1 sent down ([`RowForces`]: `chunks + 2` groups).
     arriving: &'a [Group],
@@ -821,25 +905,64 @@ struct RowKernel<'a> {
     g: [Lane; 3],
 }
 
-impl RowKernel<'_> {
+impl<'a, S: Source> RowKernel<'a, S> {
+    #[inline(always)]
+    fn new(
+        inp: &'a Inputs<'a>,
+        r: usize,
+        h: S,
+        d: S,
+        has_down: bool,
+        ext: Option<[&'a [f32]; 3]>,
+        prev: &'a RowForces,
+    ) -> Self {
+        let chunks = inp.cols.div_ceil(LANES);
+        let base = r * inp.cols;
+        let node = |s| lanes(s, base, chunks);
+        RowKernel {
+            inp,
+            chunks,
+            has_down,
+            h,
+            d,
+            tables: std::array::from_fn(|fam| Table::of(inp.springs, fam, base, chunks)),
+            uniform: inp.uniform,
+            inv_mass: node(inp.inv_mass),
+            viscosity: node(inp.viscosity),
+            ext: ext.map(|e| e.map(node)),
+            arriving: &prev.groups,
+            dt: Lane::splat(inp.cfg.dt),
+            g: inp.cfg.accel.map(Lane::splat),
+        }
+    }
+
+    /// Runs the row into a back-buffer or a ring row.
+    #[inline(always)]
+    fn run(&self, sent: &mut [Group], dst: RowOut) -> bool {
+        match (dst, self.uniform.is_some()) {
+            (RowOut::Back(b), true) => self.run_into::<true>(sent, BackRow::new(b, self.inp.cols)),
+            (RowOut::Back(b), false) => {
+                self.run_into::<false>(sent, BackRow::new(b, self.inp.cols))
+            }
+            (RowOut::Ring(row), true) => self.run_into::<true>(sent, &mut row.groups[..]),
+            (RowOut::Ring(row), false) => self.run_into::<false>(sent, &mut row.groups[..]),
+        }
+    }
+
     /// Runs every chunk of the row (see [`advance_row`]) and writes the new values into
     /// `dst`; `UNIFORM` says every family's springs share one coefficient and rest length.
     #[inline(always)]
-    fn run<const UNIFORM: bool>(&self, sent: &mut [Group], dst: [&mut [f32]; 6]) -> bool {
-        let (inp, chunks) = (self.inp, self.chunks);
-        let full = inp.cols / LANES;
-        let [x, y, z, vx, vy, vz] = dst.map(|d| d[..inp.cols].split_at_mut(full * LANES));
-        let mut whole = [x.0, y.0, z.0, vx.0, vy.0, vz.0].map(|d| d.as_chunks_mut::<LANES>().0);
+    fn run_into<const UNIFORM: bool>(&self, sent: &mut [Group], mut dst: impl Sink) -> bool {
+        let chunks = self.chunks;
+        let full = self.inp.cols / LANES;
         let mut finite = Lane::ZERO;
         // The E force of the chunk before (zero before column 0: no spring there).
         let mut e_west = [Lane::ZERO; 3];
         let last = chunks - 1;
         // Every chunk but the last is whole: `k < last ≤ full`.
         let mut store = |k: usize, new: [Lane; 6], finite: &mut Lane| {
-            for (o, v) in whole.iter_mut().zip(new) {
-                // SAFETY: `k < full`, the length of `whole`.
-                unsafe { put(o, k, v) };
-            }
+            // SAFETY: `k < full`.
+            unsafe { dst.put(k, new) };
             // Fused finiteness check: `x·0` is 0 for finite x and NaN otherwise, and x' is
             // non-finite whenever v' is.
             for x in &new[..3] {
@@ -870,12 +993,10 @@ impl RowKernel<'_> {
             store(last, new, &mut finite);
         } else {
             // A partial chunk: only the row's own lanes are written and checked.
-            let tails = [x.1, y.1, z.1, vx.1, vy.1, vz.1];
-            for (t, v) in tails.into_iter().zip(new) {
-                t.copy_from_slice(&v.to_array()[..t.len()]);
-            }
+            let real = self.inp.tail[1];
+            dst.put_partial(last, new, real);
             for x in &new[..3] {
-                finite += inp.tail[1].select(*x * Lane::ZERO, Lane::ZERO);
+                finite += real.select(*x * Lane::ZERO, Lane::ZERO);
             }
         }
         !finite.is_nan().any()
@@ -899,14 +1020,13 @@ impl RowKernel<'_> {
         sent: &mut [Group],
     ) -> [Lane; 6] {
         let (h, d) = (self.h, self.d);
-        // SAFETY: `k + 1 ≤ chunks`, within the row views.
-        let (h0, d0, h1, d1) =
-            unsafe { (load3(h, k), load3(d, k), load3(h, k + 1), load3(d, k + 1)) };
+        // SAFETY: `k + 1 ≤ chunks`.
+        let (h0, d0, h1, d1) = unsafe { (h.pos(k), d.pos(k), h.pos(k + 1), d.pos(k + 1)) };
         let d_west = if EDGE && k == 0 {
             [Lane::ZERO; 3]
         } else {
             // SAFETY: `k ≥ 1` here, so `k − 1 < chunks`.
-            unsafe { load3(d, k - 1) }
+            unsafe { d.pos(k - 1) }
         };
         let spring = |fam: usize, there: [Lane; 3]| {
             let (coef, rest) = match self.uniform {
@@ -955,7 +1075,8 @@ impl RowKernel<'_> {
             if let Some(ext) = self.ext {
                 force += m(ext[axis]);
             }
-            let v = m(self.vel[axis]);
+            // SAFETY: `k < chunks`.
+            let v = unsafe { h.vel(k) }[axis];
             let acc = (force - viscosity * v) * inv_mass + free.select(self.g[axis], Lane::ZERO);
             let v1 = v + acc * self.dt;
             new[axis] = h0[axis] + v1 * self.dt;
