@@ -1,5 +1,6 @@
-//! The engine's unchecked chunk accesses (`simd::get`/`simd::put`) on small grids of
-//! every width around the lane count, checked against the scalar reference. Small enough
+//! The engine's unchecked chunk accesses (`simd::get`/`simd::put`, and the chunk groups of
+//! its ring rows and row forces) on small grids of every width around the lane count, in
+//! single steps and in a pass of three steps, checked against the scalar reference. Small enough
 //! to run under Miri, which checks every access for undefined behaviour:
 //!
 //! ```sh
@@ -33,12 +34,17 @@ fn engine_kernels_match_the_reference_on_every_small_width() {
                 }
             }
             let mut reference = engine.clone();
-            for _ in 0..3 {
-                engine.step_with(Stepper::Engine).unwrap();
-                reference.step_with(Stepper::Reference).unwrap();
+            // One single step (front buffers to back buffers), then one pass of three
+            // steps (front to ring, ring to ring, ring to back buffers).
+            engine.set_pass_steps(3);
+            for steps in [1, 3] {
+                engine.step_n(steps).unwrap();
+                for _ in 0..steps {
+                    reference.step_with(Stepper::Reference).unwrap();
+                }
                 assert!(
                     state_bits(&engine) == state_bits(&reference),
-                    "{cols}x{rows}"
+                    "{cols}x{rows}, {steps} steps"
                 );
             }
         }

@@ -27,7 +27,10 @@
 //! - the forces a row sends down are chunk-major ([`RowForces`]): a chunk's nine lanes
 //!   sit together behind one pointer instead of nine (+19%). The loop otherwise carries
 //!   some forty array pointers, and with sixteen general registers each one more is a
-//!   reload from the stack.
+//!   reload from the stack;
+//! - so are the rows of the levels in flight ([`Row`]: six lanes per chunk), read through
+//!   [`Source`] and written through [`Sink`] whether the row is a ring row or a row of the
+//!   state buffers, which stay structure-of-arrays (+7%).
 //!
 //! Replacing the square root and the division by multiplies (wrong results, timing only)
 //! gained 9%: the divider is not what limits the loop.
@@ -188,6 +191,7 @@ impl Source for FrontRow<'_> {
 impl Source for &[[Lane; 6]] {
     #[inline(always)]
     unsafe fn pos(self, k: usize) -> [Lane; 3] {
+        debug_assert!(k + 1 < self.len());
         // SAFETY: `k + 1 ≤ chunks + 1`.
         let g = unsafe { self.get_unchecked(k + 1) };
         [g[0], g[1], g[2]]
@@ -195,6 +199,7 @@ impl Source for &[[Lane; 6]] {
 
     #[inline(always)]
     unsafe fn vel(self, k: usize) -> [Lane; 3] {
+        debug_assert!(k + 2 < self.len());
         // SAFETY: `k + 1 ≤ chunks`.
         let g = unsafe { self.get_unchecked(k + 1) };
         [g[3], g[4], g[5]]
@@ -250,6 +255,7 @@ impl Sink for BackRow<'_> {
 impl Sink for &mut [[Lane; 6]] {
     #[inline(always)]
     unsafe fn put(&mut self, k: usize, new: [Lane; 6]) {
+        debug_assert!(k + 2 < self.len());
         // SAFETY: `k + 1 ≤ chunks`.
         unsafe { *self.get_unchecked_mut(k + 1) = new };
     }
@@ -1048,6 +1054,7 @@ impl<'a, S: Source> RowKernel<'a, S> {
         // SAFETY: `k < chunks`, within the node views.
         let (inv_mass, viscosity) = unsafe { (get(self.inv_mass, k), get(self.viscosity, k)) };
         let free = inv_mass.simd_gt(Lane::ZERO);
+        debug_assert!(k + 2 < self.arriving.len() && k + 2 < sent.len());
         // SAFETY: `k + 2 ≤ chunks + 1`, within the arriving groups and `sent`.
         let (west_n, north, east_n) = unsafe {
             *sent.get_unchecked_mut(k + 1) = [s, se, sw];
