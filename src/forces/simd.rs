@@ -74,9 +74,10 @@ use std::ops::Range;
 pub const MAX_PASS_STEPS: usize = 8;
 
 /// Steps per pass when the caller does not fix it. Measured on 2048², native build, 2
-/// threads, 64-row bands: 2 steps gave 8.8·10⁸ node updates/s, 3 gave 9.3·10⁸, 4 gave
-/// 1.0·10⁹, 6 gave 1.0·10⁹ and 8 gave 9.3·10⁸ (single steps: 5.5·10⁸). Past 4 the rows in
-/// flight of a 2048-column pass outgrow the 1 MB L2.
+/// threads, 64-row bands: single steps gave 6.0·10⁸ node updates/s, 2 steps 9.5·10⁸, 3
+/// gave 1.10·10⁹, 4 gave 1.19·10⁹, 6 gave 1.15·10⁹ and 8 gave 1.12·10⁹. Past 4 the rows
+/// in flight of a 2048-column pass (a ring and a row of forces per level, about 170 KB)
+/// outgrow the 1 MB L2.
 pub const DEFAULT_PASS_STEPS: usize = 4;
 
 /// A lane mask with every lane on.
