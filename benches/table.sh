@@ -3,7 +3,7 @@
 # `-C target-cpu=native` binaries and prints the README's performance table:
 # `springwater bench` at 64², 256², 1024², 2048² on 1 and 2 threads.
 # Every ratio in a row comes from one run (the kernels are interleaved, medians of
-# --repeats rounds). Usage: benches/table.sh [REPEATS]
+# --repeats rounds). Usage: [BUILDS="default x86-64-v3 native"] benches/table.sh [REPEATS]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 repeats="${1:-5}"
@@ -12,7 +12,7 @@ RUSTFLAGS="-C target-cpu=x86-64-v3" CARGO_TARGET_DIR=target/v3 cargo build --rel
 RUSTFLAGS="-C target-cpu=native" CARGO_TARGET_DIR=target/native cargo build --release --quiet
 echo "| build | grid | threads | engine node updates/s | × single steps | × scalar reference | × naive AoS | × memory floor |"
 echo "|---|---|---|---|---|---|---|---|"
-for build in default x86-64-v3 native; do
+for build in ${BUILDS:-default x86-64-v3 native}; do
   case "$build" in
     default) bin=target/release/springwater ;;
     x86-64-v3) bin=target/v3/release/springwater ;;
