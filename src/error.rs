@@ -122,5 +122,5 @@ pub enum Error {
     Snapshot(String),
 }
 
-/// Shorthand for results whose error is [`Error`].
+/// Shorthand for results whose error is [`Error`](enum@Error).
 pub type Result<T> = std::result::Result<T, Error>;

@@ -4,8 +4,10 @@
 //!
 //! Each family ([`Family`]) has a rest-length and a coefficient buffer indexed by the
 //! spring's origin node, padded like the node buffers. A spring that does not exist
-//! (E from the last column, S from the last row, …) has coefficient and rest length 0, so
-//! it contributes exactly nothing and lane code needs no special case for it.
+//! (E from the last column, S from the last row, …) has coefficient and rest length 0.
+//! The engine does not rely on that: it sets the lanes of absent springs to +0 (a zero
+//! coefficient times an infinite length would be NaN), and its uniform path uses the
+//! shared values for every lane.
 //!
 //! # Colours
 //!
@@ -166,7 +168,7 @@ pub fn bands(rows: usize, band_rows: usize) -> impl Iterator<Item = Band> {
 /// How one engine pass of `levels` steps cuts the rows among the bands.
 ///
 /// A pass advances the state `levels` steps while each band streams its rows once (see
-/// [`crate::forces`]). Level `l` means the state after `l` steps. At each level every row
+/// `src/forces/simd.rs`). Level `l` means the state after `l` steps. At each level every row
 /// is integrated by exactly one band, and the cut between two bands leans with the level,
 /// one row per step, always into the even band:
 ///

@@ -203,7 +203,7 @@ impl Surface {
     }
 
     /// Advances `n` steps of `params().dt` with the engine, several per pass over memory
-    /// (see [`crate::forces`]). Bitwise the same as `n` calls of [`Surface::step`], and as
+    /// (see `src/forces/simd.rs`). Bitwise the same as `n` calls of [`Surface::step`], and as
     /// transactional per step: if a step would make the state non-finite, the steps before
     /// it stay applied, that one is not, and its error is returned.
     pub fn step_n(&mut self, n: u64) -> Result<()> {

@@ -19,7 +19,7 @@
 //! hardware counters to say more.
 //!
 //! What made the loop faster since, each measured at 256² on one thread, native build:
-//! - the first and last chunk of a row are peeled off ([`RowKernel::run`]), so the chunks
+//! - the first and last chunk of a row are peeled off ([`RowKernel::run_into`]), so the chunks
 //!   between need no mask, no partial store and no `memcpy` call, around which the
 //!   compiler had spilled the registers it carries from chunk to chunk (+2–5%);
 //! - while every spring family is uniform, the eight shared values stay in registers
@@ -76,8 +76,8 @@ pub const MAX_PASS_STEPS: usize = 8;
 /// Steps per pass when the caller does not fix it. Measured on 2048², native build, 2
 /// threads, 64-row bands: single steps gave 6.0·10⁸ node updates/s, 2 steps 9.5·10⁸, 3
 /// gave 1.10·10⁹, 4 gave 1.19·10⁹, 6 gave 1.15·10⁹ and 8 gave 1.12·10⁹. Past 4 the rows
-/// in flight of a 2048-column pass (a ring and a row of forces per level, about 170 KB)
-/// outgrow the 1 MB L2.
+/// in flight of a 2048-column pass (a ring and a row of forces per level, about 170 KB per
+/// level) outgrow the 1 MB L2.
 pub const DEFAULT_PASS_STEPS: usize = 4;
 
 /// A lane mask with every lane on.
@@ -147,9 +147,10 @@ enum RowOut<'a> {
     Ring(&'a mut Row),
 }
 
-/// Chunk access to a row's positions and velocities, whatever its layout. Chunk `chunks`
-/// (one past the row) is readable for positions: it holds padding or zeros, which only
-/// ever meet masked-off springs.
+/// Chunk access to a row's positions and velocities, whatever its layout; `chunks` is the
+/// row's chunk count, `cols.div_ceil(LANES)`. Chunk `chunks` (one past the row) is
+/// readable for positions: it holds the next row's nodes, padding or zeros (as do the
+/// lanes past the row in the last chunk), which only ever meet masked-off springs.
 trait Source: Copy {
     /// Positions of chunk `k`.
     ///
@@ -791,6 +792,9 @@ fn down_springs(inp: &Inputs, r: usize, from: Level, out: &mut RowForces) {
     match from {
         Level::Front => down_springs_from(inp, r, inp.front(r), inp.front(r + 1), out),
         Level::Ring(ring) => {
+            // The unchecked reads of the ring rows rely on their length.
+            let groups = inp.cols.div_ceil(LANES) + 2;
+            assert!(ring.iter().all(|row| row.groups.len() == groups));
             let [here, down] = [r % 2, (r + 1) % 2].map(|i| &ring[i].groups[..]);
             down_springs_from(inp, r, here, down, out)
         }
@@ -879,6 +883,15 @@ fn advance_row(
     // On the last row the "row below" is the row itself: its springs are masked off.
     let has_down = r + 1 < inp.rows;
     let below = if has_down { r + 1 } else { r };
+    // The unchecked group accesses below rely on these lengths (all built from `cols`).
+    let groups = inp.cols.div_ceil(LANES) + 2;
+    assert!(prev.groups.len() == groups && next.groups.len() == groups);
+    if let Level::Ring(ring) = from {
+        assert!(ring.iter().all(|row| row.groups.len() == groups));
+    }
+    if let RowOut::Ring(row) = &dst {
+        assert!(row.groups.len() == groups);
+    }
     let sent = &mut next.groups[..];
     match from {
         Level::Front => {
@@ -968,7 +981,9 @@ impl<'a, S: Source> RowKernel<'a, S> {
         let last = chunks - 1;
         // Every chunk but the last is whole: `k < last ≤ full`.
         let mut store = |k: usize, new: [Lane; 6], finite: &mut Lane| {
-            // SAFETY: `k < full`.
+            debug_assert!(k < full);
+            // SAFETY: `k < full`: every caller stores a chunk before the last, or the last
+            // when it is whole.
             unsafe { dst.put(k, new) };
             // Fused finiteness check: `x·0` is 0 for finite x and NaN otherwise, and x' is
             // non-finite whenever v' is.
@@ -1028,9 +1043,9 @@ impl<'a, S: Source> RowKernel<'a, S> {
     ///
     /// # Safety
     ///
-    /// `k < chunks`, and `k ≥ 1` when `EDGE` is false. (The row views hold `chunks + 1`
-    /// chunks, the arriving views `chunks + 2`, the node and table views and `sent`
-    /// exactly `chunks`.)
+    /// `k < chunks`, and `k ≥ 1` when `EDGE` is false. (The sources are readable up to
+    /// chunk `chunks`, the node and table views hold `chunks` chunks, the arriving groups
+    /// and `sent` `chunks + 2` groups, chunk `k` being group `k + 1`.)
     #[inline(always)]
     unsafe fn chunk<const EDGE: bool, const UNIFORM: bool>(
         &self,
