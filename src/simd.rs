@@ -304,6 +304,95 @@ mod shift {
     }
 }
 
+/// Stores `v` into chunk `k` of a view with a non-temporal store: the cache line goes to
+/// memory without being read first or kept in cache. For output that the next reads will
+/// not find in cache anyway; call [`stream_fence`] before another thread reads it.
+///
+/// # Safety
+///
+/// `k < view.len()`, and chunk `k` starts on a `size_of::<Lane>()` boundary.
+#[inline(always)]
+pub unsafe fn stream(view: &mut [[f32; LANES]], k: usize, v: Lane) {
+    debug_assert!(k < view.len());
+    // SAFETY: `k < view.len()`.
+    let p = unsafe { view.as_mut_ptr().add(k) }.cast::<f32>();
+    debug_assert!((p as usize).is_multiple_of(core::mem::size_of::<Lane>()));
+    // SAFETY: `p` is valid for `LANES` floats and aligned to a whole lane.
+    unsafe { nt::store(p, v) }
+}
+
+/// Makes every [`stream`] store of this thread visible before its later stores (x86's
+/// `sfence`; nothing where streaming falls back to plain stores).
+#[inline(always)]
+pub fn stream_fence() {
+    nt::fence()
+}
+
+/// Non-temporal stores: one `vmovntps` per chunk with AVX-512, 16-byte `movntps` with
+/// SSE and AVX2, plain stores elsewhere (and under Miri).
+#[cfg(all(target_arch = "x86_64", not(miri), target_feature = "avx512f"))]
+mod nt {
+    use super::Lane;
+    use core::arch::x86_64::{_mm512_stream_ps, _mm_sfence};
+
+    /// # Safety
+    ///
+    /// `p` is valid for a lane's floats and 64-byte aligned.
+    #[inline(always)]
+    pub unsafe fn store(p: *mut f32, v: Lane) {
+        // SAFETY: AVX-512F is enabled for this build; the caller guarantees `p`.
+        unsafe { _mm512_stream_ps(p, v.into()) }
+    }
+
+    #[inline(always)]
+    pub fn fence() {
+        // SAFETY: SSE is part of the x86_64 baseline.
+        unsafe { _mm_sfence() }
+    }
+}
+
+#[cfg(all(target_arch = "x86_64", not(miri), not(target_feature = "avx512f")))]
+mod nt {
+    use super::{Lane, LANES};
+    use core::arch::x86_64::{_mm_loadu_ps, _mm_sfence, _mm_stream_ps};
+
+    /// # Safety
+    ///
+    /// `p` is valid for a lane's floats and 16-byte aligned.
+    #[inline(always)]
+    pub unsafe fn store(p: *mut f32, v: Lane) {
+        let a = v.to_array();
+        for i in (0..LANES).step_by(4) {
+            // SAFETY: SSE is part of the x86_64 baseline; `p + i` is valid for 4 floats
+            // and 16-byte aligned, `a[i..i + 4]` readable.
+            unsafe { _mm_stream_ps(p.add(i), _mm_loadu_ps(a.as_ptr().add(i))) }
+        }
+    }
+
+    #[inline(always)]
+    pub fn fence() {
+        // SAFETY: SSE is part of the x86_64 baseline.
+        unsafe { _mm_sfence() }
+    }
+}
+
+#[cfg(not(all(target_arch = "x86_64", not(miri))))]
+mod nt {
+    use super::{Lane, LANES};
+
+    /// # Safety
+    ///
+    /// `p` is valid for a lane's floats.
+    #[inline(always)]
+    pub unsafe fn store(p: *mut f32, v: Lane) {
+        // SAFETY: the caller guarantees `p`.
+        unsafe { p.cast::<[f32; LANES]>().write_unaligned(v.to_array()) }
+    }
+
+    #[inline(always)]
+    pub fn fence() {}
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
