@@ -47,7 +47,7 @@
 //! integrated, because a row only needs the rows beside it. Level 0 is the front buffer,
 //! the last level goes to the back buffer, and every level in between lives in a ring of
 //! two rows per level ([`Scratch`]) that stays in cache. Only the last level is written
-//! to memory.
+//! to memory, on large grids with non-temporal stores ([`STREAM_MIN_NODES`]).
 //!
 //! # The two colours
 //!
