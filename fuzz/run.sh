@@ -8,10 +8,11 @@
 # a read-only corpus); new corpus entries go to fuzz/corpus/TARGET/ (not committed), crash
 # inputs to fuzz/artifacts/TARGET/.
 #
-# Builds without a sanitizer (`-s none`): the crate's `unsafe` is in src/simd.rs, the
-# unchecked chunk access, whose `debug_assert!` bounds checks the debug assertions (`-a`,
-# which also turn on overflow checks) keep on, and the lane shuffles (intrinsics only), so
-# AddressSanitizer would mostly slow the search down. Optimisations (`-O`) are on.
+# Builds without a sanitizer (`-s none`): the crate's `unsafe` is unchecked chunk access
+# (src/simd.rs and the engine's scratch rows in src/forces/simd.rs), whose `debug_assert!`
+# bounds checks the debug assertions (`-a`, which also turn on overflow checks) keep on,
+# and intrinsics, so AddressSanitizer would mostly slow the search down. Optimisations
+# (`-O`) are on.
 set -euo pipefail
 
 seconds=${1:?usage: fuzz/run.sh SECONDS [TARGET...]}

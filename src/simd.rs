@@ -19,8 +19,13 @@
 //! engine step 27% faster on one thread (native build). For the same reason a
 //! neighbour one column off is not loaded one element off but shuffled out of two
 //! aligned chunks ([`east`], [`west`]), with the instruction each lane type has
-//! (`core::arch`, the only other `unsafe`: calls that need the target feature the `cfg`
-//! above them guarantees). Replacing those loads made the step 10–20% faster (native).
+//! (`core::arch`: calls that need the target feature the `cfg` above them guarantees).
+//! Replacing those loads made the step 10–20% faster (native). [`stream`] writes a chunk
+//! with a non-temporal store, for the engine's output on grids larger than the caches.
+//!
+//! The crate's `unsafe` is these accessors, the intrinsics, and the engine's unchecked
+//! reads and writes of its chunk-major scratch rows (`forces::simd`), whose lengths it
+//! asserts once per row.
 
 #[cfg(target_feature = "avx512f")]
 mod pick {
