@@ -160,28 +160,27 @@ mod shift {
     use super::Lane;
     use core::arch::x86_64::{_mm512_alignr_epi32, _mm512_castps_si512, _mm512_castsi512_ps};
 
+    /// Lanes `N..` of `lo` then lanes `..N` of `hi` (one `valignd`).
     #[inline(always)]
-    pub fn east(lo: Lane, hi: Lane) -> Lane {
+    fn align<const N: i32>(lo: Lane, hi: Lane) -> Lane {
         // SAFETY: AVX-512F is enabled for this build (the `cfg` on this module).
         unsafe {
             let (lo, hi) = (
                 _mm512_castps_si512(lo.into()),
                 _mm512_castps_si512(hi.into()),
             );
-            Lane::from(_mm512_castsi512_ps(_mm512_alignr_epi32::<1>(hi, lo)))
+            Lane::from(_mm512_castsi512_ps(_mm512_alignr_epi32::<N>(hi, lo)))
         }
     }
 
     #[inline(always)]
+    pub fn east(lo: Lane, hi: Lane) -> Lane {
+        align::<1>(lo, hi)
+    }
+
+    #[inline(always)]
     pub fn west(lo: Lane, hi: Lane) -> Lane {
-        // SAFETY: AVX-512F is enabled for this build (the `cfg` on this module).
-        unsafe {
-            let (lo, hi) = (
-                _mm512_castps_si512(lo.into()),
-                _mm512_castps_si512(hi.into()),
-            );
-            Lane::from(_mm512_castsi512_ps(_mm512_alignr_epi32::<15>(hi, lo)))
-        }
+        align::<15>(lo, hi)
     }
 }
 
