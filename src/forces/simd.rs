@@ -103,11 +103,30 @@ pub(crate) struct RowForces {
 /// The S, SE and SW forces of one chunk, by family and axis.
 type Group = [[Lane; 3]; 3];
 
+/// Groups in a chunk-major scratch row of `cols` columns: its chunks and a zero group on
+/// each side.
+fn group_count(cols: usize) -> usize {
+    cols.div_ceil(LANES) + 2
+}
+
 impl RowForces {
     fn new(cols: usize) -> Self {
         Self {
-            groups: vec![[[Lane::ZERO; 3]; 3]; cols.div_ceil(LANES) + 2],
+            groups: vec![[[Lane::ZERO; 3]; 3]; group_count(cols)],
         }
+    }
+
+    /// The groups, checked to be those of a row of `cols` columns: the engine's unchecked
+    /// accesses rely on that length.
+    fn groups(&self, cols: usize) -> &[Group] {
+        assert_eq!(self.groups.len(), group_count(cols));
+        &self.groups
+    }
+
+    /// [`RowForces::groups`], mutable.
+    fn groups_mut(&mut self, cols: usize) -> &mut [Group] {
+        assert_eq!(self.groups.len(), group_count(cols));
+        &mut self.groups
     }
 
     /// Clears the forces (what a band's first row receives from above when it is the
@@ -129,8 +148,21 @@ pub(crate) struct Row {
 impl Row {
     fn new(cols: usize) -> Self {
         Self {
-            groups: vec![[Lane::ZERO; 6]; cols.div_ceil(LANES) + 2],
+            groups: vec![[Lane::ZERO; 6]; group_count(cols)],
         }
+    }
+
+    /// The groups, checked to be those of a row of `cols` columns: the engine's unchecked
+    /// accesses rely on that length.
+    fn groups(&self, cols: usize) -> &[[Lane; 6]] {
+        assert_eq!(self.groups.len(), group_count(cols));
+        &self.groups
+    }
+
+    /// [`Row::groups`], mutable.
+    fn groups_mut(&mut self, cols: usize) -> &mut [[Lane; 6]] {
+        assert_eq!(self.groups.len(), group_count(cols));
+        &mut self.groups
     }
 
     fn copy_from(&mut self, other: &Row) {
@@ -819,10 +851,7 @@ fn down_springs(inp: &Inputs, r: usize, from: Level, out: &mut RowForces) {
     match from {
         Level::Front => down_springs_from(inp, r, inp.front(r), inp.front(r + 1), out),
         Level::Ring(ring) => {
-            // The unchecked reads of the ring rows rely on their length.
-            let groups = inp.cols.div_ceil(LANES) + 2;
-            assert!(ring.iter().all(|row| row.groups.len() == groups));
-            let [here, down] = [r % 2, (r + 1) % 2].map(|i| &ring[i].groups[..]);
+            let [here, down] = [r % 2, (r + 1) % 2].map(|i| ring[i].groups(inp.cols));
             down_springs_from(inp, r, here, down, out)
         }
     }
@@ -910,23 +939,14 @@ fn advance_row(
     // On the last row the "row below" is the row itself: its springs are masked off.
     let has_down = r + 1 < inp.rows;
     let below = if has_down { r + 1 } else { r };
-    // The unchecked group accesses below rely on these lengths (all built from `cols`).
-    let groups = inp.cols.div_ceil(LANES) + 2;
-    assert!(prev.groups.len() == groups && next.groups.len() == groups);
-    if let Level::Ring(ring) = from {
-        assert!(ring.iter().all(|row| row.groups.len() == groups));
-    }
-    if let RowOut::Ring(row) = &dst {
-        assert!(row.groups.len() == groups);
-    }
-    let sent = &mut next.groups[..];
+    let sent = next.groups_mut(inp.cols);
     match from {
         Level::Front => {
             let (h, d) = (inp.front(r), inp.front(below));
             RowKernel::new(inp, r, h, d, has_down, ext, prev).run(sent, dst)
         }
         Level::Ring(ring) => {
-            let [h, d] = [r % 2, below % 2].map(|i| &ring[i].groups[..]);
+            let [h, d] = [r % 2, below % 2].map(|i| ring[i].groups(inp.cols));
             RowKernel::new(inp, r, h, d, has_down, ext, prev).run(sent, dst)
         }
     }
@@ -977,7 +997,7 @@ impl<'a, S: Source> RowKernel<'a, S> {
             inv_mass: node(inp.inv_mass),
             viscosity: node(inp.viscosity),
             ext: ext.map(|e| e.map(node)),
-            arriving: &prev.groups,
+            arriving: prev.groups(inp.cols),
             dt: Lane::splat(inp.cfg.dt),
             g: inp.cfg.accel.map(Lane::splat),
         }
@@ -989,8 +1009,10 @@ impl<'a, S: Source> RowKernel<'a, S> {
         match (dst, self.uniform.is_some()) {
             (RowOut::Back(b), true) => self.run_into::<true>(sent, self.back_row(b)),
             (RowOut::Back(b), false) => self.run_into::<false>(sent, self.back_row(b)),
-            (RowOut::Ring(row), true) => self.run_into::<true>(sent, &mut row.groups[..]),
-            (RowOut::Ring(row), false) => self.run_into::<false>(sent, &mut row.groups[..]),
+            (RowOut::Ring(row), true) => self.run_into::<true>(sent, row.groups_mut(self.inp.cols)),
+            (RowOut::Ring(row), false) => {
+                self.run_into::<false>(sent, row.groups_mut(self.inp.cols))
+            }
         }
     }
 
