@@ -19,6 +19,13 @@ pub enum Error {
         expected: &'static str,
     },
 
+    /// `SPRINGWATER_SIMD` (or a level given by name) is not a SIMD level.
+    #[error("SIMD level '{value}' is unknown: use scalar, sse2, avx2 or avx512")]
+    InvalidSimdLevel {
+        /// The name that was given.
+        value: String,
+    },
+
     /// The grid has fewer than 2 nodes in some direction.
     #[error("grid {cols}x{rows} is too small: a surface needs at least 2x2 nodes")]
     GridTooSmall {

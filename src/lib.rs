@@ -77,10 +77,11 @@ mod state;
 pub mod surface;
 
 pub use error::{Error, Result};
-pub use forces::simd::MAX_PASS_STEPS;
+pub use forces::engine::MAX_PASS_STEPS;
 pub use grid::{Family, Grid, SpringId};
 pub use mesh::MeshView;
 pub use params::{Boundary, Params};
+pub use simd::SimdLevel;
 pub use snapshot::Snapshot;
 pub use surface::{Energy, Stepper, Surface};
 

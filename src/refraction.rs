@@ -56,16 +56,17 @@
 //!
 //! # Lane code
 //!
-//! [`refract`] runs [`LANES`] nodes at a time on the flat arrays (and chunks of nodes in
-//! parallel with the `parallel` feature). Every case above is a mask and a `select`, never a
-//! branch. Clamps against constants use `fast_min`/`fast_max`, which agree with `f32::min`
+//! [`refract`] runs a chunk of lanes at a time on the flat arrays, at the view's SIMD
+//! level ([`MeshView::simd_level`]), and chunks of nodes in parallel with the `parallel`
+//! feature. Every case above is a mask and a `select`, never a branch. Clamps against
+//! constants use the lanes' `min`/`max` (`minps`/`maxps`), which agree with `f32::min`
 //! and `f32::max` there (a NaN input gives the constant). [`refract_node`] is the scalar
 //! twin, with the same operations in the same order; it computes the tail of the arrays and
 //! is compared with the lane code, bitwise, in tests.
 
 use crate::error::{Error, Result};
 use crate::mesh::{MeshView, Normals};
-use crate::simd::{lanes, lanes_mut, Lane, LANES};
+use crate::simd::{Chunks, ChunksMut, Vector};
 use glam::Vec3;
 
 /// The bottom and the water's optics.
@@ -158,7 +159,7 @@ pub fn refract(
     params: &RefractionParams,
     out: &mut Refraction,
 ) -> Result<()> {
-    let k = Kernel::new(view, eye, params)?;
+    let k = Refractor::new(view, eye, params)?;
     check_normals(view, normals)?;
     let n = view.grid().len();
     resize(out, n);
@@ -203,7 +204,7 @@ pub fn normals_and_refraction(
     normals: &mut Normals,
     out: &mut Refraction,
 ) -> Result<()> {
-    let k = Kernel::new(view, eye, params)?;
+    let k = Refractor::new(view, eye, params)?;
     let (n, cols) = (view.grid().len(), view.cols());
     normals.resize(n);
     resize(out, n);
@@ -236,7 +237,7 @@ pub fn refract_scalar(
     params: &RefractionParams,
     out: &mut Refraction,
 ) -> Result<()> {
-    Kernel::new(view, eye, params)?;
+    Refractor::new(view, eye, params)?;
     check_normals(view, normals)?;
     let n = view.grid().len();
     resize(out, n);
@@ -333,13 +334,13 @@ fn check_normals(view: &MeshView<'_>, normals: &Normals) -> Result<()> {
 }
 
 /// Checked inputs and per-call constants of the lane kernel.
-struct Kernel {
+struct Refractor {
     eye: Vec3,
     params: RefractionParams,
     extent: [f32; 2],
 }
 
-impl Kernel {
+impl Refractor {
     fn new(view: &MeshView<'_>, eye: Vec3, params: &RefractionParams) -> Result<Self> {
         params.validate()?;
         for (name, c) in [("eye x", eye.x), ("eye y", eye.y), ("eye z", eye.z)] {
@@ -363,26 +364,17 @@ impl Kernel {
     ) {
         let [ou, ov, of] = out;
         let len = ou.len();
-        let c = Consts::new(self);
-        // Chunk views cut to exactly `count` lanes: indexing them below needs no bounds
-        // check the compiler cannot prove.
-        let count = len / LANES;
-        let at = |s: &'a [f32]| lanes(s, start, count);
-        let (x, y, z) = (at(view.x()), at(view.y()), at(view.z()));
-        let [nx, ny, nz] = normals.map(|s| lanes(s, 0, count));
-        let (u, v, f) = (
-            lanes_mut(ou, 0, count),
-            lanes_mut(ov, 0, count),
-            lanes_mut(of, 0, count),
+        let count = crate::simd::dispatch(
+            view.simd_level(),
+            RefractChunk {
+                k: self,
+                view,
+                normals,
+                start,
+                out: [&mut *ou, &mut *ov, &mut *of],
+            },
         );
-        for k in 0..count {
-            let p = [Lane::new(x[k]), Lane::new(y[k]), Lane::new(z[k])];
-            let n = [Lane::new(nx[k]), Lane::new(ny[k]), Lane::new(nz[k])];
-            let [ru, rv, rf] = refract_lanes(&c, p, n);
-            (u[k], v[k], f[k]) = (ru.to_array(), rv.to_array(), rf.to_array());
-        }
-        let o = count * LANES;
-        for o in o..len {
+        for o in count..len {
             let i = start + o;
             let [u, v, f] = refract_node(
                 view.position(i),
@@ -396,22 +388,71 @@ impl Kernel {
     }
 }
 
-/// Per-call constants of the lane kernel, splatted once.
-struct Consts {
-    scale: Lane,
-    eye: [Lane; 3],
-    max_travel: Lane,
-    eta: Lane,
-    eta2: Lane,
-    depth: Lane,
-    r0: Lane,
-    ior2: Lane,
-    inv_extent: [Lane; 2],
+/// The lane part of [`Refractor::chunk`], for any vector type: the whole chunks of lanes.
+/// Returns how many nodes it did.
+struct RefractChunk<'k, 'a, 'o> {
+    k: &'k Refractor,
+    view: &'k MeshView<'a>,
+    normals: [&'a [f32]; 3],
+    start: usize,
+    out: [&'o mut [f32]; 3],
 }
 
-impl Consts {
-    fn new(k: &Kernel) -> Self {
-        let splat = Lane::splat;
+impl crate::simd::Kernel for RefractChunk<'_, '_, '_> {
+    type Output = usize;
+
+    #[inline(always)]
+    fn run<V: Vector>(self) -> usize {
+        let RefractChunk {
+            k,
+            view,
+            normals,
+            start,
+            out,
+        } = self;
+        let c = Consts::<V>::new(k);
+        // Chunk views cut to exactly `count` chunks: reading them below needs no bounds
+        // check the compiler cannot prove.
+        let count = out[0].len() / V::LANES;
+        let at = |s| Chunks::<V>::new(s, start, count);
+        let p = [at(view.x()), at(view.y()), at(view.z())];
+        let n = normals.map(|s| Chunks::<V>::new(s, 0, count));
+        let mut o = out.map(|s| ChunksMut::<V>::new(s, 0, count));
+        for i in 0..count {
+            // SAFETY: `i < count`, the length of every view.
+            let (pi, ni) = unsafe {
+                (
+                    [p[0].get(i), p[1].get(i), p[2].get(i)],
+                    [n[0].get(i), n[1].get(i), n[2].get(i)],
+                )
+            };
+            let r = refract_lanes(&c, pi, ni);
+            for (o, r) in o.iter_mut().zip(r) {
+                // SAFETY: as above.
+                unsafe { o.put(i, r) };
+            }
+        }
+        count * V::LANES
+    }
+}
+
+/// Per-call constants of the lane kernel, splatted once.
+struct Consts<V> {
+    scale: V,
+    eye: [V; 3],
+    max_travel: V,
+    eta: V,
+    eta2: V,
+    depth: V,
+    r0: V,
+    ior2: V,
+    inv_extent: [V; 2],
+}
+
+impl<V: Vector> Consts<V> {
+    #[inline(always)]
+    fn new(k: &Refractor) -> Self {
+        let splat = V::splat;
         let (scale, es) = eye_scale(k.eye);
         let ior = k.params.ior;
         Self {
@@ -428,45 +469,42 @@ impl Consts {
     }
 }
 
-/// `[u, v, fresnel]` for [`LANES`] nodes at `[px, py, pz]` with normals `[nx, ny, nz]`:
+/// `[u, v, fresnel]` for a chunk of nodes at `[px, py, pz]` with normals `[nx, ny, nz]`:
 /// [`refract_node`] with masks for its branches.
 #[inline(always)]
-fn refract_lanes(c: &Consts, [px, py, pz]: [Lane; 3], [nx, ny, nz]: [Lane; 3]) -> [Lane; 3] {
-    let (zero, one) = (Lane::ZERO, Lane::ONE);
+fn refract_lanes<V: Vector>(c: &Consts<V>, [px, py, pz]: [V; 3], [nx, ny, nz]: [V; 3]) -> [V; 3] {
+    let (zero, one) = (V::zero(), V::one());
     let (eta, scale) = (c.eta, c.scale);
     let [ex, ey, ez] = c.eye;
     let (dx, dy, dz) = (px * scale - ex, py * scale - ey, pz * scale - ez);
     let l2 = dx * dx + dy * dy + dz * dz;
     let c_l = -(nx * dx + ny * dy + nz * dz);
     let q = l2 - c.eta2 * (l2 - c_l * c_l);
-    let f = eta * c_l - q.fast_max(zero).sqrt();
+    let f = eta * c_l - q.max(zero).sqrt();
     let (tx, ty, tz) = (eta * dx + f * nx, eta * dy + f * ny, eta * dz + f * nz);
     let s = (-c.depth - py) / ty;
     let (ox, oz) = (s * tx, s * tz);
-    let front = c_l.simd_gt(zero);
-    let valid = front
-        & ty.simd_lt(zero)
-        & s.simd_ge(zero)
-        & ox.abs().simd_lt(c.max_travel)
-        & oz.abs().simd_lt(c.max_travel);
-    let (hx, hz) = (valid.select(px + ox, px), valid.select(pz + oz, pz));
-    let cosi = c_l / l2.fast_max(Lane::splat(f32::MIN_POSITIVE)).sqrt();
+    let front = c_l.gt(zero);
+    let valid =
+        front & ty.lt(zero) & s.ge(zero) & ox.abs().lt(c.max_travel) & oz.abs().lt(c.max_travel);
+    let (hx, hz) = (V::select(valid, px + ox, px), V::select(valid, pz + oz, pz));
+    let cosi = c_l / l2.max(V::splat(f32::MIN_POSITIVE)).sqrt();
 
-    let schlick = |cos: Lane| {
+    let schlick = |cos: V| {
         let m = one - cos;
         let m2 = m * m;
         c.r0 + (one - c.r0) * (m2 * m2 * m)
     };
-    let r = if front.all() {
+    let r = if V::all(front) {
         // The usual case, an eye above the water: no lane needs the transmitted angle, so
         // skip its square root. Same arithmetic as the masked path for front lanes.
-        schlick(cosi.fast_min(one))
+        schlick(cosi.min(one))
     } else {
-        let c_in = (-cosi).fast_min(one);
+        let c_in = (-cosi).min(one);
         let sin2t = c.ior2 * (one - c_in * c_in);
-        let c_back = (one - sin2t).fast_max(zero).sqrt();
-        let r = schlick(front.select(cosi.fast_min(one), c_back));
-        (!front & sin2t.simd_ge(one)).select(one, r)
+        let c_back = (one - sin2t).max(zero).sqrt();
+        let r = schlick(V::select(front, cosi.min(one), c_back));
+        V::select(!front & sin2t.ge(one), one, r)
     };
     [hx * c.inv_extent[0], hz * c.inv_extent[1], r]
 }

@@ -12,7 +12,7 @@
 
 use crate::grid::Grid;
 use crate::params::{Boundary, Params};
-use crate::simd::{round_up, Floats, LANES};
+use crate::simd::{round_up, Floats, MAX_LANES};
 
 /// Three coordinate buffers, `[x, y, z]`.
 pub(crate) type Xyz = [Floats; 3];
@@ -23,7 +23,7 @@ pub(crate) fn zeros3(len: usize) -> Xyz {
 
 /// Length of a padded per-node buffer for `nodes` nodes.
 pub(crate) fn padded_len(nodes: usize) -> usize {
-    round_up(nodes + 2 * LANES)
+    round_up(nodes + 2 * MAX_LANES)
 }
 
 /// Node state and per-node tables.

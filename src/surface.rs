@@ -1,10 +1,11 @@
 //! [`Surface`]: the water surface a game owns, steps and reads.
 
 use crate::error::{Error, Result};
-use crate::forces::{self, simd::Workspace, StepConfig};
+use crate::forces::{self, engine::Workspace, StepConfig};
 use crate::grid::{Grid, SpringId};
 use crate::mesh::MeshView;
 use crate::params::{self, Params};
+use crate::simd::SimdLevel;
 use crate::springs::{self, Band, Springs};
 use crate::state::State;
 
@@ -56,6 +57,8 @@ pub struct Surface {
     pub(crate) springs: Springs,
     workspace: Workspace,
     reference: forces::scalar::Scratch,
+    /// The instruction set the engine runs.
+    simd: SimdLevel,
     /// Smallest node mass, largest spring coefficient and largest viscosity ever set: they
     /// set `critical_dt`.
     pub(crate) min_mass: f32,
@@ -67,16 +70,37 @@ pub struct Surface {
 
 impl Surface {
     /// A flat surface at rest with the given parameters, validated.
+    ///
+    /// The engine runs the widest SIMD level the CPU has, or the one `SPRINGWATER_SIMD`
+    /// names (see [`SimdLevel::from_env`]; an unknown name is an error).
     pub fn new(params: Params) -> Result<Self> {
         params.validate()?;
-        Ok(Self::build(params))
+        Self::build(params).with_env_simd()
     }
 
     /// Like [`Surface::new`] but without the critical-timestep check: for experiments
     /// that probe the stability limit on purpose. Every other field is still validated.
     pub fn new_unchecked_dt(params: Params) -> Result<Self> {
         params.validate_except_dt()?;
-        Ok(Self::build(params))
+        Self::build(params).with_env_simd()
+    }
+
+    fn with_env_simd(mut self) -> Result<Self> {
+        self.simd = SimdLevel::from_env()?;
+        Ok(self)
+    }
+
+    /// The SIMD level the engine runs. Every level gives the same results, bit for bit.
+    pub fn simd_level(&self) -> SimdLevel {
+        self.simd
+    }
+
+    /// Runs the engine at `level`, clamped to what the CPU has, and returns the level it
+    /// will run. [`SimdLevel::Scalar`] runs the scalar reference loops. Results do not
+    /// change by a bit; only the speed does.
+    pub fn set_simd_level(&mut self, level: SimdLevel) -> SimdLevel {
+        self.simd = level.clamped();
+        self.simd
     }
 
     fn build(params: Params) -> Self {
@@ -99,6 +123,7 @@ impl Surface {
         Self {
             workspace: Workspace::new(None),
             reference: Default::default(),
+            simd: SimdLevel::detect(),
             state,
             springs,
             min_mass,
@@ -180,6 +205,7 @@ impl Surface {
         let [x, y, z] = self.positions();
         MeshView::new(self.grid(), self.params.spacing, x, y, z)
             .expect("the surface's own buffers match its grid")
+            .with_simd_level(self.simd)
     }
 
     /// Advances one step of `params().dt` with the engine. See [`Surface::step_with`].
@@ -203,7 +229,7 @@ impl Surface {
     }
 
     /// Advances `n` steps of `params().dt` with the engine, several per pass over memory
-    /// (see `src/forces/simd.rs`). Bitwise the same as `n` calls of [`Surface::step`], and as
+    /// (see `src/forces/engine/`). Bitwise the same as `n` calls of [`Surface::step`], and as
     /// transactional per step: if a step would make the state non-finite, the steps before
     /// it stay applied, that one is not, and its error is returned.
     pub fn step_n(&mut self, n: u64) -> Result<()> {
@@ -214,12 +240,12 @@ impl Surface {
     /// do not change by a bit; for benchmarks and tests.
     #[doc(hidden)]
     pub fn set_pass_steps(&mut self, steps: usize) {
-        self.workspace.pass_steps = steps.clamp(1, forces::simd::MAX_PASS_STEPS);
+        self.workspace.pass_steps = steps.clamp(1, forces::engine::MAX_PASS_STEPS);
     }
 
     fn config(&self, dt: f32) -> StepConfig {
         // `+ 0.0` turns a −0 acceleration into +0, which keeps a zero force's sign from
-        // reaching the state (see `forces::simd::spring_force`).
+        // reaching the state (see `forces::engine`).
         StepConfig {
             dt,
             accel: self.params.acceleration.map(|a| a + 0.0),
@@ -246,11 +272,18 @@ impl Surface {
     /// `n` engine steps, in passes of up to `pass_steps`. A pass that fails is redone one
     /// step at a time, so the error names the exact step and node.
     fn engine_steps(&mut self, n: u64, dt: f32) -> Result<()> {
+        if self.simd == SimdLevel::Scalar {
+            for _ in 0..n {
+                self.step_dt(dt, Stepper::Reference)?;
+            }
+            return Ok(());
+        }
         let cfg = self.config(dt);
         let mut left = n;
         while left > 0 {
             let k = left.min(self.workspace.pass_steps as u64) as usize;
-            if forces::simd::pass(&mut self.state, &self.springs, &mut self.workspace, cfg, k) {
+            let (state, springs, ws) = (&mut self.state, &self.springs, &mut self.workspace);
+            if forces::engine::pass(state, springs, ws, cfg, k, self.simd) {
                 self.commit(k, dt);
             } else if k > 1 {
                 for _ in 0..k {

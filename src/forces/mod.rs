@@ -22,9 +22,10 @@
 //!
 //! * [`scalar`] is the oracle: a loop over every spring adding into full force buffers,
 //!   then a loop over every node. Plain and easy to check.
-//! * [`simd`] is the engine: colour-partitioned bands ([`crate::springs`]) run on the
-//!   rayon pool, each streaming its rows once with `wide` lanes across columns, and
-//!   advancing up to [`simd::MAX_PASS_STEPS`] steps per pass over memory.
+//! * [`engine`] is the engine: colour-partitioned bands ([`crate::springs`]) run on the
+//!   rayon pool, each streaming its rows once with SIMD lanes across columns at the level
+//!   the CPU has ([`crate::simd`]), and advancing up to [`engine::MAX_PASS_STEPS`] steps
+//!   per pass over memory.
 //!
 //! Both use the same operations in the same order per spring and per node, never FMA,
 //! and sum a node's spring forces in the same order (each family's leaving spring minus
@@ -34,8 +35,8 @@
 //! Both write the back buffers, check every new value for finiteness, and report the first
 //! non-finite node instead of swapping: the front buffers are never touched.
 
+pub(crate) mod engine;
 pub(crate) mod scalar;
-pub(crate) mod simd;
 
 /// What a step reads besides the state: timestep and uniform acceleration.
 #[derive(Debug, Clone, Copy)]

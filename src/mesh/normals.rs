@@ -23,14 +23,15 @@
 //! # Vectorisation
 //!
 //! Rows run in parallel (rayon, with the `parallel` feature). Inside a row, interior
-//! columns are computed [`LANES`] at a time with [`Lane`] arithmetic: left/right neighbours
+//! columns are computed a chunk of lanes at a time, at the view's SIMD level
+//! ([`MeshView::simd_level`]): left/right neighbours
 //! are the same row loaded one element earlier and later, up/down neighbours the rows
 //! above and below. The first column and the tail of a row that does not fill a lane run
 //! through [`node_normal`], the scalar twin, which performs the same operations in the same
 //! order — the two agree bitwise (tested).
 
 use super::view::MeshView;
-use crate::simd::{lanes, lanes_mut, Lane, LANES};
+use crate::simd::{Chunks, ChunksMut, Kernel, Vector};
 
 /// Unit normals, one per node, row-major: `x[i], y[i], z[i]` is node `i`'s normal.
 ///
@@ -140,52 +141,69 @@ pub fn node_normal(view: &MeshView<'_>, col: usize, row: usize) -> glam::Vec3 {
 }
 
 /// One row of normals: lanes over the interior columns, [`node_normal`] for the rest.
-pub(crate) fn normals_row<'a>(view: &MeshView<'a>, row: usize, out: [&mut [f32]; 3]) {
-    let cols = view.cols();
-    let here = row * cols;
-    let up = row.saturating_sub(1) * cols;
-    let down = (row + 1).min(view.rows() - 1) * cols;
-    let (x, y, z) = (view.x(), view.y(), view.z());
-    let [ox, oy, oz] = out;
-    // Lane k covers columns 1 + k·LANES ..; it reads one column either side, so the lanes
-    // stop before the last column. Chunk views cut to `count` need no further bounds checks.
-    let count = cols.saturating_sub(2) / LANES;
-    let at = |s: &'a [f32], from: usize| lanes(s, from, count);
-    let (lx, ly, lz) = (at(x, here), at(y, here), at(z, here));
-    let (rx, ry, rz) = (at(x, here + 2), at(y, here + 2), at(z, here + 2));
-    let (ux_, uy_, uz_) = (at(x, up + 1), at(y, up + 1), at(z, up + 1));
-    let (dx_, dy_, dz_) = (at(x, down + 1), at(y, down + 1), at(z, down + 1));
-    let (ox_, oy_, oz_) = (
-        lanes_mut(ox, 1, count),
-        lanes_mut(oy, 1, count),
-        lanes_mut(oz, 1, count),
-    );
-    let l = Lane::new;
-    for k in 0..count {
-        let (ux, uy, uz) = (
-            l(rx[k]) - l(lx[k]),
-            l(ry[k]) - l(ly[k]),
-            l(rz[k]) - l(lz[k]),
-        );
-        let (vx, vy, vz) = (
-            l(dx_[k]) - l(ux_[k]),
-            l(dy_[k]) - l(uy_[k]),
-            l(dz_[k]) - l(uz_[k]),
-        );
-        let nx = vy * uz - vz * uy;
-        let ny = vz * ux - vx * uz;
-        let nz = vx * uy - vy * ux;
-        let len2 = nx * nx + ny * ny + nz * nz;
-        let ok =
-            len2.simd_gt(Lane::splat(f32::MIN_POSITIVE)) & len2.simd_lt(Lane::splat(f32::INFINITY));
-        let inv = Lane::ONE / len2.sqrt();
-        ox_[k] = ok.select(nx * inv, Lane::ZERO).to_array();
-        oy_[k] = ok.select(ny * inv, Lane::ONE).to_array();
-        oz_[k] = ok.select(nz * inv, Lane::ZERO).to_array();
-    }
-    let c = 1 + count * LANES;
-    for col in std::iter::once(0).chain(c..cols) {
-        let n = node_normal(view, col, row);
-        (ox[col], oy[col], oz[col]) = (n.x, n.y, n.z);
+pub(crate) fn normals_row(view: &MeshView<'_>, row: usize, out: [&mut [f32]; 3]) {
+    crate::simd::dispatch(view.simd_level(), NormalsRow { view, row, out })
+}
+
+/// [`normals_row`]'s work, for any vector type.
+struct NormalsRow<'v, 'a, 'o> {
+    view: &'v MeshView<'a>,
+    row: usize,
+    out: [&'o mut [f32]; 3],
+}
+
+impl Kernel for NormalsRow<'_, '_, '_> {
+    type Output = ();
+
+    #[inline(always)]
+    fn run<V: Vector>(self) {
+        let NormalsRow { view, row, out } = self;
+        let cols = view.cols();
+        let here = row * cols;
+        let up = row.saturating_sub(1) * cols;
+        let down = (row + 1).min(view.rows() - 1) * cols;
+        let (x, y, z) = (view.x(), view.y(), view.z());
+        let [ox, oy, oz] = out;
+        // Chunk k covers columns 1 + k·LANES ..; it reads one column either side, so the
+        // chunks stop before the last column. Views cut to `count` chunks need no further
+        // bounds checks.
+        let count = cols.saturating_sub(2) / V::LANES;
+        let at = |s, from| Chunks::<V>::new(s, from, count);
+        let (lx, ly, lz) = (at(x, here), at(y, here), at(z, here));
+        let (rx, ry, rz) = (at(x, here + 2), at(y, here + 2), at(z, here + 2));
+        let (ux_, uy_, uz_) = (at(x, up + 1), at(y, up + 1), at(z, up + 1));
+        let (dx_, dy_, dz_) = (at(x, down + 1), at(y, down + 1), at(z, down + 1));
+        let mut o = [&mut *ox, &mut *oy, &mut *oz].map(|s| ChunksMut::<V>::new(s, 1, count));
+        let (tiny, huge) = (V::splat(f32::MIN_POSITIVE), V::splat(f32::INFINITY));
+        for k in 0..count {
+            // SAFETY: `k < count`, the length of every view.
+            let [n, ok] = unsafe {
+                let (ux, uy, uz) = (
+                    rx.get(k) - lx.get(k),
+                    ry.get(k) - ly.get(k),
+                    rz.get(k) - lz.get(k),
+                );
+                let (vx, vy, vz) = (
+                    dx_.get(k) - ux_.get(k),
+                    dy_.get(k) - uy_.get(k),
+                    dz_.get(k) - uz_.get(k),
+                );
+                let n = [vy * uz - vz * uy, vz * ux - vx * uz, vx * uy - vy * ux];
+                [n, [n[0] * n[0] + n[1] * n[1] + n[2] * n[2]; 3]]
+            };
+            let len2 = ok[0];
+            let ok = len2.gt(tiny) & len2.lt(huge);
+            let inv = V::one() / len2.sqrt();
+            let fallback = [V::zero(), V::one(), V::zero()];
+            for axis in 0..3 {
+                // SAFETY: `k < count`.
+                unsafe { o[axis].put(k, V::select(ok, n[axis] * inv, fallback[axis])) };
+            }
+        }
+        let c = 1 + count * V::LANES;
+        for col in std::iter::once(0).chain(c..cols) {
+            let n = node_normal(view, col, row);
+            (ox[col], oy[col], oz[col]) = (n.x, n.y, n.z);
+        }
     }
 }

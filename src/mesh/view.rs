@@ -2,6 +2,7 @@
 
 use crate::error::{Error, Result};
 use crate::grid::Grid;
+use crate::simd::SimdLevel;
 
 /// A borrowed view of a surface's positions and grid shape: no copy.
 ///
@@ -14,12 +15,14 @@ pub struct MeshView<'a> {
     x: &'a [f32],
     y: &'a [f32],
     z: &'a [f32],
+    simd: SimdLevel,
 }
 
 impl<'a> MeshView<'a> {
     /// A view of `x`, `y`, `z` (one value per node, row-major) on `grid` with rest
     /// spacing `spacing`. The slices must have `grid.len()` elements and the grid at
-    /// least 2×2 nodes.
+    /// least 2×2 nodes. The render-side stages run at the widest SIMD level the CPU has
+    /// ([`MeshView::with_simd_level`] picks another).
     pub fn new(grid: Grid, spacing: f32, x: &'a [f32], y: &'a [f32], z: &'a [f32]) -> Result<Self> {
         if grid.cols < 2 || grid.rows < 2 {
             return Err(Error::GridTooSmall {
@@ -43,7 +46,20 @@ impl<'a> MeshView<'a> {
             x,
             y,
             z,
+            simd: SimdLevel::detect(),
         })
+    }
+
+    /// The same view, read by the render-side stages at `level` (clamped to what the CPU
+    /// has). Every level gives the same results, bit for bit.
+    pub fn with_simd_level(mut self, level: SimdLevel) -> Self {
+        self.simd = level.clamped();
+        self
+    }
+
+    /// The SIMD level the render-side stages run on this view.
+    pub fn simd_level(&self) -> SimdLevel {
+        self.simd
     }
 
     /// The grid shape.

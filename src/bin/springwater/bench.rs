@@ -4,7 +4,6 @@
 use crate::args::{next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
 use lexopt::Parser;
 use springwater::baselines::{MemoryFloor, NaiveSurface};
-use springwater::simd::LANES;
 use springwater::{Stepper, Surface};
 use std::time::Instant;
 
@@ -107,12 +106,15 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let nodes = surface.len();
     let mut kernels = vec![Kernel::Engine];
     kernels.extend(compare);
+    let simd = surface.simd_level();
     println!(
-        "bench {}x{} ({nodes} nodes), {} steps x {repeats} repeats, {threads} thread(s), {LANES} f32 lanes, target features: {}",
+        "bench simd={simd} ({} f32 lanes; CPU's widest {}, build's baseline {}) {}x{} ({nodes} nodes), {} steps x {repeats} repeats, {threads} thread(s)",
+        simd.lanes(),
+        springwater::SimdLevel::detect(),
+        features(),
         params.cols,
         params.rows,
         model.steps,
-        features()
     );
 
     let samples = model.with_threads(|| -> CliResult<Vec<Vec<f64>>> {
@@ -229,6 +231,6 @@ fn features() -> &'static str {
     } else if cfg!(target_feature = "avx2") {
         "avx2"
     } else {
-        "baseline (sse2)"
+        "sse2"
     }
 }

@@ -1,0 +1,139 @@
+//! The engine's scratch rows: the forces a row sends down, the rows of the levels in
+//! flight, and each worker thread's set of them. All are chunk-major — the lanes of one
+//! chunk of columns sit together — so the row kernel reaches all of a chunk's values with
+//! one pointer and constant offsets (the state itself stays structure-of-arrays).
+
+use crate::simd::Vector;
+use std::any::Any;
+use std::cell::RefCell;
+
+/// The S, SE and SW forces of one chunk, by family and axis.
+pub(super) type Group<V> = [[V; 3]; 3];
+
+/// Groups in a chunk-major scratch row of `cols` columns: its chunks and a zero group on
+/// each side.
+fn group_count<V: Vector>(cols: usize) -> usize {
+    cols.div_ceil(V::LANES) + 2
+}
+
+/// The forces a row sends down: its S, SE and SW springs. Group `j` holds columns
+/// `(j − 1)·LANES ..` as `[family − 1][axis]` lanes; groups 0 and `chunks + 1`, and the
+/// lanes past the row, are zero.
+#[derive(Debug, Clone)]
+pub(crate) struct RowForces<V> {
+    groups: Vec<Group<V>>,
+}
+
+impl<V: Vector> RowForces<V> {
+    pub fn new(cols: usize) -> Self {
+        Self {
+            groups: vec![[[V::zero(); 3]; 3]; group_count::<V>(cols)],
+        }
+    }
+
+    /// The groups, checked to be those of a row of `cols` columns: the engine's unchecked
+    /// accesses rely on that length.
+    pub fn groups(&self, cols: usize) -> &[Group<V>] {
+        assert_eq!(self.groups.len(), group_count::<V>(cols));
+        &self.groups
+    }
+
+    /// [`RowForces::groups`], mutable.
+    pub fn groups_mut(&mut self, cols: usize) -> &mut [Group<V>] {
+        assert_eq!(self.groups.len(), group_count::<V>(cols));
+        &mut self.groups
+    }
+
+    /// Clears the forces (what a band's first row receives from above when it is the
+    /// grid's first row, and what the last row sends).
+    pub fn zero_down(&mut self) {
+        self.groups.fill([[V::zero(); 3]; 3]);
+    }
+}
+
+/// One row of positions and velocities outside the state buffers: a level in flight, or
+/// a row handed from colour 0 to colour 1. Group `j` holds columns `(j − 1)·LANES ..` as
+/// `[x, y, z, vx, vy, vz]` lanes; groups 0 and `chunks + 1`, and the lanes past the row,
+/// stay zero.
+#[derive(Debug, Clone)]
+pub(crate) struct Row<V> {
+    groups: Vec<[V; 6]>,
+}
+
+impl<V: Vector> Row<V> {
+    pub fn new(cols: usize) -> Self {
+        Self {
+            groups: vec![[V::zero(); 6]; group_count::<V>(cols)],
+        }
+    }
+
+    /// The groups, checked to be those of a row of `cols` columns: the engine's unchecked
+    /// accesses rely on that length.
+    pub fn groups(&self, cols: usize) -> &[[V; 6]] {
+        assert_eq!(self.groups.len(), group_count::<V>(cols));
+        &self.groups
+    }
+
+    /// [`Row::groups`], mutable.
+    pub fn groups_mut(&mut self, cols: usize) -> &mut [[V; 6]] {
+        assert_eq!(self.groups.len(), group_count::<V>(cols));
+        &mut self.groups
+    }
+
+    pub fn copy_from(&mut self, other: &Row<V>) {
+        self.groups.copy_from_slice(&other.groups);
+    }
+}
+
+/// A worker's buffers for the levels in flight, reused across bands and passes.
+pub(super) struct Scratch<V> {
+    cols: usize,
+    /// `rings[l]`: the last two rows of level `l` (row `r` in slot `r % 2`), for
+    /// `l in 1..levels` (`rings[0]` is unused: level 0 is the front buffer).
+    pub rings: Vec<[Row<V>; 2]>,
+    /// `prev[l]`: the springs of the row before the one level `l` integrates next.
+    pub prev: Vec<RowForces<V>>,
+    /// The row being evaluated; swapped into `prev[l]` once its row is integrated.
+    pub cur: RowForces<V>,
+}
+
+impl<V: Vector> Scratch<V> {
+    fn new(cols: usize, levels: usize) -> Self {
+        Self {
+            cols,
+            rings: (0..levels)
+                .map(|_| [Row::new(cols), Row::new(cols)])
+                .collect(),
+            prev: (0..=levels).map(|_| RowForces::new(cols)).collect(),
+            cur: RowForces::new(cols),
+        }
+    }
+}
+
+thread_local! {
+    /// This thread's [`Scratch`], of whichever vector type it last ran.
+    static SCRATCH: RefCell<Option<Box<dyn Any>>> = const { RefCell::new(None) };
+}
+
+/// Runs `f` with this thread's scratch sized for `cols` columns and `levels` levels.
+pub(super) fn with_scratch<V: Vector, T>(
+    cols: usize,
+    levels: usize,
+    f: impl FnOnce(&mut Scratch<V>) -> T,
+) -> T {
+    SCRATCH.with(|s| {
+        let mut s = s.borrow_mut();
+        let fits = s
+            .as_mut()
+            .and_then(|b| b.downcast_mut::<Scratch<V>>())
+            .is_some_and(|s| s.cols == cols && s.rings.len() >= levels);
+        if !fits {
+            *s = Some(Box::new(Scratch::<V>::new(cols, levels)));
+        }
+        let scratch = s
+            .as_mut()
+            .and_then(|b| b.downcast_mut::<Scratch<V>>())
+            .expect("the scratch was just made for this vector type");
+        f(scratch)
+    })
+}

@@ -1,0 +1,205 @@
+//! AVX2: eight `f32` lanes in one 256-bit register; masks are all-ones lanes.
+//!
+//! The intrinsics need AVX (arithmetic) and AVX2 (the byte align of [`Vector::east`]).
+//! They are called from `#[inline(always)]` methods without a target feature of their
+//! own: they are only ever inlined into [`F32x8::run`]'s `#[target_feature(enable =
+//! "avx2")]` entry, which [`super::dispatch`] calls only on a CPU that has AVX2.
+
+use super::{SimdLevel, Task, Vector};
+use core::arch::x86_64::*;
+
+/// Eight `f32` lanes in a `__m256`.
+#[derive(Debug, Clone, Copy)]
+#[repr(transparent)]
+pub(crate) struct F32x8(__m256);
+
+// SAFETY: `__m256` is 32 bytes of plain data: no padding, every bit pattern valid.
+unsafe impl bytemuck::Zeroable for F32x8 {}
+// SAFETY: as above; `F32x8` is `repr(transparent)` over it.
+unsafe impl bytemuck::Pod for F32x8 {}
+
+/// Runs one intrinsic expression.
+macro_rules! avx {
+    ($e:expr) => {
+        // SAFETY: only reached inside `F32x8::run`'s AVX2 entry (see the module docs).
+        F32x8(unsafe { $e })
+    };
+}
+
+operators!(F32x8, |a, b| {
+    add: avx!(_mm256_add_ps(a.0, b.0)),
+    sub: avx!(_mm256_sub_ps(a.0, b.0)),
+    mul: avx!(_mm256_mul_ps(a.0, b.0)),
+    div: avx!(_mm256_div_ps(a.0, b.0)),
+    neg: avx!(_mm256_xor_ps(a.0, _mm256_set1_ps(-0.0))),
+});
+
+impl core::ops::BitAnd for F32x8 {
+    type Output = Self;
+    #[inline(always)]
+    fn bitand(self, o: Self) -> Self {
+        avx!(_mm256_and_ps(self.0, o.0))
+    }
+}
+
+impl core::ops::BitAndAssign for F32x8 {
+    #[inline(always)]
+    fn bitand_assign(&mut self, o: Self) {
+        *self = *self & o;
+    }
+}
+
+impl core::ops::Not for F32x8 {
+    type Output = Self;
+    #[inline(always)]
+    fn not(self) -> Self {
+        avx!(_mm256_xor_ps(self.0, F32x8::all_lanes().0))
+    }
+}
+
+impl Vector for F32x8 {
+    const LANES: usize = 8;
+    type Mask = F32x8;
+
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        avx!(_mm256_set1_ps(x))
+    }
+
+    #[cfg(test)]
+    #[inline(always)]
+    fn from_slice(a: &[f32]) -> Self {
+        let mut l = [0.0; 8];
+        let n = a.len().min(8);
+        l[..n].copy_from_slice(&a[..n]);
+        avx!(_mm256_loadu_ps(l.as_ptr()))
+    }
+
+    #[inline(always)]
+    fn write_to(self, out: &mut [f32]) {
+        let mut l = [0.0; 8];
+        // SAFETY: `l` holds 8 floats; inside the AVX2 entry.
+        unsafe { _mm256_storeu_ps(l.as_mut_ptr(), self.0) };
+        let n = out.len();
+        out.copy_from_slice(&l[..n]);
+    }
+
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        avx!(_mm256_sqrt_ps(self.0))
+    }
+
+    #[inline(always)]
+    fn abs(self) -> Self {
+        avx!(_mm256_andnot_ps(_mm256_set1_ps(-0.0), self.0))
+    }
+
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        avx!(_mm256_max_ps(self.0, o.0))
+    }
+
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        avx!(_mm256_min_ps(self.0, o.0))
+    }
+
+    #[inline(always)]
+    fn gt(self, o: Self) -> Self {
+        avx!(_mm256_cmp_ps::<_CMP_GT_OQ>(self.0, o.0))
+    }
+
+    #[inline(always)]
+    fn lt(self, o: Self) -> Self {
+        avx!(_mm256_cmp_ps::<_CMP_LT_OQ>(self.0, o.0))
+    }
+
+    #[inline(always)]
+    fn ge(self, o: Self) -> Self {
+        avx!(_mm256_cmp_ps::<_CMP_GE_OQ>(self.0, o.0))
+    }
+
+    #[inline(always)]
+    fn select(m: Self, a: Self, b: Self) -> Self {
+        avx!(_mm256_blendv_ps(b.0, a.0, m.0))
+    }
+
+    #[inline(always)]
+    fn all_lanes() -> Self {
+        avx!(_mm256_castsi256_ps(_mm256_set1_epi32(-1)))
+    }
+
+    #[inline(always)]
+    fn first_lanes(count: usize) -> Self {
+        let index = avx!(_mm256_setr_ps(0.0, 1.0, 2.0, 3.0, 4.0, 5.0, 6.0, 7.0));
+        index.lt(Self::splat(count.min(8) as f32))
+    }
+
+    #[inline(always)]
+    fn all(m: Self) -> bool {
+        // SAFETY: inside the AVX2 entry.
+        unsafe { _mm256_movemask_ps(m.0) == 0xff }
+    }
+
+    #[inline(always)]
+    fn any_nan(self) -> bool {
+        // SAFETY: inside the AVX2 entry.
+        unsafe { _mm256_movemask_ps(_mm256_cmp_ps::<_CMP_UNORD_Q>(self.0, self.0)) != 0 }
+    }
+
+    #[inline(always)]
+    fn east(lo: Self, hi: Self) -> Self {
+        // `mid` = lo[4..8], hi[0..4]; each 128-bit half then shifts by one f32.
+        avx!({
+            let mid = _mm256_permute2f128_ps::<0x21>(lo.0, hi.0);
+            let (lo, mid) = (_mm256_castps_si256(lo.0), _mm256_castps_si256(mid));
+            _mm256_castsi256_ps(_mm256_alignr_epi8::<4>(mid, lo))
+        })
+    }
+
+    #[inline(always)]
+    fn west(lo: Self, hi: Self) -> Self {
+        avx!({
+            let mid = _mm256_permute2f128_ps::<0x21>(lo.0, hi.0);
+            let (hi, mid) = (_mm256_castps_si256(hi.0), _mm256_castps_si256(mid));
+            _mm256_castsi256_ps(_mm256_alignr_epi8::<12>(hi, mid))
+        })
+    }
+
+    #[inline(always)]
+    unsafe fn load(p: *const f32) -> Self {
+        // The caller guarantees `p` is readable for 8 floats.
+        avx!(_mm256_loadu_ps(p))
+    }
+
+    #[inline(always)]
+    unsafe fn store(p: *mut f32, v: Self) {
+        // SAFETY: the caller guarantees `p` is writable for 8 floats.
+        unsafe { _mm256_storeu_ps(p, v.0) }
+    }
+
+    #[inline(always)]
+    unsafe fn stream(p: *mut f32, v: Self) {
+        // SAFETY: the caller guarantees `p` is writable for 8 floats and 32-byte aligned.
+        unsafe { _mm256_stream_ps(p, v.0) }
+    }
+
+    #[inline(always)]
+    fn fence() {
+        // SAFETY: SSE is part of the x86_64 baseline.
+        unsafe { _mm_sfence() }
+    }
+
+    const LEVEL: SimdLevel = SimdLevel::Avx2;
+
+    #[inline(always)]
+    fn enter<T: Task<Self>>(task: T) -> T::Output {
+        #[target_feature(enable = "avx2")]
+        fn entry<T: Task<F32x8>>(task: T) -> T::Output {
+            task.run()
+        }
+        assert!(Self::LEVEL.is_available(), "this CPU has no avx2");
+        // SAFETY: the CPU has the instruction set (checked above).
+        unsafe { entry(task) }
+    }
+}

@@ -1,0 +1,641 @@
+//! The lane layer: one `f32` vector type per instruction set, chosen at run time.
+//!
+//! # Why runtime dispatch, and why in the crate
+//!
+//! A game ships one binary to every player's CPU, so it cannot be built with
+//! `-C target-cpu=native`; a default x86-64 build only knows SSE2. This module lets that
+//! build run the widest kernel the CPU has. [`SimdLevel::detect`] asks the CPU once
+//! (`is_x86_feature_detected!`), `SPRINGWATER_SIMD=scalar|sse2|avx2|avx512` forces a level
+//! (clamped to what the CPU has), and every kernel that matters is compiled once per level:
+//!
+//! * [`Vector`] is what a kernel is written against: lane arithmetic, masks, the
+//!   neighbour shuffles ([`Vector::east`], [`Vector::west`]), loads, stores and
+//!   non-temporal stores. Its implementations are [`sse2::F32x8`] (two SSE registers),
+//!   [`avx2::F32x8`] (one YMM register), [`avx512::F32x16`] (one ZMM register, mask
+//!   registers for masks) and [`portable::F32x8`] (plain arrays, for other targets and
+//!   Miri). Every operation is a single IEEE operation per lane (add, subtract, multiply,
+//!   divide, square root, compare, select): no fused multiply-add, no approximate
+//!   reciprocal. So every level computes the same bits as the scalar reference.
+//! * [`Kernel`] is a piece of work generic over the vector type (a row of the step, a row
+//!   of normals, a run of refraction). [`dispatch`] runs it with the vector type of a
+//!   level, inside a function compiled with that level's `#[target_feature]`. The kernel
+//!   and every lane operation are `#[inline(always)]`, so the whole loop is compiled for
+//!   that instruction set, not just the calls into it.
+//!
+//! `wide`, which the rest of the crate used to be written with, picks its instructions at
+//! compile time (its `f32x8` is two SSE registers in a default build), so it cannot serve
+//! here. `multiversion` clones one function per target but has no notion of a vector
+//! type whose width changes with the target (8 lanes with AVX2, 16 with AVX-512), which
+//! this engine's data layout needs. `pulp` has exactly this shape (a `WithSimd` trait,
+//! dispatched once) but its vector types and shuffles are its own, and the engine needs
+//! the two neighbour shuffles and non-temporal stores per level with bit-exact semantics
+//! that are simplest to state and test next to the intrinsics. Four small
+//! implementations of one trait, each next to its tests, cost less than adapting either.
+//!
+//! # Chunk views and buffers
+//!
+//! Lane loops read and write through [`Chunks`] and [`ChunksMut`]: a slice cut, when the
+//! view is made, to exactly the chunks of `V::LANES` floats the loop runs over. Inside
+//! the loop [`Chunks::get`] and [`ChunksMut::put`] access chunk `k < len` without a
+//! bounds check: measured with callgrind on the 256² step, the checks the compiler could
+//! not remove on its own were 30% of the step's instructions. Their callers state the
+//! `k < len` argument in a `// SAFETY:` line, and `tests/miri.rs` runs the kernels under
+//! Miri.
+//!
+//! Buffers the lane loops stream are [`Floats`]: `f32` buffers that start on a 64-byte
+//! boundary whatever the level, so that a chunk load at a multiple of the lane count never
+//! straddles two cache lines (aligning the buffers made the 256² step 27% faster on one
+//! thread with AVX-512) and the same state serves every level. For the same reason a
+//! neighbour one column off is not loaded one element off but shuffled out of two
+//! aligned chunks ([`Vector::east`], [`Vector::west`]).
+
+use std::ops::{Add, AddAssign, BitAnd, BitAndAssign, Div, Mul, Neg, Not, Sub};
+use std::sync::OnceLock;
+
+/// Implements `+ - * /` and unary `-` for a vector type `$t`, each from one expression in
+/// the operands `$a` and `$b` (`$b` unused for negation).
+macro_rules! operators {
+    ($t:ty, |$a:ident, $b:ident| {
+        add: $add:expr, sub: $sub:expr, mul: $mul:expr, div: $div:expr, neg: $neg:expr $(,)?
+    }) => {
+        impl core::ops::Add for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn add(self, $b: $t) -> $t {
+                let $a = self;
+                $add
+            }
+        }
+        impl core::ops::Sub for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn sub(self, $b: $t) -> $t {
+                let $a = self;
+                $sub
+            }
+        }
+        impl core::ops::Mul for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn mul(self, $b: $t) -> $t {
+                let $a = self;
+                $mul
+            }
+        }
+        impl core::ops::Div for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn div(self, $b: $t) -> $t {
+                let $a = self;
+                $div
+            }
+        }
+        impl core::ops::Neg for $t {
+            type Output = $t;
+            #[inline(always)]
+            fn neg(self) -> $t {
+                let $a = self;
+                $neg
+            }
+        }
+        impl core::ops::AddAssign for $t {
+            #[inline(always)]
+            fn add_assign(&mut self, o: $t) {
+                *self = *self + o;
+            }
+        }
+    };
+}
+
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod avx2;
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod avx512;
+pub(crate) mod portable;
+#[cfg(target_arch = "x86_64")]
+pub(crate) mod sse2;
+
+/// The most lanes any level has (AVX-512): buffers are padded and aligned for it.
+pub const MAX_LANES: usize = 16;
+
+/// An instruction set the engine can run on, from the narrowest to the widest.
+///
+/// Every level gives the same results, bit for bit; they differ only in speed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum SimdLevel {
+    /// No SIMD: the step is the plain scalar reference loop.
+    Scalar,
+    /// SSE2, part of every x86-64 CPU: 8 lanes in two 128-bit registers.
+    Sse2,
+    /// AVX2: 8 lanes in one 256-bit register.
+    Avx2,
+    /// AVX-512F: 16 lanes in one 512-bit register.
+    Avx512,
+}
+
+impl SimdLevel {
+    /// Every level, narrowest first.
+    pub const ALL: [SimdLevel; 4] = [Self::Scalar, Self::Sse2, Self::Avx2, Self::Avx512];
+
+    /// The widest level this CPU runs (asked once, then cached).
+    pub fn detect() -> SimdLevel {
+        static DETECTED: OnceLock<SimdLevel> = OnceLock::new();
+        *DETECTED.get_or_init(detect_cpu)
+    }
+
+    /// Whether this CPU runs `self`.
+    pub fn is_available(self) -> bool {
+        self <= Self::detect()
+    }
+
+    /// `self`, or the widest level this CPU runs if `self` is wider.
+    pub fn clamped(self) -> SimdLevel {
+        self.min(Self::detect())
+    }
+
+    /// The level a new [`Surface`](crate::Surface) runs: `SPRINGWATER_SIMD` if it is set
+    /// (clamped to what the CPU has), else [`SimdLevel::detect`]. An unknown value of the
+    /// variable is an error that names it.
+    pub fn from_env() -> crate::Result<SimdLevel> {
+        match std::env::var(ENV) {
+            Ok(v) => v.parse::<SimdLevel>().map(SimdLevel::clamped),
+            Err(std::env::VarError::NotPresent) => Ok(Self::detect()),
+            Err(std::env::VarError::NotUnicode(_)) => Err(crate::Error::InvalidSimdLevel {
+                value: "(not valid UTF-8)".into(),
+            }),
+        }
+    }
+
+    /// The name `SPRINGWATER_SIMD` and the CLI use: `scalar`, `sse2`, `avx2`, `avx512`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Scalar => "scalar",
+            Self::Sse2 => "sse2",
+            Self::Avx2 => "avx2",
+            Self::Avx512 => "avx512",
+        }
+    }
+
+    /// `f32` lanes per vector at this level (1 for scalar).
+    pub fn lanes(self) -> usize {
+        match self {
+            Self::Scalar => 1,
+            Self::Sse2 | Self::Avx2 => 8,
+            Self::Avx512 => 16,
+        }
+    }
+}
+
+/// The environment variable that forces a level.
+pub const ENV: &str = "SPRINGWATER_SIMD";
+
+impl std::fmt::Display for SimdLevel {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl std::str::FromStr for SimdLevel {
+    type Err = crate::Error;
+
+    fn from_str(s: &str) -> crate::Result<Self> {
+        Self::ALL
+            .into_iter()
+            .find(|l| l.name().eq_ignore_ascii_case(s.trim()))
+            .ok_or_else(|| crate::Error::InvalidSimdLevel { value: s.into() })
+    }
+}
+
+#[cfg(all(target_arch = "x86_64", not(miri)))]
+fn detect_cpu() -> SimdLevel {
+    if std::arch::is_x86_feature_detected!("avx512f") {
+        SimdLevel::Avx512
+    } else if std::arch::is_x86_feature_detected!("avx2") {
+        SimdLevel::Avx2
+    } else {
+        SimdLevel::Sse2
+    }
+}
+
+/// Miri and other targets run the portable lanes, which stand in for every SIMD level.
+#[cfg(not(all(target_arch = "x86_64", not(miri))))]
+fn detect_cpu() -> SimdLevel {
+    SimdLevel::Sse2
+}
+
+/// A vector of `f32` lanes: what the lane kernels are written against.
+///
+/// Masks are [`Vector::Mask`]: all-ones lanes of a vector for SSE2 and AVX2, a mask
+/// register for AVX-512. Every method is `#[inline(always)]` in every implementation, so
+/// that it is compiled with the instruction set of the kernel it is inlined into.
+pub(crate) trait Vector:
+    Copy
+    + Send
+    + Sync
+    + bytemuck::Pod
+    + std::fmt::Debug
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+    + AddAssign
+{
+    /// `f32` lanes per vector.
+    const LANES: usize;
+
+    /// Lane masks.
+    type Mask: Copy + BitAnd<Output = Self::Mask> + BitAndAssign + Not<Output = Self::Mask>;
+
+    /// Every lane `x`.
+    fn splat(x: f32) -> Self;
+
+    /// Every lane 0.
+    #[inline(always)]
+    fn zero() -> Self {
+        Self::zeroed()
+    }
+
+    /// Every lane 1.
+    #[inline(always)]
+    fn one() -> Self {
+        Self::splat(1.0)
+    }
+
+    /// Lanes from `a[..LANES]`, zeros past the end of a shorter `a`.
+    #[cfg(test)]
+    fn from_slice(a: &[f32]) -> Self;
+
+    /// Writes the first `out.len()` (at most `LANES`) lanes to `out`.
+    fn write_to(self, out: &mut [f32]);
+
+    /// IEEE square root per lane.
+    fn sqrt(self) -> Self;
+
+    /// `|x|` per lane (clears the sign bit).
+    fn abs(self) -> Self;
+
+    /// Per lane `if self > other { self } else { other }`: `maxps` semantics, the second
+    /// operand where either is NaN.
+    fn max(self, other: Self) -> Self;
+
+    /// Per lane `if self < other { self } else { other }` (`minps` semantics).
+    fn min(self, other: Self) -> Self;
+
+    /// `self > other` per lane (false where either is NaN).
+    fn gt(self, other: Self) -> Self::Mask;
+
+    /// `self < other` per lane.
+    fn lt(self, other: Self) -> Self::Mask;
+
+    /// `self >= other` per lane.
+    fn ge(self, other: Self) -> Self::Mask;
+
+    /// `a` where `m`, else `b`.
+    fn select(m: Self::Mask, a: Self, b: Self) -> Self;
+
+    /// A mask with every lane on.
+    fn all_lanes() -> Self::Mask;
+
+    /// A mask with lanes `..count` on.
+    fn first_lanes(count: usize) -> Self::Mask;
+
+    /// Whether every lane of `m` is on.
+    fn all(m: Self::Mask) -> bool;
+
+    /// Whether any lane is NaN.
+    fn any_nan(self) -> bool;
+
+    /// Lanes `1..` of `lo` then lane 0 of `hi`: with `hi` the chunk after `lo`, the east
+    /// neighbour of every column of `lo`.
+    fn east(lo: Self, hi: Self) -> Self;
+
+    /// Lane `LANES − 1` of `lo` then lanes `..LANES − 1` of `hi`: with `lo` the chunk
+    /// before `hi`, the west neighbour of every column of `hi`.
+    fn west(lo: Self, hi: Self) -> Self;
+
+    /// Loads `LANES` floats from `p`.
+    ///
+    /// # Safety
+    ///
+    /// `p` is valid for reading `LANES` floats.
+    unsafe fn load(p: *const f32) -> Self;
+
+    /// Stores `LANES` floats at `p`.
+    ///
+    /// # Safety
+    ///
+    /// `p` is valid for writing `LANES` floats.
+    unsafe fn store(p: *mut f32, v: Self);
+
+    /// Stores `LANES` floats at `p` with a non-temporal store: the cache line goes to
+    /// memory without being read first or kept in cache (plain stores where the level has
+    /// none, and under Miri). Call [`Vector::fence`] before another thread reads them.
+    ///
+    /// # Safety
+    ///
+    /// `p` is valid for writing `LANES` floats and aligned to `size_of::<Self>()`.
+    unsafe fn stream(p: *mut f32, v: Self);
+
+    /// Makes this thread's [`Vector::stream`] stores visible before its later stores.
+    fn fence();
+
+    /// The level whose instruction set this vector type needs.
+    const LEVEL: SimdLevel;
+
+    /// Runs `task` compiled for this vector type's instruction set: inside a function with
+    /// its `#[target_feature]`, into which the task and every lane operation are inlined.
+    ///
+    /// Panics if the CPU lacks the instruction set; [`dispatch`] and the engine only name
+    /// a vector type whose level they clamped to the CPU's.
+    fn enter<T: Task<Self>>(task: T) -> T::Output;
+}
+
+/// Work done with one vector type `V`, compiled for its instruction set by
+/// [`Vector::enter`]. `run` is `#[inline(always)]` in every implementation.
+pub(crate) trait Task<V> {
+    /// What the work returns.
+    type Output;
+
+    /// Does the work.
+    fn run(self) -> Self::Output;
+}
+
+/// Work written once for every vector type; [`dispatch`] runs it at a level.
+pub(crate) trait Kernel {
+    /// What the work returns.
+    type Output;
+
+    /// Does the work with vector type `V`. `#[inline(always)]` in every implementation,
+    /// so that the body is compiled inside `V`'s `#[target_feature]` entry.
+    fn run<V: Vector>(self) -> Self::Output;
+}
+
+/// A [`Kernel`] as a [`Task`] of any vector type.
+struct Each<K>(K);
+
+impl<K: Kernel, V: Vector> Task<V> for Each<K> {
+    type Output = K::Output;
+
+    #[inline(always)]
+    fn run(self) -> K::Output {
+        self.0.run::<V>()
+    }
+}
+
+/// Runs `k` with the vector type of `level`, clamped to what the CPU has. The portable
+/// lanes stand in for [`SimdLevel::Scalar`] (callers with a scalar twin run it
+/// themselves), for every level under Miri, and on targets other than x86-64.
+#[inline]
+pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, k: K) -> K::Output {
+    #[cfg(all(target_arch = "x86_64", not(miri)))]
+    match level.clamped() {
+        SimdLevel::Avx512 => avx512::F32x16::enter(Each(k)),
+        SimdLevel::Avx2 => avx2::F32x8::enter(Each(k)),
+        SimdLevel::Sse2 => sse2::F32x8::enter(Each(k)),
+        SimdLevel::Scalar => portable::F32x8::enter(Each(k)),
+    }
+    #[cfg(not(all(target_arch = "x86_64", not(miri))))]
+    {
+        let _ = level;
+        portable::F32x8::enter(Each(k))
+    }
+}
+
+/// `count` chunks of `V::LANES` floats of a slice, from element `start` on. The length
+/// check happens once, when the view is made; [`Chunks::get`] then reads without one.
+#[derive(Debug)]
+pub(crate) struct Chunks<'a, V> {
+    s: &'a [f32],
+    _lanes: std::marker::PhantomData<V>,
+}
+
+impl<V> Clone for Chunks<'_, V> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<V> Copy for Chunks<'_, V> {}
+
+impl<'a, V: Vector> Chunks<'a, V> {
+    /// Chunk `k` is `s[start + k·LANES ..][..LANES]`. Panics if `s` is shorter than that.
+    #[inline(always)]
+    pub fn new(s: &'a [f32], start: usize, count: usize) -> Self {
+        Self {
+            s: &s[start..start + count * V::LANES],
+            _lanes: std::marker::PhantomData,
+        }
+    }
+
+    /// Number of chunks.
+    #[inline(always)]
+    pub fn len(self) -> usize {
+        self.s.len() / V::LANES
+    }
+
+    /// Chunk `k`, without a bounds check.
+    ///
+    /// # Safety
+    ///
+    /// `k < self.len()`.
+    #[inline(always)]
+    pub unsafe fn get(self, k: usize) -> V {
+        debug_assert!(k < self.len());
+        // SAFETY: `k < len`, so `k·LANES + LANES ≤ s.len()`.
+        unsafe { V::load(self.s.as_ptr().add(k * V::LANES)) }
+    }
+}
+
+/// Mutable [`Chunks`].
+#[derive(Debug)]
+pub(crate) struct ChunksMut<'a, V> {
+    s: &'a mut [f32],
+    _lanes: std::marker::PhantomData<V>,
+}
+
+impl<'a, V: Vector> ChunksMut<'a, V> {
+    /// Chunk `k` is `s[start + k·LANES ..][..LANES]`. Panics if `s` is shorter than that.
+    #[inline(always)]
+    pub fn new(s: &'a mut [f32], start: usize, count: usize) -> Self {
+        Self {
+            s: &mut s[start..start + count * V::LANES],
+            _lanes: std::marker::PhantomData,
+        }
+    }
+
+    /// Number of chunks.
+    #[inline(always)]
+    pub fn len(&self) -> usize {
+        self.s.len() / V::LANES
+    }
+
+    /// Stores `v` into chunk `k`, without a bounds check.
+    ///
+    /// # Safety
+    ///
+    /// `k < self.len()`.
+    #[inline(always)]
+    pub unsafe fn put(&mut self, k: usize, v: V) {
+        debug_assert!(k < self.len());
+        // SAFETY: `k < len`, so `k·LANES + LANES ≤ s.len()`.
+        unsafe { V::store(self.s.as_mut_ptr().add(k * V::LANES), v) }
+    }
+
+    /// Stores `v` into chunk `k` with a non-temporal store ([`Vector::stream`]).
+    ///
+    /// # Safety
+    ///
+    /// `k < self.len()`, and chunk `k` starts on a `size_of::<V>()` boundary.
+    #[inline(always)]
+    pub unsafe fn stream(&mut self, k: usize, v: V) {
+        debug_assert!(k < self.len());
+        // SAFETY: `k < len`, so `k·LANES + LANES ≤ s.len()`.
+        let p = unsafe { self.s.as_mut_ptr().add(k * V::LANES) };
+        debug_assert!((p as usize).is_multiple_of(core::mem::size_of::<V>()));
+        // SAFETY: `p` is valid for `LANES` floats; the caller guarantees its alignment.
+        unsafe { V::stream(p, v) }
+    }
+}
+
+/// Rounds `n` up to a multiple of [`MAX_LANES`].
+pub const fn round_up(n: usize) -> usize {
+    n.div_ceil(MAX_LANES) * MAX_LANES
+}
+
+/// 64 bytes of `f32`, aligned to 64: the unit [`Floats`] allocates in.
+#[derive(Clone, Copy, Default, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C, align(64))]
+struct Block([f32; MAX_LANES]);
+
+/// A zero-initialised `f32` buffer that starts on a 64-byte boundary, so that chunk loads
+/// at multiples of any level's lane count never straddle two cache lines. Dereferences to
+/// `[f32]`.
+#[derive(Clone, Default)]
+pub struct Floats {
+    blocks: Vec<Block>,
+    len: usize,
+}
+
+impl Floats {
+    /// `len` zeros.
+    pub fn zeros(len: usize) -> Self {
+        Self {
+            blocks: vec![Block::default(); len.div_ceil(MAX_LANES)],
+            len,
+        }
+    }
+}
+
+impl std::ops::Deref for Floats {
+    type Target = [f32];
+    #[inline(always)]
+    fn deref(&self) -> &[f32] {
+        &bytemuck::cast_slice(&self.blocks)[..self.len]
+    }
+}
+
+impl std::ops::DerefMut for Floats {
+    #[inline(always)]
+    fn deref_mut(&mut self) -> &mut [f32] {
+        &mut bytemuck::cast_slice_mut(&mut self.blocks)[..self.len]
+    }
+}
+
+impl std::fmt::Debug for Floats {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Checks one vector type's operations lane by lane against plain `f32` arithmetic.
+    struct LaneOps;
+
+    impl Kernel for LaneOps {
+        type Output = ();
+
+        #[inline(always)]
+        fn run<V: Vector>(self) {
+            let n = V::LANES;
+            let a: Vec<f32> = (0..n).map(|i| i as f32 - 3.5).collect();
+            let b: Vec<f32> = (0..n).map(|i| (n + i) as f32 * 0.25).collect();
+            let (va, vb) = (V::from_slice(&a), V::from_slice(&b));
+            let lanes = |v: V| {
+                let mut o = vec![0.0; n];
+                v.write_to(&mut o);
+                o
+            };
+            let e = lanes(V::east(va, vb));
+            let w = lanes(V::west(va, vb));
+            for i in 0..n {
+                let east = if i + 1 < n { a[i + 1] } else { b[0] };
+                let west = if i == 0 { a[n - 1] } else { b[i - 1] };
+                assert_eq!(e[i], east, "east lane {i}");
+                assert_eq!(w[i], west, "west lane {i}");
+            }
+            let ops = [
+                (
+                    lanes(va + vb),
+                    a.iter().zip(&b).map(|(x, y)| x + y).collect::<Vec<_>>(),
+                ),
+                (
+                    lanes(va - vb),
+                    a.iter().zip(&b).map(|(x, y)| x - y).collect(),
+                ),
+                (
+                    lanes(va * vb),
+                    a.iter().zip(&b).map(|(x, y)| x * y).collect(),
+                ),
+                (
+                    lanes(va / vb),
+                    a.iter().zip(&b).map(|(x, y)| x / y).collect(),
+                ),
+                (lanes(vb.sqrt()), b.iter().map(|x| x.sqrt()).collect()),
+                (lanes(-va), a.iter().map(|x| -x).collect()),
+                (lanes(va.abs()), a.iter().map(|x| x.abs()).collect()),
+                (
+                    lanes(V::select(va.gt(V::zero()), va, vb)),
+                    a.iter()
+                        .zip(&b)
+                        .map(|(x, y)| if *x > 0.0 { *x } else { *y })
+                        .collect(),
+                ),
+                (
+                    lanes(V::select(V::first_lanes(3), va, vb)),
+                    (0..n).map(|i| if i < 3 { a[i] } else { b[i] }).collect(),
+                ),
+            ];
+            for (k, (got, want)) in ops.iter().enumerate() {
+                let (g, w): (Vec<u32>, Vec<u32>) = (
+                    got.iter().map(|x| x.to_bits()).collect(),
+                    want.iter().map(|x| x.to_bits()).collect(),
+                );
+                assert_eq!(g, w, "operation {k}");
+            }
+            assert!(!va.any_nan());
+            assert!((va / V::zero() * V::zero()).any_nan());
+            assert!(V::all(V::all_lanes()) && !V::all(V::first_lanes(n - 1)));
+        }
+    }
+
+    #[test]
+    fn every_available_level_matches_plain_arithmetic() {
+        for level in SimdLevel::ALL.into_iter().filter(|l| l.is_available()) {
+            dispatch(level, LaneOps);
+        }
+        portable::F32x8::enter(Each(LaneOps));
+    }
+
+    #[test]
+    fn level_names_round_trip() {
+        for l in SimdLevel::ALL {
+            assert_eq!(l.name().parse::<SimdLevel>().unwrap(), l);
+        }
+        assert!("avx3".parse::<SimdLevel>().is_err());
+        assert_eq!(SimdLevel::Avx512.clamped(), SimdLevel::detect());
+    }
+}

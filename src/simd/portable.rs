@@ -1,0 +1,196 @@
+//! Plain `f32` arrays as a [`Vector`]: the lanes for targets without a SIMD level here,
+//! and for Miri, which checks the kernels' unchecked accesses. Each operation is the same
+//! IEEE operation per lane as the intrinsics of the other levels, so it gives their bits.
+
+use super::{SimdLevel, Task, Vector};
+
+/// Eight `f32` lanes in an array.
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(C, align(32))]
+pub(crate) struct F32x8([f32; 8]);
+
+/// A lane mask of [`F32x8`].
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Mask8([bool; 8]);
+
+impl F32x8 {
+    #[inline(always)]
+    fn map(self, f: impl Fn(f32) -> f32) -> Self {
+        Self(self.0.map(f))
+    }
+
+    #[inline(always)]
+    fn zip(self, o: Self, f: impl Fn(f32, f32) -> f32) -> Self {
+        Self(core::array::from_fn(|i| f(self.0[i], o.0[i])))
+    }
+
+    #[inline(always)]
+    fn test(self, o: Self, f: impl Fn(f32, f32) -> bool) -> Mask8 {
+        Mask8(core::array::from_fn(|i| f(self.0[i], o.0[i])))
+    }
+}
+
+operators!(F32x8, |a, b| {
+    add: a.zip(b, |x, y| x + y),
+    sub: a.zip(b, |x, y| x - y),
+    mul: a.zip(b, |x, y| x * y),
+    div: a.zip(b, |x, y| x / y),
+    neg: a.map(|x| -x),
+});
+
+impl core::ops::BitAnd for Mask8 {
+    type Output = Self;
+    #[inline(always)]
+    fn bitand(self, o: Self) -> Self {
+        Self(core::array::from_fn(|i| self.0[i] & o.0[i]))
+    }
+}
+
+impl core::ops::BitAndAssign for Mask8 {
+    #[inline(always)]
+    fn bitand_assign(&mut self, o: Self) {
+        *self = *self & o;
+    }
+}
+
+impl core::ops::Not for Mask8 {
+    type Output = Self;
+    #[inline(always)]
+    fn not(self) -> Self {
+        Self(self.0.map(|m| !m))
+    }
+}
+
+impl Vector for F32x8 {
+    const LANES: usize = 8;
+    type Mask = Mask8;
+
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        Self([x; 8])
+    }
+
+    #[cfg(test)]
+    #[inline(always)]
+    fn from_slice(a: &[f32]) -> Self {
+        Self(core::array::from_fn(|i| a.get(i).copied().unwrap_or(0.0)))
+    }
+
+    #[inline(always)]
+    fn write_to(self, out: &mut [f32]) {
+        let n = out.len();
+        out.copy_from_slice(&self.0[..n]);
+    }
+
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        self.map(f32::sqrt)
+    }
+
+    #[inline(always)]
+    fn abs(self) -> Self {
+        self.map(f32::abs)
+    }
+
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        self.zip(o, |x, y| if x > y { x } else { y })
+    }
+
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        self.zip(o, |x, y| if x < y { x } else { y })
+    }
+
+    #[inline(always)]
+    fn gt(self, o: Self) -> Mask8 {
+        self.test(o, |x, y| x > y)
+    }
+
+    #[inline(always)]
+    fn lt(self, o: Self) -> Mask8 {
+        self.test(o, |x, y| x < y)
+    }
+
+    #[inline(always)]
+    fn ge(self, o: Self) -> Mask8 {
+        self.test(o, |x, y| x >= y)
+    }
+
+    #[inline(always)]
+    fn select(m: Mask8, a: Self, b: Self) -> Self {
+        Self(core::array::from_fn(
+            |i| if m.0[i] { a.0[i] } else { b.0[i] },
+        ))
+    }
+
+    #[inline(always)]
+    fn all_lanes() -> Mask8 {
+        Mask8([true; 8])
+    }
+
+    #[inline(always)]
+    fn first_lanes(count: usize) -> Mask8 {
+        Mask8(core::array::from_fn(|i| i < count))
+    }
+
+    #[inline(always)]
+    fn all(m: Mask8) -> bool {
+        m.0.iter().all(|&b| b)
+    }
+
+    #[inline(always)]
+    fn any_nan(self) -> bool {
+        self.0.iter().any(|x| x.is_nan())
+    }
+
+    #[inline(always)]
+    fn east(lo: Self, hi: Self) -> Self {
+        Self(core::array::from_fn(|i| {
+            if i < 7 {
+                lo.0[i + 1]
+            } else {
+                hi.0[0]
+            }
+        }))
+    }
+
+    #[inline(always)]
+    fn west(lo: Self, hi: Self) -> Self {
+        Self(core::array::from_fn(|i| {
+            if i == 0 {
+                lo.0[7]
+            } else {
+                hi.0[i - 1]
+            }
+        }))
+    }
+
+    #[inline(always)]
+    unsafe fn load(p: *const f32) -> Self {
+        // SAFETY: the caller guarantees `p` is readable for 8 floats.
+        Self(unsafe { p.cast::<[f32; 8]>().read_unaligned() })
+    }
+
+    #[inline(always)]
+    unsafe fn store(p: *mut f32, v: Self) {
+        // SAFETY: the caller guarantees `p` is writable for 8 floats.
+        unsafe { p.cast::<[f32; 8]>().write_unaligned(v.0) }
+    }
+
+    #[inline(always)]
+    unsafe fn stream(p: *mut f32, v: Self) {
+        // SAFETY: as `store`.
+        unsafe { Self::store(p, v) }
+    }
+
+    #[inline(always)]
+    fn fence() {}
+
+    const LEVEL: SimdLevel = SimdLevel::Scalar;
+
+    #[inline(always)]
+    fn enter<T: Task<Self>>(task: T) -> T::Output {
+        task.run()
+    }
+}
