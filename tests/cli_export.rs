@@ -158,3 +158,65 @@ fn bad_flags_give_one_line_errors() {
         assert!(err.starts_with("springwater: error: "), "{err}");
     }
 }
+
+/// `simulate --csv` under `SPRINGWATER_SIMD=level`: its CSV, and its summary's simd line.
+fn simulate_at(level: &str, csv: &std::path::Path) -> (Vec<u8>, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_springwater"))
+        .env("SPRINGWATER_SIMD", level)
+        .args(["simulate", "--size", "45x33", "--steps", "40"])
+        .args(["--drop", "20,15,1.5,3", "--csv", csv.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{level}: {out:?}");
+    let summary = String::from_utf8(out.stdout).unwrap();
+    let simd = summary
+        .lines()
+        .find(|l| l.starts_with("simd"))
+        .unwrap_or_else(|| panic!("{level}: no simd line in {summary}"))
+        .to_string();
+    (std::fs::read(csv).unwrap(), simd)
+}
+
+#[test]
+fn every_level_forced_through_the_environment_writes_the_same_csv() {
+    let csv = temp("levels.csv");
+    let (scalar, line) = simulate_at("scalar", &csv);
+    assert!(line.starts_with("simd        scalar"), "{line}");
+    for level in ["sse2", "avx2", "avx512"] {
+        let (got, line) = simulate_at(level, &csv);
+        // A level the CPU lacks is clamped; the summary names the one that ran.
+        let ran = level
+            .parse::<springwater::SimdLevel>()
+            .unwrap()
+            .clamped()
+            .to_string();
+        assert!(line.starts_with(&format!("simd        {ran} ")), "{line}");
+        assert!(got == scalar, "{level} (ran {ran}) differs from scalar");
+    }
+}
+
+#[test]
+fn bench_names_the_level_first_and_an_unknown_level_is_refused() {
+    let out = Command::new(env!("CARGO_BIN_EXE_springwater"))
+        .env("SPRINGWATER_SIMD", "sse2")
+        .args(["bench", "--size", "32x32", "--steps", "3", "--repeats", "1"])
+        .args(["--compare", "none"])
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{out:?}");
+    let stdout = String::from_utf8(out.stdout).unwrap();
+    assert!(stdout.starts_with("bench simd=sse2 "), "{stdout}");
+
+    let out = Command::new(env!("CARGO_BIN_EXE_springwater"))
+        .env("SPRINGWATER_SIMD", "avx3")
+        .args(["simulate", "--size", "8x8", "--steps", "1"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let stderr = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("avx3") && stderr.contains("avx512"),
+        "{stderr}"
+    );
+}

@@ -139,6 +139,11 @@ pub fn print_summary(s: &Surface, steps_run: u64, seconds: f64) {
         let rate = s.len() as f64 * steps_run as f64 / seconds;
         println!("wall time   {seconds:.3} s ({rate:.3e} node updates/s)");
     }
+    println!(
+        "simd        {} (the CPU's widest: {})",
+        s.simd_level(),
+        springwater::SimdLevel::detect()
+    );
 }
 
 /// Creates an output file, with a one-line error naming it.
