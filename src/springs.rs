@@ -29,10 +29,7 @@
 //! The band height trades per-band overhead (one extra row of springs per band and level,
 //! about 1/height of its work, and the rows handed across the cuts) against load balance
 //! (each colour needs a few bands per thread). `springwater bench --band-rows H` measures
-//! it. With 2 threads, native build, passes of 4 steps: on 256², 16 rows gave 1.53·10⁹
-//! node updates/s, 32 rows 1.61·10⁹, 64 rows 1.62·10⁹ (one band per colour and thread)
-//! and 128 rows 8.6·10⁸ (one thread idle); on 2048², 16 rows gave 1.04·10⁹, 32 rows
-//! 1.16·10⁹ and 64 rows 1.21·10⁹. So the
+//! it (`docs/performance.md` has the measurements). So the
 //! engine picks [`band_rows`]`(rows, threads)`: about 4 bands per thread, clamped to
 //! 8..=64 rows (and at least 2 rows per step of a pass). The choice never changes a bit of
 //! the result (the per-node arithmetic does not depend on it), so it may follow the
