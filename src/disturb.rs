@@ -123,10 +123,11 @@ fn mix(mut z: u64) -> u64 {
 /// Rain: drops at random places and random times, the same ones for the same seed.
 ///
 /// Drops arrive as a Poisson process of `rate` drops per unit of model time. Each one is a
-/// [`Surface::drop_at`] dent of radius in `radius` (grid steps) and height
-/// `−depth × radius × h` in world units, `h` the grid spacing: as steep on any grid, and
-/// no steeper than one height per cell as long as `depth ≤ 1`. Drops are placed uniformly
-/// over the free interior, at least one radius away from the edge.
+/// [`Surface::drop_at`] dent with a radius drawn from `radius` and height
+/// `−depth × radius`, all in world units: as steep on any grid, and within the stable
+/// regime (`|height| ≤ radius`) as long as `depth ≤ 1`. Drops are placed uniformly over
+/// the rest footprint, at least one radius away from its edge where the footprint allows,
+/// so the same seed drops at the same world points on any spacing.
 ///
 /// The times and places depend only on the seed and the model time passed to
 /// [`Disturbance::apply`], not on how that time is cut into steps: a drop due at time
@@ -135,7 +136,8 @@ fn mix(mut z: u64) -> u64 {
 pub struct Rain {
     /// Mean drops per unit of model time (default in [`Rain::new`]: as given). Zero: no rain.
     pub rate: f32,
-    /// Range of drop radii in grid steps (default: `1.5..3.0`).
+    /// Range of drop radii in world units (default: `1.5..3.0`, one and a half to three
+    /// cells at the default spacing of 1). Keep it at one cell or more.
     pub radius: std::ops::Range<f32>,
     /// Drop depth as a fraction of its radius, in `(0, 1]` (default: `0.6`).
     pub depth: f32,
@@ -211,19 +213,17 @@ impl Disturbance for Rain {
             // The rate may have been raised since the last call.
             self.next = self.time + self.wait();
         }
-        let grid = surface.grid();
+        let [width, length] = surface.mesh_view().extent();
         while self.next <= self.time {
             let radius = self.rng.range(self.radius.start, self.radius.end);
-            // Keep the dent off the pinned ring where the grid allows it.
-            let place = |rng: &mut Rng, n: usize| {
-                let n = (n - 1) as f32;
-                let margin = radius.min(n / 2.0);
-                rng.range(margin, n - margin)
+            // Keep the dent off the pinned ring where the footprint allows it.
+            let place = |rng: &mut Rng, size: f32| {
+                let margin = radius.min(size / 2.0);
+                rng.range(margin, size - margin)
             };
-            let col = place(&mut self.rng, grid.cols);
-            let row = place(&mut self.rng, grid.rows);
-            let h = surface.params().spacing;
-            surface.drop_at(col, row, -self.depth * radius * h, radius)?;
+            let x = place(&mut self.rng, width);
+            let z = place(&mut self.rng, length);
+            surface.drop_at(x, z, -self.depth * radius, radius)?;
             self.fallen += 1;
             self.next += self.wait();
         }
@@ -235,28 +235,32 @@ impl Disturbance for Rain {
 /// A wake: an object (a boat, a duck, a finger) moving along a closed path at constant
 /// speed, pushing the water down under it with a Gaussian footprint.
 ///
-/// Each step it adds a downward force `strength · exp(−d²/radius²)` to every free node
-/// within `3 × radius` of the object (`d` in grid steps). Moving faster than the ripples
-/// (about `h·sqrt(3c(1 − rest_ratio)/m)` per unit time, 1.6 with the seed's defaults)
-/// leaves a V-shaped wake behind it.
+/// Each step it presses down with the pressure `strength · exp(−d²/radius²)` (force per
+/// unit area, `d` the distance from the object), over the disc of radius `3 × radius`:
+/// every node there gets that pressure times its cell's area `h²`. Everything is in world
+/// units, so the same wake pushes the same total force along the same path on any
+/// spacing. Moving faster than the ripples (about `h·sqrt(3c(1 − rest_ratio)/m)` per unit
+/// of model time, 1.6 with the seed's defaults; [`Params::ripple_speed`](crate::Params::ripple_speed)
+/// converts to seconds) leaves a V-shaped wake behind it.
 #[derive(Debug, Clone)]
 pub struct Wake {
-    /// Corners of the closed path, in grid coordinates `(col, row)`.
+    /// Corners of the closed path, world `[x, z]` in the water's local space.
     path: Vec<[f32; 2]>,
     /// Cumulative length of the path at each corner; the last entry is the full length.
     lengths: Vec<f32>,
-    /// Speed along the path in grid steps per unit of model time (default: `2.5`).
+    /// Speed along the path in world units per unit of model time (default: `2.5`).
     pub speed: f32,
-    /// Footprint radius in grid steps (default: `2.5`).
+    /// Footprint radius in world units (default: `2.5`).
     pub radius: f32,
-    /// Peak downward force on the node under the object (default: `1.5`).
+    /// Peak downward pressure under the object, force per unit area (default: `1.5`: a
+    /// force of 1.5 on the node under it at the default spacing of 1).
     pub strength: f32,
     distance: f32,
 }
 
 impl Wake {
-    /// A wake along the closed polyline `path` (grid coordinates `(col, row)`), starting
-    /// at its first corner. The path needs at least two distinct finite corners.
+    /// A wake along the closed polyline `path` (world `[x, z]` corners), starting at its
+    /// first corner. The path needs at least two distinct finite corners.
     pub fn new(path: Vec<[f32; 2]>) -> Result<Self> {
         for p in &path {
             params::finite("wake path", p[0])?;
@@ -287,11 +291,11 @@ impl Wake {
         })
     }
 
-    /// A circle of `radius` grid steps around the middle of `surface`, counter-clockwise
-    /// seen from above, as a 64-gon.
+    /// A circle of `radius` world units around the middle of `surface`'s footprint,
+    /// counter-clockwise seen from above, as a 64-gon.
     pub fn circle(surface: &Surface, radius: f32) -> Self {
-        let g = surface.grid();
-        let (cx, cy) = ((g.cols - 1) as f32 / 2.0, (g.rows - 1) as f32 / 2.0);
+        let [width, length] = surface.mesh_view().extent();
+        let (cx, cy) = (width / 2.0, length / 2.0);
         let path = (0..64)
             .map(|k| {
                 let a = k as f32 * std::f32::consts::TAU / 64.0;
@@ -303,7 +307,7 @@ impl Wake {
         })
     }
 
-    /// Where the object is now, in grid coordinates `(col, row)`.
+    /// Where the object is now, world `[x, z]`.
     pub fn position(&self) -> [f32; 2] {
         let total = *self.lengths.last().expect("at least one corner");
         let s = self.distance.rem_euclid(total);
@@ -330,19 +334,22 @@ impl Disturbance for Wake {
         params::finite("wake speed", self.speed)?;
         params::positive("wake radius", self.radius)?;
         params::finite("wake strength", self.strength)?;
-        let [pc, pr] = self.position();
+        let [px, pz] = self.position();
         let grid = surface.grid();
+        let h = surface.params().spacing;
         let reach = 3.0 * self.radius;
         let inv_r2 = 1.0 / (self.radius * self.radius);
+        let peak = -self.strength * h * h;
+        // The nodes whose rest position lies within `reach` of `p` along one axis.
         let span = |p: f32, n: usize| {
-            let lo = (p - reach).ceil().max(0.0) as usize;
-            let hi = ((p + reach).floor().max(-1.0) as isize).min(n as isize - 1);
+            let lo = ((p - reach) / h).ceil().max(0.0).min(n as f32) as usize;
+            let hi = ((p + reach) / h).floor().max(-1.0).min(n as f32 - 1.0) as isize;
             lo..(hi + 1).max(0) as usize
         };
-        for row in span(pr, grid.rows) {
-            for col in span(pc, grid.cols) {
-                let d2 = (col as f32 - pc).powi(2) + (row as f32 - pr).powi(2);
-                let f = -self.strength * (-d2 * inv_r2).exp();
+        for row in span(pz, grid.rows) {
+            for col in span(px, grid.cols) {
+                let d2 = (col as f32 * h - px).powi(2) + (row as f32 * h - pz).powi(2);
+                let f = peak * (-d2 * inv_r2).exp();
                 surface.add_force(row * grid.cols + col, [0.0, f, 0.0])?;
             }
         }

@@ -250,8 +250,7 @@ pub fn refract_scalar(
 
 /// The size of the bottom texture in world units, `((cols−1)h, (rows−1)h)`.
 pub fn extent(view: &MeshView<'_>) -> [f32; 2] {
-    let h = view.spacing();
-    [(view.cols() - 1) as f32 * h, (view.rows() - 1) as f32 * h]
+    view.extent()
 }
 
 /// `[u, v, fresnel]` for one node at `p` with normal `n`, the bottom texture spanning

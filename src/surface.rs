@@ -314,22 +314,27 @@ impl Surface {
         Ok((substeps, sub))
     }
 
-    /// Drops a disturbance: adds `height · exp(−d²/radius²)` to y of every free node,
-    /// `d` the node's distance from `(col, row)` in grid steps (fractional coordinates
-    /// allowed, also outside the grid). Drops with `|height| ≤ radius` keep the lattice in
-    /// the regime where `critical_dt` guarantees stability.
-    pub fn drop_at(&mut self, col: f32, row: f32, height: f32, radius: f32) -> Result<()> {
-        params::finite("drop col", col)?;
-        params::finite("drop row", row)?;
+    /// Drops a disturbance: adds `height · exp(−d²/radius²)` to y of every free node, `d`
+    /// the distance from the node's rest position `(col·h, row·h)` to the point `(x, z)`.
+    ///
+    /// Everything is in world units: `x`, `z` in the water's local space (any finite point,
+    /// also outside the footprint), `height` and `radius` in the same length unit as
+    /// `params().spacing`. Drops with `|height| ≤ radius` and a radius of at least one cell
+    /// keep the lattice in the regime where `critical_dt` guarantees stability.
+    /// On error nothing changes.
+    pub fn drop_at(&mut self, x: f32, z: f32, height: f32, radius: f32) -> Result<()> {
+        params::finite("drop x", x)?;
+        params::finite("drop z", z)?;
         params::finite("drop height", height)?;
         params::positive("drop radius", radius)?;
         let grid = self.grid();
+        let h = self.params.spacing;
         let inv_r2 = 1.0 / (radius * radius);
         // `d2 * inv_r2` is 0 × ∞ = NaN at the centre when radius² underflows: the weight
         // there is 1 by definition.
         let lift = |y: &[f32], i: usize| {
             let (c, r) = grid.coords(i);
-            let d2 = (c as f32 - col).powi(2) + (r as f32 - row).powi(2);
+            let d2 = (c as f32 * h - x).powi(2) + (r as f32 * h - z).powi(2);
             let w = if d2 == 0.0 { 1.0 } else { (-d2 * inv_r2).exp() };
             y[i] + height * w
         };

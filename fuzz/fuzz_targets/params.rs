@@ -85,6 +85,7 @@ fn exercise(s: &mut Surface, input: &Input) {
     let [c, r, h, rad] = input.drop;
     let _ = s.drop_at(c, r, h, rad);
     let _ = s.add_force(node, [v, -v, v]);
+    let _ = s.add_force_at(c, r, [v, -v, v]);
     let _ = s.add_velocity(node, [v; 3]);
     let _ = s.set_mass(node, v);
     let _ = s.set_viscosity(node, v);

@@ -42,7 +42,7 @@ impl Sample {
     fn at(view: &MeshView<'_>, x: f32, z: f32) -> Result<Self> {
         crate::params::finite("query x", x)?;
         crate::params::finite("query z", z)?;
-        let [width, length] = crate::refraction::extent(view);
+        let [width, length] = view.extent();
         if !((0.0..=width).contains(&x) && (0.0..=length).contains(&z)) {
             return Err(Error::OutsideGrid {
                 x,
@@ -148,6 +148,48 @@ impl Surface {
     pub fn height_at(&self, x: f32, z: f32) -> Result<f32> {
         let view = self.mesh_view();
         Ok(Sample::at(&view, x, z)?.blend(view.cols(), view.y()))
+    }
+
+    /// Adds `force` at the world point `(x, z)` for the next step only: the force is spread
+    /// onto the four nodes of the cell holding the point with exactly the bilinear weights
+    /// [`Surface::height_at`] reads with (its adjoint), so what a floating body feels and
+    /// what it pushes into the water agree, and the spread forces sum to `force`.
+    ///
+    /// The point must be finite and inside the rest footprint; every component of `force`
+    /// finite, and the accumulated force on each node too. On error nothing changes.
+    ///
+    /// ```
+    /// use springwater::{Params, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(33, 33))?;
+    /// water.add_force_at(10.25, 20.0, [0.0, -4.0, 0.0])?;   // a quarter of the way to x = 11
+    /// let fy = water.forces()[1];
+    /// assert_eq!(fy[20 * 33 + 10], -3.0);
+    /// assert_eq!(fy[20 * 33 + 11], -1.0);
+    /// assert!(water.add_force_at(-1.0, 0.0, [0.0, 1.0, 0.0]).is_err());
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn add_force_at(&mut self, x: f32, z: f32, force: [f32; 3]) -> Result<()> {
+        for f in force {
+            crate::params::finite("force", f)?;
+        }
+        let view = self.mesh_view();
+        let sample = Sample::at(&view, x, z)?;
+        let cols = view.cols();
+        let (w, corners) = (sample.weights(), sample.corners(cols));
+        let ext = &self.state.ext;
+        let sums: [[f32; 3]; 4] =
+            std::array::from_fn(|k| std::array::from_fn(|c| ext[c][corners[k]] + w[k] * force[c]));
+        for f in sums.iter().flatten() {
+            crate::params::finite("accumulated force", *f)?;
+        }
+        for (k, sum) in sums.iter().enumerate() {
+            for (c, &f) in sum.iter().enumerate() {
+                self.state.ext[c][corners[k]] = f;
+            }
+        }
+        self.state.ext_pending = true;
+        Ok(())
     }
 
     /// Unit normal of the water at world `(x, z)`: node normals blended bilinearly and

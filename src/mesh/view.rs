@@ -66,6 +66,14 @@ impl<'a> MeshView<'a> {
         self.spacing
     }
 
+    /// The rest footprint's size in world units, `[(cols−1)·h, (rows−1)·h]`: the water
+    /// spans `[0, width] × [0, length]` in x and z at rest, and the bottom texture of
+    /// [`crate::refraction`] spans the same rectangle.
+    pub fn extent(&self) -> [f32; 2] {
+        let h = self.spacing;
+        [(self.cols() - 1) as f32 * h, (self.rows() - 1) as f32 * h]
+    }
+
     /// x of every node.
     pub fn x(&self) -> &'a [f32] {
         self.x

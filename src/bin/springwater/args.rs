@@ -106,11 +106,14 @@ impl ModelArgs {
         Ok(s)
     }
 
-    /// Applies every `--drop` to `s`.
+    /// Applies every `--drop` to `s`. The flag speaks grid steps (`COL,ROW` and `RADIUS`
+    /// in cells, the contract of the command line); the library speaks world units, so
+    /// they are multiplied by the spacing here. `HEIGHT` is a length in world units.
     pub fn apply_drops(&self, s: &mut Surface) -> CliResult<()> {
-        for [c, r, h, rad] in &self.drops {
-            s.drop_at(*c, *r, *h, *rad)
-                .map_err(|e| format!("--drop: {e}"))?;
+        let spacing = s.params().spacing;
+        for &[col, row, height, radius] in &self.drops {
+            s.drop_at(col * spacing, row * spacing, height, radius * spacing)
+                .map_err(|e| format!("--drop {col},{row},{height},{radius}: {e}"))?;
         }
         Ok(())
     }

@@ -344,9 +344,18 @@ fn animate(
     let mut surface = model.surface()?;
     // Every pass starts from the same LOD state, so passes draw the same frames.
     renderer.reset().map_err(|e| e.to_string())?;
+    // Rain and wake sized in cells, as they look on any spacing (the library takes world
+    // units).
+    let h = surface.params().spacing;
     let mut rain = Rain::new(o.rain, o.seed);
-    let cols_rows = surface.params().cols.min(surface.params().rows) as f32;
-    let mut wake = o.wake.then(|| Wake::circle(&surface, 0.3 * cols_rows));
+    rain.radius = 1.5 * h..3.0 * h;
+    let cells = surface.params().cols.min(surface.params().rows) as f32;
+    let mut wake = o.wake.then(|| {
+        let mut wake = Wake::circle(&surface, 0.3 * cells * h);
+        wake.speed *= h;
+        wake.radius *= h;
+        wake
+    });
     for k in 0..o.frames {
         let t = Instant::now();
         let steps = if k == 0 {
@@ -384,11 +393,9 @@ fn animate(
 
 /// The object making the wake: a red and white ball floating where the wake is.
 fn boat(surface: &Surface, wake: &Wake) -> Ball {
-    let h = surface.params().spacing;
-    let [col, row] = wake.position();
-    let (x, z) = (col * h, row * h);
+    let [x, z] = wake.position();
     let y = surface.height_at(x, z).unwrap_or(0.0);
-    let radius = 0.8 * wake.radius * h;
+    let radius = 0.8 * wake.radius;
     Ball {
         centre: glam::Vec3::new(x, y + 0.2 * radius, z),
         radius,
