@@ -2,26 +2,27 @@
 //! [`Wake`] (a moving object pushing the surface along a path).
 //!
 //! Both drive a [`Surface`] only through its public API (`drop_at`, `add_force`), so a
-//! game can use them as they are, or read them as examples of writing its own. Call
-//! [`Disturbance::apply`] once before every [`Surface::step`] with that step's timestep:
+//! game can use them as they are, or read them as examples of writing its own. Lengths
+//! are world units; times and rates are model time (a disturbance sees the substep's
+//! model timestep, see [`Params::time_scale`](crate::Params::time_scale)).
+//! [`Surface::advance_with`] applies a disturbance before every substep of a frame; a
+//! pair, a tuple of up to four, a slice or an `Option` of disturbances is a disturbance too:
 //!
 //! ```
-//! use springwater::disturb::{Disturbance, Rain, Wake};
+//! use springwater::disturb::{Rain, Wake};
 //! use springwater::{Params, Surface};
 //!
 //! let mut water = Surface::new(Params::with_size(64, 64))?;
 //! let mut rain = Rain::new(0.5, 7);                  // 0.5 drops per unit of model time
 //! let mut boat = Wake::circle(&water, 16.0);          // circles the middle of the pool
-//! for _ in 0..50 {
-//!     let dt = water.params().dt;
-//!     rain.apply(&mut water, dt)?;
-//!     boat.apply(&mut water, dt)?;
-//!     water.step()?;
+//! for _frame in 0..50 {
+//!     water.advance_with(1.0 / 60.0, &mut (&mut rain, &mut boat))?;
 //! }
 //! # Ok::<(), springwater::Error>(())
 //! ```
 //!
-//! With [`Surface::advance`]-style frame times, [`advance`] does the same for every substep.
+//! Stepping by hand, call [`Disturbance::apply`] right before each [`Surface::step`] with
+//! that step's timestep.
 //!
 //! Both keep to the regime where the timestep limit holds: a raindrop's depth never
 //! exceeds its radius, and the wake pushes with a bounded force spread over several nodes.
@@ -32,42 +33,72 @@ use crate::surface::Surface;
 
 /// Something that disturbs a surface as model time passes.
 pub trait Disturbance {
-    /// Disturbs `surface` for the step of length `dt` about to be taken. Call it right
-    /// before [`Surface::step`]: forces it adds apply to that step only.
+    /// Disturbs `surface` for the step of model time `dt` about to be taken. Call it right
+    /// before [`Surface::step`] (or let [`Surface::advance_with`] call it): forces it adds
+    /// apply to that step only.
     fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()>;
 }
 
-/// Advances `surface` by `frame_dt` like [`Surface::advance`] (equal substeps no longer
-/// than `params().dt`), applying every disturbance before each substep. Returns the
-/// number of substeps. A failing disturbance or substep stops the frame there.
-///
-/// ```
-/// use springwater::disturb::{advance, Disturbance, Rain};
-/// use springwater::{Params, Surface};
-///
-/// let mut water = Surface::new(Params::with_size(64, 64))?;
-/// let mut rain = Rain::new(2.0, 1);
-/// for _frame in 0..30 {
-///     advance(&mut water, 1.0, &mut [&mut rain])?;     // 3 substeps of 1/3
-/// }
-/// assert!(rain.fallen() > 20);
-/// # Ok::<(), springwater::Error>(())
-/// ```
-pub fn advance(
-    surface: &mut Surface,
-    frame_dt: f32,
-    disturbances: &mut [&mut dyn Disturbance],
-) -> Result<usize> {
-    // The same cut as `Surface::advance`, so each `advance` below is one step.
-    let (substeps, sub) = surface.split_frame(frame_dt)?;
-    for _ in 0..substeps {
-        for d in disturbances.iter_mut() {
-            d.apply(surface, sub)?;
-        }
-        surface.advance(sub)?;
+/// No disturbance.
+impl Disturbance for () {
+    fn apply(&mut self, _: &mut Surface, _: f32) -> Result<()> {
+        Ok(())
     }
-    Ok(substeps)
 }
+
+impl<D: Disturbance + ?Sized> Disturbance for &mut D {
+    fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()> {
+        (**self).apply(surface, dt)
+    }
+}
+
+impl<D: Disturbance + ?Sized> Disturbance for Box<D> {
+    fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()> {
+        (**self).apply(surface, dt)
+    }
+}
+
+/// A disturbance that may be absent (`None` does nothing).
+impl<D: Disturbance> Disturbance for Option<D> {
+    fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()> {
+        match self {
+            Some(d) => d.apply(surface, dt),
+            None => Ok(()),
+        }
+    }
+}
+
+/// Every disturbance of the slice, in order (for example `[&mut dyn Disturbance]`).
+impl<D: Disturbance> Disturbance for [D] {
+    fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()> {
+        self.iter_mut().try_for_each(|d| d.apply(surface, dt))
+    }
+}
+
+/// Every disturbance of the vector, in order.
+impl<D: Disturbance> Disturbance for Vec<D> {
+    fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()> {
+        self.as_mut_slice().apply(surface, dt)
+    }
+}
+
+macro_rules! tuple_disturbance {
+    ($($name:ident)+) => {
+        /// Each disturbance of the tuple, in order.
+        impl<$($name: Disturbance),+> Disturbance for ($($name,)+) {
+            #[allow(non_snake_case)]
+            fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()> {
+                let ($($name,)+) = self;
+                $($name.apply(surface, dt)?;)+
+                Ok(())
+            }
+        }
+    };
+}
+tuple_disturbance!(A);
+tuple_disturbance!(A B);
+tuple_disturbance!(A B C);
+tuple_disturbance!(A B C E);
 
 /// A small, fast, seedable random number generator (PCG-XSH-RR, 64-bit state, 32-bit
 /// output). Not for cryptography; the same seed gives the same numbers on every platform.
@@ -427,21 +458,43 @@ mod tests {
     }
 
     #[test]
-    fn advance_takes_the_same_substeps_as_the_surface() {
+    fn advance_with_takes_the_same_substeps_as_advance() {
         let p = Params::with_size(32, 32);
         let mut a = Surface::new(p).unwrap();
         let mut b = Surface::new(p).unwrap();
         a.drop_at(16.0, 16.0, -1.0, 2.0).unwrap();
         b.drop_at(16.0, 16.0, -1.0, 2.0).unwrap();
-        for frame_dt in [1.0, 0.4, 0.05, 2.3, 0.0] {
-            let n = advance(&mut a, frame_dt, &mut []).unwrap();
-            assert_eq!(n, b.advance(frame_dt).unwrap());
+        for seconds in [1.0 / 24.0, 1.0 / 60.0, 0.002, 0.1, 0.0] {
+            let n = a.advance_with(seconds, &mut ()).unwrap();
+            assert_eq!(n, b.advance(seconds).unwrap());
             assert_eq!(a.steps(), b.steps());
         }
         assert_eq!(a.positions(), b.positions());
         let mut rain = Rain::new(1.0, 2);
-        assert!(advance(&mut a, f32::NAN, &mut [&mut rain]).is_err());
-        assert!(advance(&mut a, 1e9, &mut [&mut rain]).is_err());
+        assert!(a.advance_with(f32::NAN, &mut rain).is_err());
+        assert!(a.advance_with(1e9, &mut rain).is_err());
+    }
+
+    #[test]
+    fn advance_with_applies_every_disturbance_before_every_substep() {
+        /// Counts its calls and the model time it was given.
+        struct Count(usize, f64);
+        impl Disturbance for Count {
+            fn apply(&mut self, _: &mut Surface, dt: f32) -> Result<()> {
+                self.0 += 1;
+                self.1 += dt as f64;
+                Ok(())
+            }
+        }
+        let mut s = Surface::new(Params::with_size(16, 16)).unwrap();
+        let (mut a, mut b) = (Count(0, 0.0), Count(0, 0.0));
+        let n = s.advance_with(0.1, &mut (&mut a, &mut b)).unwrap();
+        assert_eq!(n, 6); // 2.4 units of model time in steps of 0.4
+        assert_eq!((a.0, b.0), (6, 6));
+        assert!((a.1 - 2.4).abs() < 1e-5 && (s.time() - 2.4).abs() < 1e-5);
+        let mut list: Vec<&mut dyn Disturbance> = vec![&mut a, &mut b];
+        s.advance_with(1.0 / 60.0, list.as_mut_slice()).unwrap();
+        assert_eq!((a.0, b.0), (7, 7));
     }
 
     #[test]

@@ -47,8 +47,10 @@ pub enum Boundary {
 
 /// Model parameters. Plain data with the seed's defaults; [`Params::validate`] checks it.
 ///
-/// Units are the model's own: lengths in grid units of the world, time in the seed's
-/// time unit, mass in mass units.
+/// Lengths are world units (the unit of `spacing`, the water's local space); mass is in
+/// mass units; `dt` and the rates of [`crate::disturb`] are in *model time*, the seed's
+/// time unit. [`Params::time_scale`] says how much model time passes per second of a
+/// game's clock, which is what [`Surface::advance`](crate::Surface::advance) takes.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
@@ -73,6 +75,22 @@ pub struct Params {
     pub boundary: Boundary,
     /// Uniform acceleration applied to every free node, `[x, y, z]` (default: zero).
     pub acceleration: [f32; 3],
+    /// Model time units per second of the caller's clock, used by
+    /// [`Surface::advance`](crate::Surface::advance) (default: `24.0`). It sets how fast the
+    /// water moves on screen: ripples travel [`Params::ripple_speed`] world units per
+    /// second, and [`Params::set_ripple_speed`] sets this field from a wanted speed.
+    ///
+    /// The default makes a 60 Hz frame one step of the seed's `dt = 0.4` (the cheapest
+    /// animation that uses the seed's timestep), and ripples then cross about 39 cells per
+    /// second: a 128-cell pool in about 3.3 s, which is what the `springwater render`
+    /// preview shows (3 steps per frame at 20 frames per second). Must be finite and > 0.
+    #[cfg_attr(feature = "serde", serde(default = "default_time_scale"))]
+    pub time_scale: f32,
+}
+
+#[cfg(feature = "serde")]
+fn default_time_scale() -> f32 {
+    Params::default().time_scale
 }
 
 impl Default for Params {
@@ -88,6 +106,7 @@ impl Default for Params {
             rest_ratio: 0.5,
             boundary: Boundary::Pinned,
             acceleration: [0.0; 3],
+            time_scale: 24.0,
         }
     }
 }
@@ -126,6 +145,48 @@ impl Params {
     /// The linear stability limit at rest `sqrt(m / (c (3 − rest_ratio)))`: see the module docs.
     pub fn linear_dt_limit(&self) -> f32 {
         (self.mass / (self.stiffness * (3.0 - self.rest_ratio))).sqrt()
+    }
+
+    /// Speed of small ripples in world units per **second** of the caller's clock:
+    /// `time_scale · h · sqrt(3c(1 − rest_ratio)/m)` (the lattice's long-wave speed per unit
+    /// of model time, see the [`crate::surface`] docs, times the time scale). About 39 with
+    /// the defaults. Zero when `rest_ratio = 1` (no tension: ripples do not travel).
+    pub fn ripple_speed(&self) -> f32 {
+        self.time_scale * self.model_ripple_speed()
+    }
+
+    /// Ripple speed in world units per unit of model time.
+    fn model_ripple_speed(&self) -> f32 {
+        self.spacing * (3.0 * self.stiffness * (1.0 - self.rest_ratio) / self.mass).sqrt()
+    }
+
+    /// Sets [`Params::time_scale`] so that ripples travel `speed` world units per second.
+    /// Refused (nothing changed) when `speed` is not finite and positive, or when the other
+    /// parameters give ripples no speed to scale (`rest_ratio = 1`) or a time scale
+    /// validation would refuse.
+    ///
+    /// ```
+    /// use springwater::Params;
+    ///
+    /// let mut p = Params::with_size(256, 256);
+    /// p.set_ripple_speed(128.0)?;                  // cross the pool in about 2 s
+    /// assert!((p.ripple_speed() - 128.0).abs() < 1e-3);
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn set_ripple_speed(&mut self, speed: f32) -> Result<()> {
+        positive("ripple speed", speed)?;
+        let per_model_time = self.model_ripple_speed();
+        let time_scale = speed / per_model_time;
+        if !(per_model_time.is_finite() && per_model_time > 0.0) {
+            return Err(Error::InvalidParam {
+                name: "ripple speed",
+                value: speed as f64,
+                expected: "a speed the lattice can have: it needs rest_ratio < 1 and valid spacing, mass and stiffness",
+            });
+        }
+        positive("time_scale", time_scale)?;
+        self.time_scale = time_scale;
+        Ok(())
     }
 
     /// Checks every field, including `dt < critical_dt()`.
@@ -178,6 +239,7 @@ impl Params {
                 expected: "a number in [0, 1]",
             });
         }
+        positive("time_scale", self.time_scale)?;
         for a in self.acceleration {
             if !a.is_finite() {
                 return Err(Error::InvalidParam {

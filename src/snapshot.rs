@@ -11,7 +11,7 @@
 //! [`Surface::snapshot`] and back with [`Surface::from_snapshot`]; with the `serde` feature
 //! it implements `Serialize` and `Deserialize`. Both paths run the same validation.
 //!
-//! # Format (version 1)
+//! # Format (version 2)
 //!
 //! Little-endian throughout; `n = cols × rows`. Per-node arrays hold exactly `n` values
 //! (no SIMD padding); spring tables are indexed by origin node, with `0.0` for springs
@@ -20,7 +20,7 @@
 //! | offset | size | field |
 //! |---|---|---|
 //! | 0 | 8 | magic `b"SPRWATER"` |
-//! | 8 | 4 | format version `u32` (1) |
+//! | 8 | 4 | format version `u32` (2; version 1 is read too) |
 //! | 12 | 4 | flags `u32`: bit 0 = external forces pending; other bits 0 |
 //! | 16 | 8 | total length in bytes `u64`, checksum included |
 //! | 24 | 8, 8 | `cols`, `rows` as `u64` |
@@ -30,7 +30,7 @@
 //! | 80 | 8 | steps taken `u64` |
 //! | 88 | 8 | model time `f64` |
 //! | 96 | 3 × 4 | `min_mass`, `max_stiffness`, `max_viscosity` (`f32`): the bounds behind `critical_dt` |
-//! | 108 | 4 | reserved, 0 |
+//! | 108 | 4 | `time_scale` (`f32`, model time per second); reserved and 0 in version 1, read as the default |
 //! | 112 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z |
 //! | | 2 × 4n | mass, viscosity per node |
 //! | | n | pinned per node, `u8` 0 or 1 |
@@ -56,8 +56,9 @@ use std::io::{Read, Write};
 
 /// The first eight bytes of every snapshot.
 pub const MAGIC: [u8; 8] = *b"SPRWATER";
-/// The format version this build writes and reads.
-pub const VERSION: u32 = 1;
+/// The format version this build writes. It reads this one and version 1 (which had no
+/// `time_scale`: such snapshots get the default).
+pub const VERSION: u32 = 2;
 /// Bytes before the per-node arrays.
 const HEADER: usize = 112;
 /// Bytes per node: 11 `f32` arrays, 1 `u8`, 8 `f32` spring arrays.
@@ -182,7 +183,7 @@ impl Snapshot {
         b.extend_from_slice(&self.min_mass.to_le_bytes());
         b.extend_from_slice(&self.max_stiffness.to_le_bytes());
         b.extend_from_slice(&self.max_viscosity.to_le_bytes());
-        b.extend_from_slice(&0u32.to_le_bytes());
+        b.extend_from_slice(&p.time_scale.to_le_bytes());
         debug_assert_eq!(b.len(), HEADER);
         let arrays = self
             .positions
@@ -228,7 +229,7 @@ impl Snapshot {
             )));
         }
         let mut r = Cursor { bytes: body, at: 8 };
-        let _version = r.u32();
+        let version = r.u32();
         let flags = r.u32();
         let _total = r.u64();
         let cols = r.u64() as usize;
@@ -255,23 +256,28 @@ impl Snapshot {
             rest_ratio,
             boundary,
             acceleration,
+            time_scale: Params::default().time_scale,
         };
         let steps = r.u64();
         let time = r.f64();
         let min_mass = r.f32();
         let max_stiffness = r.f32();
         let max_viscosity = r.f32();
-        let reserved = r.u32();
+        let time_scale = r.f32();
         if flags & !FLAG_FORCES_PENDING != 0 {
             return Err(bad(format!(
                 "unknown flags {flags:#x}: written by an incompatible writer"
             )));
         }
-        if reserved != 0 {
-            return Err(bad(
-                "the reserved header field is not 0: written by an incompatible writer",
-            ));
-        }
+        let params = match version {
+            1 if time_scale.to_bits() != 0 => {
+                return Err(bad(
+                    "the reserved header field of a version 1 snapshot is not 0: written by an incompatible writer",
+                ))
+            }
+            1 => params,
+            _ => Params { time_scale, ..params },
+        };
         let n = cols * rows; // bounded by check_header
         let mut f32s = || r.f32s(n);
         let positions = [f32s(), f32s(), f32s()];
@@ -443,9 +449,9 @@ fn check_header(bytes: &[u8]) -> Result<usize> {
     }
     let mut r = Cursor { bytes, at: 8 };
     let version = r.u32();
-    if version != VERSION {
+    if !(1..=VERSION).contains(&version) {
         return Err(bad(format!(
-            "format version {version}, this build of springwater reads version {VERSION}"
+            "format version {version}, this build of springwater reads versions 1 to {VERSION}"
         )));
     }
     let _flags = r.u32();

@@ -1,5 +1,6 @@
 //! [`Surface`]: the water surface a game owns, steps and reads.
 
+use crate::disturb::Disturbance;
 use crate::error::{Error, Result};
 use crate::forces::{self, simd::Workspace, StepConfig};
 use crate::grid::{Grid, SpringId};
@@ -44,7 +45,7 @@ impl Energy {
 ///
 /// let mut water = Surface::new(Params::with_size(64, 48))?;
 /// water.drop_at(32.0, 24.0, 1.5, 3.0)?;       // a drop in the middle
-/// water.advance(1.0 / 60.0 * 24.0)?;           // one 60 Hz frame in model time units
+/// water.advance(1.0 / 60.0)?;                 // one 60 Hz frame: seconds in
 /// let [_x, y, _z] = water.positions();
 /// assert!(y.iter().any(|&h| h != 0.0));
 /// # Ok::<(), springwater::Error>(())
@@ -144,7 +145,8 @@ impl Surface {
         self.steps
     }
 
-    /// Model time simulated so far.
+    /// Model time simulated so far (in the seed's time unit; divide by
+    /// `params().time_scale` for seconds of the caller's clock).
     pub fn time(&self) -> f64 {
         self.time
     }
@@ -282,34 +284,77 @@ impl Surface {
         }
     }
 
-    /// Advances model time `frame_dt` in equal substeps no longer than `params().dt`, so a
-    /// game can pass its frame time without ever asking for an unstable step. Returns the
-    /// number of substeps taken. A failing substep stops the frame there (earlier substeps
-    /// stay applied, the failing one is not) and returns its error.
-    pub fn advance(&mut self, frame_dt: f32) -> Result<usize> {
-        let (substeps, dt) = self.split_frame(frame_dt)?;
+    /// Advances the water by one frame of a game's clock: `frame_seconds` seconds, that is
+    /// `frame_seconds × params().time_scale` of model time, in equal substeps no longer
+    /// than `params().dt`, so the frame time can be passed as it is and never asks for an
+    /// unstable step. Returns the number of substeps taken (0 for a frame of 0 s).
+    ///
+    /// A failing substep stops the frame there (earlier substeps stay applied, the failing
+    /// one is not) and returns its error. See [`Surface::advance_with`] to disturb the
+    /// water before every substep.
+    pub fn advance(&mut self, frame_seconds: f32) -> Result<usize> {
+        let (substeps, dt) = self.split_frame(frame_seconds)?;
         self.engine_steps(substeps as u64, dt)?;
         Ok(substeps)
     }
 
-    /// How [`Surface::advance`] cuts `frame_dt`: the number of equal substeps and their
-    /// length, never longer than `params().dt` (not even by a rounding error).
-    pub fn split_frame(&self, frame_dt: f32) -> Result<(usize, f32)> {
-        params::non_negative("frame_dt", frame_dt)?;
+    /// [`Surface::advance`] with `disturbance` applied before every substep, with that
+    /// substep's model timestep: rain, wakes, buoyancy, anything implementing
+    /// [`Disturbance`] (tuples, slices and `&mut` of disturbances are disturbances too).
+    /// A failing disturbance or substep stops the frame there and returns its error.
+    ///
+    /// ```
+    /// use springwater::disturb::{Rain, Wake};
+    /// use springwater::{Params, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(64, 64))?;
+    /// let mut rain = Rain::new(2.0, 1);                   // 2 drops per unit of model time
+    /// let mut boat = Wake::circle(&water, 16.0);
+    /// for _frame in 0..60 {
+    ///     water.advance_with(1.0 / 60.0, &mut (&mut rain, &mut boat))?;
+    /// }
+    /// assert!(rain.fallen() > 20);                        // 24 units of model time
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn advance_with<D: Disturbance + ?Sized>(
+        &mut self,
+        frame_seconds: f32,
+        disturbance: &mut D,
+    ) -> Result<usize> {
+        let (substeps, dt) = self.split_frame(frame_seconds)?;
+        for _ in 0..substeps {
+            disturbance.apply(self, dt)?;
+            self.engine_steps(1, dt)?;
+        }
+        Ok(substeps)
+    }
+
+    /// How [`Surface::advance`] cuts a frame of `frame_seconds`: the number of equal
+    /// substeps and their length in model time, never longer than `params().dt` (not even
+    /// by a rounding error).
+    ///
+    /// A frame whose model time is within a relative 10⁻⁵ of a whole number of timesteps
+    /// takes that number (the sliver of model time left over is dropped), so that a 60 Hz
+    /// frame at the default time scale is one step of `dt`, not two steps of `dt / 2`
+    /// because `(1/60) × 24` rounds a little above 0.4 in `f32`.
+    pub fn split_frame(&self, frame_seconds: f32) -> Result<(usize, f32)> {
+        params::non_negative("frame seconds", frame_seconds)?;
         let dt = self.params.dt;
-        let substeps = (frame_dt / dt).ceil();
-        if substeps > MAX_SUBSTEPS as f32 {
+        let model = frame_seconds as f64 * self.params.time_scale as f64;
+        let substeps = (model / dt as f64 * (1.0 - 1e-5)).ceil();
+        if substeps > MAX_SUBSTEPS as f64 {
             return Err(Error::InvalidParam {
-                name: "frame_dt",
-                value: frame_dt as f64,
-                expected: "at most 10000 timesteps long",
+                name: "frame seconds",
+                value: frame_seconds as f64,
+                expected:
+                    "a frame of at most 10000 timesteps (frame seconds × time_scale ≤ 10000 dt)",
             });
         }
         let substeps = substeps as usize;
         let sub = if substeps == 0 {
             0.0
         } else {
-            (frame_dt / substeps as f32).min(dt)
+            ((model / substeps as f64) as f32).min(dt)
         };
         Ok((substeps, sub))
     }

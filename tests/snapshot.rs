@@ -161,7 +161,42 @@ fn wrong_magic_and_version_are_refused() {
     b[8..12].copy_from_slice(&(VERSION + 1).to_le_bytes());
     fix_crc(&mut b);
     let m = message(&b);
-    assert!(m.contains("version 2"), "{m}");
+    assert!(m.contains(&format!("version {}", VERSION + 1)), "{m}");
+    b[8..12].copy_from_slice(&0u32.to_le_bytes());
+    fix_crc(&mut b);
+    let m = message(&b);
+    assert!(m.contains("version 0"), "{m}");
+}
+
+/// A version 1 snapshot (no time scale: the field was reserved and 0) still loads, with
+/// the default time scale; a version 1 snapshot with that field set is refused.
+#[test]
+fn version_1_snapshots_load_with_the_default_time_scale() {
+    let mut s = Surface::new(Params {
+        time_scale: 50.0,
+        ..Params::with_size(5, 4)
+    })
+    .unwrap();
+    s.drop_at(2.0, 2.0, 0.5, 1.0).unwrap();
+    s.step().unwrap();
+    let v2 = s.to_bytes();
+    assert_eq!(Surface::from_bytes(&v2).unwrap().params().time_scale, 50.0);
+    let mut v1 = v2.clone();
+    v1[8..12].copy_from_slice(&1u32.to_le_bytes());
+    v1[108..112].copy_from_slice(&0u32.to_le_bytes());
+    fix_crc(&mut v1);
+    let loaded = Surface::from_bytes(&v1).unwrap();
+    assert_eq!(loaded.params().time_scale, Params::default().time_scale);
+    assert_eq!(loaded.positions(), s.positions());
+    let mut bad = v2.clone();
+    bad[8..12].copy_from_slice(&1u32.to_le_bytes());
+    fix_crc(&mut bad);
+    assert!(message(&bad).contains("reserved"));
+    // A version 2 snapshot with a time scale that validation refuses is refused.
+    let mut bad = v2;
+    bad[108..112].copy_from_slice(&(-1.0f32).to_le_bytes());
+    fix_crc(&mut bad);
+    assert!(message(&bad).contains("time_scale"), "{}", message(&bad));
 }
 
 #[test]

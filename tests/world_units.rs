@@ -240,3 +240,23 @@ fn add_force_at_refuses_bad_input_and_changes_nothing() {
     assert!(s.positions()[1][4 * 9 + 4] > 0.0);
     assert!(s.forces()[1].iter().all(|&f| f == 0.0));
 }
+
+#[test]
+fn a_frame_in_seconds_is_the_same_model_time_at_any_spacing() {
+    // The same time scale on both pools: a 60 Hz frame is 0.4 units of model time, one
+    // step of 0.4 on the coarse pool and two of 0.2 on the fine one, and the drop has
+    // moved the same way after the same seconds.
+    let [coarse, fine] = [1.0, 0.5].map(|h| {
+        let mut s = Surface::new(pool(h)).unwrap();
+        s.drop_at(16.0, 14.0, 1.0, 4.0).unwrap();
+        let mut substeps = 0;
+        for _ in 0..40 {
+            substeps += s.advance(1.0 / 60.0).unwrap();
+        }
+        assert_eq!(substeps, (40.0 / h) as usize);
+        assert!((s.time() - 16.0).abs() < 1e-3, "{}", s.time());
+        heights(&s)
+    });
+    let d = relative_difference(&coarse, &fine);
+    assert!(d < 0.1, "relative difference {d}");
+}

@@ -31,7 +31,7 @@
 //! water.drop_at(64.0, 48.0, 1.0, 3.0)?;
 //! for frame in 0..3 {
 //!     let eye = Vec3::new(64.0, 30.0, -20.0 + frame as f32);   // the camera, in water space
-//!     water.advance(1.0)?;                                     // simulate
+//!     water.advance(1.0 / 60.0)?;                              // simulate a 60 Hz frame
 //!     let view = water.mesh_view();                            // borrow, no copy
 //!     compute_normals(&view, &mut normals);
 //!     refract(&view, &normals, eye, &bottom, &mut uv)?;
