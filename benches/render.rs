@@ -7,10 +7,14 @@
 //! * `lod_rebuild`: an index buffer rebuild for an eye 20 units above the water, moving
 //!   between two spots three patches apart (every update rebuilds);
 //! * `lod_rebuild_full`: a rebuild at full detail (level 0 everywhere: the largest buffer);
-//! * `lod_cached`: an update that finds nothing changed (the usual per-frame cost).
+//! * `lod_cached`: an update that finds nothing changed (the usual per-frame cost);
+//! * `interleave_vertices`: packed `Vertex` buffer (position, normal, uv) from the SoA
+//!   slices; `interleave_all`: that plus separate position, normal and uv buffers, in the
+//!   same pass (target: well under a tenth of `step`).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::Vec3;
+use springwater::buffers::{interleave, Vertex, VertexBuffers};
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use springwater::refraction::{normals_and_refraction, refract, Refraction, RefractionParams};
 use springwater::{Params, Surface};
@@ -65,6 +69,33 @@ fn render(c: &mut Criterion) {
             b.iter(|| {
                 normals_and_refraction(black_box(&view), eye, &optics, &mut normals, &mut uv)
                     .unwrap()
+            })
+        });
+
+        // The stages' outputs, whichever benches the filter ran.
+        normals_and_refraction(&view, eye, &optics, &mut normals, &mut uv).unwrap();
+        let mut vertices = vec![Vertex::default(); n * n];
+        g.bench_function(BenchmarkId::new("interleave_vertices", &size), |b| {
+            b.iter(|| {
+                let out = VertexBuffers {
+                    vertices: Some(&mut vertices),
+                    ..Default::default()
+                };
+                interleave(black_box(&view), &normals, &uv, out).unwrap()
+            })
+        });
+        let mut positions = vec![[0.0f32; 3]; n * n];
+        let mut normal_buf = vec![[0.0f32; 3]; n * n];
+        let mut uvs = vec![[0.0f32; 2]; n * n];
+        g.bench_function(BenchmarkId::new("interleave_all", &size), |b| {
+            b.iter(|| {
+                let out = VertexBuffers {
+                    positions: Some(&mut positions),
+                    normals: Some(&mut normal_buf),
+                    uvs: Some(&mut uvs),
+                    vertices: Some(&mut vertices),
+                };
+                interleave(black_box(&view), &normals, &uv, out).unwrap()
             })
         });
 

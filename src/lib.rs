@@ -61,6 +61,7 @@
 #![warn(clippy::undocumented_unsafe_blocks)]
 
 pub mod baselines;
+pub mod buffers;
 pub mod disturb;
 pub mod error;
 mod forces;

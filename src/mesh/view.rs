@@ -74,6 +74,24 @@ impl<'a> MeshView<'a> {
         [(self.cols() - 1) as f32 * h, (self.rows() - 1) as f32 * h]
     }
 
+    /// Copies the positions into `out` interleaved, `[x, y, z]` per node, row-major (what
+    /// a vertex buffer of positions takes). `out` must hold one element per node; on error
+    /// nothing is written. [`crate::buffers::interleave`] fills normals, texture
+    /// coordinates and packed vertices in the same pass.
+    pub fn write_positions(&self, out: &mut [[f32; 3]]) -> Result<()> {
+        if out.len() != self.grid.len() {
+            return Err(Error::LengthMismatch {
+                what: "position buffer",
+                got: out.len(),
+                expected: self.grid.len(),
+            });
+        }
+        for (o, ((x, y), z)) in out.iter_mut().zip(self.x.iter().zip(self.y).zip(self.z)) {
+            *o = [*x, *y, *z];
+        }
+        Ok(())
+    }
+
     /// x of every node.
     pub fn x(&self) -> &'a [f32] {
         self.x
