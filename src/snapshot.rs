@@ -606,7 +606,15 @@ impl Surface {
 
     /// Replaces this surface's state with a binary snapshot. On error `self` is unchanged.
     pub fn restore(&mut self, bytes: &[u8]) -> Result<()> {
-        *self = Surface::from_bytes(bytes)?;
+        let restored = Surface::from_bytes(bytes)?;
+        // The host's thread pool is a setting of this surface, not state: it stays.
+        #[cfg(feature = "parallel")]
+        let pool = self.pool.take();
+        *self = restored;
+        #[cfg(feature = "parallel")]
+        {
+            self.pool = pool;
+        }
         Ok(())
     }
 }

@@ -64,6 +64,9 @@ pub struct Surface {
     pub(crate) max_viscosity: f32,
     steps: u64,
     time: f64,
+    /// The host's thread pool the engine steps on; `None`: rayon's global pool.
+    #[cfg(feature = "parallel")]
+    pub(crate) pool: Option<std::sync::Arc<rayon::ThreadPool>>,
 }
 
 impl Surface {
@@ -108,6 +111,8 @@ impl Surface {
             steps: progress.0,
             time: progress.1,
             params,
+            #[cfg(feature = "parallel")]
+            pool: None,
         }
     }
 
@@ -245,9 +250,55 @@ impl Surface {
         }
     }
 
+    /// Runs the engine's steps on `pool`, the host's rayon thread pool, instead of rayon's
+    /// global pool (`None` goes back to it). Every stepping call ([`Surface::step`],
+    /// [`Surface::step_n`], [`Surface::advance`], [`Surface::advance_with`]) then runs its
+    /// colour batches on that pool's threads; disturbances and the caller's code between
+    /// substeps stay on the calling thread. Results are bitwise the same on any pool and
+    /// any number of threads. Clones of the surface share the pool.
+    ///
+    /// The render-side stages ([`crate::mesh`], [`crate::refraction`],
+    /// [`crate::buffers`]) use whichever pool they are called in: call them inside
+    /// `pool.install(|| …)` to keep them on the host's pool too.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use springwater::{Params, Surface};
+    ///
+    /// let pool = Arc::new(rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap());
+    /// let mut water = Surface::new(Params::with_size(64, 64))?;
+    /// water.set_thread_pool(Some(pool.clone()));
+    /// water.drop_at(32.0, 32.0, 1.0, 3.0)?;
+    /// water.advance(1.0 / 60.0)?;                      // on the host's two threads
+    /// assert!(water.thread_pool().is_some());
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    #[cfg(feature = "parallel")]
+    pub fn set_thread_pool(&mut self, pool: Option<std::sync::Arc<rayon::ThreadPool>>) {
+        self.pool = pool;
+    }
+
+    /// The host's thread pool set with [`Surface::set_thread_pool`], if any.
+    #[cfg(feature = "parallel")]
+    pub fn thread_pool(&self) -> Option<&std::sync::Arc<rayon::ThreadPool>> {
+        self.pool.as_ref()
+    }
+
+    /// `n` engine steps on the host's pool if one is set (see
+    /// [`Surface::set_thread_pool`]), else where the caller is.
+    fn engine_steps(&mut self, n: u64, dt: f32) -> Result<()> {
+        #[cfg(feature = "parallel")]
+        if let Some(pool) = self.pool.clone() {
+            if pool.current_thread_index().is_none() {
+                return pool.install(|| self.engine_steps_here(n, dt));
+            }
+        }
+        self.engine_steps_here(n, dt)
+    }
+
     /// `n` engine steps, in passes of up to `pass_steps`. A pass that fails is redone one
     /// step at a time, so the error names the exact step and node.
-    fn engine_steps(&mut self, n: u64, dt: f32) -> Result<()> {
+    fn engine_steps_here(&mut self, n: u64, dt: f32) -> Result<()> {
         let cfg = self.config(dt);
         let mut left = n;
         while left > 0 {
@@ -256,7 +307,7 @@ impl Surface {
                 self.commit(k, dt);
             } else if k > 1 {
                 for _ in 0..k {
-                    self.engine_steps(1, dt)?;
+                    self.engine_steps_here(1, dt)?;
                 }
             } else {
                 let node = self.state.first_non_finite_next().unwrap_or(0);
