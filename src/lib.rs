@@ -83,7 +83,7 @@ pub use grid::{Family, Grid, SpringId};
 pub use mesh::MeshView;
 pub use params::{Boundary, Params};
 pub use snapshot::Snapshot;
-pub use surface::{Energy, Stepper, Surface};
+pub use surface::{Energy, Spring, Stepper, Surface};
 
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]

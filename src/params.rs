@@ -234,7 +234,7 @@ impl Params {
         let r = self.rest_ratio;
         if !(r.is_finite() && (0.0..=1.0).contains(&r)) {
             return Err(Error::InvalidParam {
-                name: "rest-ratio",
+                name: "rest_ratio",
                 value: r as f64,
                 expected: "a number in [0, 1]",
             });

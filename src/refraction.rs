@@ -1,6 +1,6 @@
 //! Refraction: which point of the bottom each node shows, and how much it reflects.
 //!
-//! # Method (DESIGN.md §2)
+//! # Method
 //!
 //! The pool has a flat bottom at `y = −depth` carrying a texture that spans the grid's rest
 //! footprint `[0, (cols−1)h] × [0, (rows−1)h]`. For node `P` with unit normal `n` and the

@@ -577,7 +577,10 @@ impl Surface {
     pub fn save(&self, mut w: impl Write) -> Result<()> {
         w.write_all(&self.to_bytes())
             .and_then(|()| w.flush())
-            .map_err(|e| bad(format!("cannot write: {e}")))
+            .map_err(|e| Error::Io {
+                action: "write",
+                source: e.into(),
+            })
     }
 
     /// A surface from a binary snapshot: exactly the bytes [`Surface::to_bytes`] wrote.
@@ -590,7 +593,10 @@ impl Surface {
     /// Reading grows the buffer as bytes arrive, so a header announcing a huge grid over a
     /// short stream fails with "truncated" instead of allocating.
     pub fn load(mut r: impl Read) -> Result<Surface> {
-        let io = |e: std::io::Error| bad(format!("cannot read: {e}"));
+        let io = |e: std::io::Error| Error::Io {
+            action: "read",
+            source: e.into(),
+        };
         let mut bytes = Vec::with_capacity(HEADER);
         (&mut r)
             .take(HEADER as u64)

@@ -22,6 +22,16 @@ pub enum Stepper {
     Reference,
 }
 
+/// One spring's parameters, as [`Surface::spring`] reads and [`Surface::set_spring`]
+/// writes them. Named fields, so the two numbers cannot be swapped silently.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spring {
+    /// Rest length `L0` in world units (≥ 0).
+    pub rest: f32,
+    /// Coefficient `c` (> 0): the force per unit of stretch.
+    pub stiffness: f32,
+}
+
 /// Kinetic and spring potential energy of the surface (computed in `f64`).
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct Energy {
@@ -77,8 +87,10 @@ impl Surface {
     }
 
     /// Like [`Surface::new`] but without the critical-timestep check: for experiments
-    /// that probe the stability limit on purpose. Every other field is still validated.
-    pub fn new_unchecked_dt(params: Params) -> Result<Self> {
+    /// that probe the stability limit on purpose (such a surface may well blow up; its
+    /// steps then return [`Error::NonFinite`]). Every other field is still validated, and
+    /// nothing here is `unsafe`.
+    pub fn new_without_dt_check(params: Params) -> Result<Self> {
         params.validate_except_dt()?;
         Ok(Self::build(params))
     }
@@ -617,22 +629,38 @@ impl Surface {
         &self.state.pinned
     }
 
-    /// `(rest length, coefficient)` of a spring; `None` if the grid has no such spring.
-    pub fn spring(&self, id: SpringId) -> Option<(f32, f32)> {
+    /// A spring's rest length and coefficient; `None` if the grid has no such spring.
+    pub fn spring(&self, id: SpringId) -> Option<Spring> {
         (id.origin < self.len() && self.grid().spring_end(id.family, id.origin).is_some()).then(
             || {
                 let f = id.family as usize;
-                (
-                    self.springs.rest[f][id.origin],
-                    self.springs.coef[f][id.origin],
-                )
+                Spring {
+                    rest: self.springs.rest[f][id.origin],
+                    stiffness: self.springs.coef[f][id.origin],
+                }
             },
         )
     }
 
-    /// Sets a spring's rest length (≥ 0) and coefficient (> 0). Refused if the spring does
-    /// not exist or the coefficient would put `params().dt` past the critical timestep.
-    pub fn set_spring(&mut self, id: SpringId, rest: f32, coef: f32) -> Result<()> {
+    /// Sets a spring's rest length (≥ 0) and coefficient (> 0). Refused, with nothing
+    /// changed, if the spring does not exist or the coefficient would put `params().dt` at
+    /// or past the critical timestep.
+    ///
+    /// ```
+    /// use springwater::{Family, Params, Spring, SpringId, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(8, 8))?;
+    /// let id = SpringId { family: Family::E, origin: 9 };
+    /// assert_eq!(water.spring(id), Some(Spring { rest: 0.5, stiffness: 7.0 }));
+    /// water.set_spring(id, Spring { rest: 0.8, stiffness: 5.0 })?;
+    /// assert_eq!(water.spring(id).unwrap().stiffness, 5.0);
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn set_spring(&mut self, id: SpringId, spring: Spring) -> Result<()> {
+        let Spring {
+            rest,
+            stiffness: coef,
+        } = spring;
         self.check_node(id.origin)?;
         if self.grid().spring_end(id.family, id.origin).is_none() {
             return Err(Error::OutOfRange {

@@ -3,7 +3,7 @@
 mod common;
 
 use common::state_bits;
-use springwater::{Error, Family, Params, SpringId, Surface};
+use springwater::{Error, Family, Params, Spring, SpringId, Surface};
 
 #[test]
 fn every_invalid_parameter_is_refused_with_its_name() {
@@ -44,14 +44,14 @@ fn every_invalid_parameter_is_refused_with_its_name() {
                 rest_ratio: 1.5,
                 ..base
             },
-            "rest-ratio",
+            "rest_ratio",
         ),
         (
             Params {
                 rest_ratio: f32::NAN,
                 ..base
             },
-            "rest-ratio",
+            "rest_ratio",
         ),
         (
             Params {
@@ -98,7 +98,7 @@ fn a_timestep_at_or_past_critical_names_the_critical_value() {
         ..Params::default()
     };
     assert!(Surface::new(at).is_err());
-    assert!(Surface::new_unchecked_dt(p).is_ok());
+    assert!(Surface::new_without_dt_check(p).is_ok());
 }
 
 #[test]
@@ -201,15 +201,25 @@ fn bad_edits_are_refused_and_change_nothing() {
         origin: 5,
     };
     assert!(s.spring(east_of_last_column).is_none());
-    assert!(s.set_spring(east_of_last_column, 1.0, 7.0).is_err());
+    assert!(s
+        .set_spring(
+            east_of_last_column,
+            Spring {
+                rest: 1.0,
+                stiffness: 7.0
+            }
+        )
+        .is_err());
     assert!(s
         .set_spring(
             SpringId {
                 family: Family::S,
                 origin: 0
             },
-            0.5,
-            100.0
+            Spring {
+                rest: 0.5,
+                stiffness: 100.0
+            }
         )
         .is_err());
     assert!(state_bits(&s) == before);
@@ -223,9 +233,28 @@ fn edits_take_effect() {
         family: Family::SE,
         origin: 7,
     };
-    assert_eq!(s.spring(id), Some((0.5 * std::f32::consts::SQRT_2, 7.0)));
-    s.set_spring(id, 1.0, 6.0).unwrap();
-    assert_eq!(s.spring(id), Some((1.0, 6.0)));
+    assert_eq!(
+        s.spring(id),
+        Some(Spring {
+            rest: 0.5 * std::f32::consts::SQRT_2,
+            stiffness: 7.0
+        })
+    );
+    s.set_spring(
+        id,
+        Spring {
+            rest: 1.0,
+            stiffness: 6.0,
+        },
+    )
+    .unwrap();
+    assert_eq!(
+        s.spring(id),
+        Some(Spring {
+            rest: 1.0,
+            stiffness: 6.0
+        })
+    );
     assert!(!s.is_pinned(7).unwrap());
     s.set_pinned(7, true).unwrap();
     assert!(s.is_pinned(7).unwrap());

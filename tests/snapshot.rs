@@ -1,7 +1,7 @@
 //! Snapshots: bitwise round trips, identical continuation, and refusal of damaged data.
 
 use springwater::snapshot::{Snapshot, MAGIC, VERSION};
-use springwater::{Boundary, Error, Family, Params, SpringId, Surface};
+use springwater::{Boundary, Error, Family, Params, Spring, SpringId, Surface};
 
 /// A surface that uses every piece of state: drops, velocities, pending forces, per-node
 /// mass/viscosity/pins, per-spring tables, steps taken.
@@ -24,8 +24,10 @@ fn busy_surface() -> Surface {
             family: Family::SE,
             origin: 42,
         },
-        0.9,
-        6.0,
+        Spring {
+            rest: 0.9,
+            stiffness: 6.0,
+        },
     )
     .unwrap();
     s.add_velocity(70, [0.0, 0.3, 0.1]).unwrap();
@@ -377,7 +379,14 @@ fn loaded_spring_tables_reach_the_engine() {
             origin,
         };
         if s.spring(id).is_some() {
-            s.set_spring(id, 0.25, 3.0).unwrap();
+            s.set_spring(
+                id,
+                Spring {
+                    rest: 0.25,
+                    stiffness: 3.0,
+                },
+            )
+            .unwrap();
         }
     }
     s.set_spring(
@@ -385,8 +394,10 @@ fn loaded_spring_tables_reach_the_engine() {
             family: Family::S,
             origin: 30,
         },
-        0.7,
-        5.0,
+        Spring {
+            rest: 0.7,
+            stiffness: 5.0,
+        },
     )
     .unwrap();
     let mut snap = s.snapshot();
@@ -411,4 +422,76 @@ fn loaded_spring_tables_reach_the_engine() {
         .step_with(springwater::Stepper::Reference)
         .unwrap();
     assert_eq!(engine.to_bytes(), reference.to_bytes());
+}
+
+/// A reader or writer that fails with `kind`.
+struct Broken(std::io::ErrorKind);
+
+impl std::io::Read for Broken {
+    fn read(&mut self, _: &mut [u8]) -> std::io::Result<usize> {
+        Err(std::io::Error::new(self.0, "the disk went away"))
+    }
+}
+
+impl std::io::Write for Broken {
+    fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+        Err(std::io::Error::new(self.0, "the disk went away"))
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+#[test]
+fn io_failures_keep_the_io_error_as_their_source() {
+    use std::error::Error as _;
+    let s = Surface::new(Params::with_size(4, 4)).unwrap();
+    let write = s
+        .save(Broken(std::io::ErrorKind::PermissionDenied))
+        .unwrap_err();
+    let read = Surface::load(Broken(std::io::ErrorKind::UnexpectedEof)).unwrap_err();
+    for (err, kind, action) in [
+        (write, std::io::ErrorKind::PermissionDenied, "write"),
+        (read, std::io::ErrorKind::UnexpectedEof, "read"),
+    ] {
+        assert!(
+            matches!(&err, Error::Io { action: a, source } if *a == action && source.kind() == kind),
+            "{err:?}"
+        );
+        let io = err
+            .source()
+            .and_then(|e| e.downcast_ref::<springwater::error::IoError>())
+            .expect("the I/O error is the source");
+        let original = io.source().and_then(|e| e.downcast_ref::<std::io::Error>());
+        assert_eq!(original.map(|e| e.kind()), Some(kind));
+        assert!(err.to_string().contains("the disk went away"), "{err}");
+        assert_eq!(err.clone(), err);
+    }
+    // Format problems have no source.
+    assert!(Surface::from_bytes(b"nonsense")
+        .unwrap_err()
+        .source()
+        .is_none());
+}
+
+#[test]
+fn library_errors_do_not_speak_command_line_flags() {
+    let errors = [
+        Surface::new(Params::with_size(100_000, 100_000)).unwrap_err(),
+        Surface::new(Params::with_size(1, 5)).unwrap_err(),
+        Surface::new(Params {
+            rest_ratio: 2.0,
+            ..Params::default()
+        })
+        .unwrap_err(),
+        Surface::new(Params {
+            dt: 1.0,
+            ..Params::default()
+        })
+        .unwrap_err(),
+    ];
+    for e in errors {
+        let m = e.to_string();
+        assert!(!m.contains("--"), "{m}");
+    }
 }

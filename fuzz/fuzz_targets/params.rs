@@ -95,7 +95,7 @@ fn exercise(s: &mut Surface, input: &Input) {
         family: springwater::Family::ALL[node % 4],
         origin: node / 4,
     };
-    let _ = s.set_spring(id, v, input.spacing);
+    let _ = s.set_spring(id, springwater::Spring { rest: v, stiffness: input.spacing });
     let _ = s.advance(input.dt);
     // Engine and scalar reference agree bitwise, failures included.
     let mut reference = s.clone();

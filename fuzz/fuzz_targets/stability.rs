@@ -137,7 +137,7 @@ fn min_strain(s: &Surface) -> f32 {
     s.grid()
         .springs()
         .filter_map(|(id, end)| {
-            let (rest, _) = s.spring(id)?;
+            let rest = s.spring(id)?.rest;
             (rest > 0.0).then(|| length(id.origin, end) / rest)
         })
         .fold(f32::INFINITY, f32::min)

@@ -95,12 +95,12 @@ impl LodParams {
         let p = self.patch_cells;
         if !(p.is_power_of_two() && p <= 4096) {
             return Err(Error::InvalidParam {
-                name: "patch-cells",
+                name: "patch_cells",
                 value: p as f64,
                 expected: "a power of two from 1 to 4096 (for example 16)",
             });
         }
-        crate::params::positive("first-range", self.first_range)?;
+        crate::params::positive("first_range", self.first_range)?;
         let max = self.max_levels();
         if !(1..=max).contains(&self.levels) {
             return Err(Error::LodLevels {

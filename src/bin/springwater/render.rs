@@ -1,6 +1,8 @@
 //! `springwater render`: the water as an animated GIF (and/or PNG frames).
 
-use crate::args::{list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
+use crate::args::{
+    lib_error, list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs,
+};
 use crate::image::{read_png, write_png, GifWriter, Histogram, Palette};
 use crate::simulate::create;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -139,7 +141,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         camera.look_at = l.into();
     }
     camera.fov_y_degrees = o.fov;
-    camera.validate().map_err(|e| format!("camera: {e}"))?;
+    camera
+        .validate()
+        .map_err(|e| format!("camera: {}", lib_error(e)))?;
     let bottom = match &o.bottom {
         Some(path) => read_png(path)?,
         None => Texture::pool_tiles_for(
@@ -155,7 +159,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     render_params.refraction.ior = o.ior;
     render_params.look.caustics = o.caustics;
     render_params.lod_pixels = Some(o.lod_pixels);
-    let mut renderer = Renderer::new(render_params, bottom).map_err(|e| e.to_string())?;
+    let mut renderer = Renderer::new(render_params, bottom).map_err(lib_error)?;
 
     // Open every output before any work: an unwritable path fails at once.
     let gif_file = o
