@@ -42,9 +42,9 @@
 //! ```
 
 use crate::error::{Error, Result};
-use crate::mesh::MeshView;
 use crate::mesh::Normals;
 use crate::refraction::Refraction;
+use crate::view::MeshView;
 
 /// One node's vertex, packed for a GPU vertex buffer: 8 `f32`, 32 bytes, no padding.
 ///

@@ -1,35 +1,4 @@
-//! Model parameters with the seed's defaults, their validation and the two timestep limits.
-//!
-//! # Where the timestep limits come from
-//!
-//! Symplectic Euler is stable for a linear oscillator of angular frequency ω iff `ω Δt < 2`.
-//! The stiffest mode of the lattice therefore sets the limit:
-//!
-//! * **Linear limit at rest** ([`Params::linear_dt_limit`]). Around the flat, pre-tensioned
-//!   rest state a spring of coefficient `c`, stretched to length `h` with rest length
-//!   `r·h`, has stiffness `c` along itself and `c(1 − r)` across itself. The stiffest
-//!   mode is the in-plane checkerboard at wave vector (π, 0): the E spring contributes
-//!   `4c`, the two diagonals `2·(c/2 + c(1−r)/2)·2`, the S spring `4c(1 − r)`, which adds up
-//!   to `ω²max = 4c(3 − r)/m`. So small disturbances stay bounded iff
-//!   `Δt < sqrt(m / (c (3 − r)))` (0.478 with the defaults).
-//! * **Large-wave limit** ([`Params::critical_dt`]). A stretched spring stiffens across
-//!   itself up to `c`, so while no spring is compressed below half its rest length each of a
-//!   node's 8 springs adds at most `c` in every direction and Gershgorin bounds the
-//!   spectrum by `ω²max ≤ 12c/m`; `Δt < sqrt(m / (3c))` (0.436 with the defaults) is
-//!   stable for any such state. The seed's Δt = 0.4 is 92% of it. This is the limit that
-//!   validation enforces.
-//! * **Viscosity.** The seed integrates the damping `−γv` explicitly too. For one mode,
-//!   symplectic Euler maps `(x, v)` with trace `2 − ω²Δt² − bΔt` and determinant `1 − bΔt`
-//!   (`b = γ/m`), and the Jury conditions give stability iff `ω²Δt² + 2bΔt < 4`. With
-//!   `ω²max = 12c/m` the limit is the positive root `Δt = 4 / (sqrt(b² + 48c/m) + b)`, which
-//!   is `sqrt(m / (3c))` at `γ = 0` and 0.4358 with the defaults. Heavy damping therefore
-//!   lowers the limit: measured on a 32×32 grid with `m = 4`, `c = 7` at 99% of the
-//!   undamped limit, `γ = 6` reached NaN within 103 steps. The bound uses the largest `γ`
-//!   and the smallest `m`.
-//!
-//!   Drops steeper than one height per cell can fold the lattice,
-//!   where no timestep is safe; the engine then reports [`Error::NonFinite`] instead of
-//!   passing NaN on.
+//! Model parameters with the seed's defaults ([`Params`]; its docs explain the timestep limits).
 
 use crate::error::{Error, Result};
 
@@ -51,6 +20,37 @@ pub enum Boundary {
 /// mass units; `dt` and the rates of [`crate::disturb`] are in *model time*, the seed's
 /// time unit. [`Params::time_scale`] says how much model time passes per second of a
 /// game's clock, which is what [`Surface::advance`](crate::Surface::advance) takes.
+///
+/// # Where the timestep limits come from
+///
+/// Symplectic Euler is stable for a linear oscillator of angular frequency ω iff `ω Δt < 2`.
+/// The stiffest mode of the lattice therefore sets the limit:
+///
+/// * **Linear limit at rest** ([`Params::linear_dt_limit`]). Around the flat, pre-tensioned
+///   rest state a spring of coefficient `c`, stretched to length `h` with rest length
+///   `r·h`, has stiffness `c` along itself and `c(1 − r)` across itself. The stiffest
+///   mode is the in-plane checkerboard at wave vector (π, 0): the E spring contributes
+///   `4c`, the two diagonals `2·(c/2 + c(1−r)/2)·2`, the S spring `4c(1 − r)`, which adds up
+///   to `ω²max = 4c(3 − r)/m`. So small disturbances stay bounded iff
+///   `Δt < sqrt(m / (c (3 − r)))` (0.478 with the defaults).
+/// * **Large-wave limit** ([`Params::critical_dt`]). A stretched spring stiffens across
+///   itself up to `c`, so while no spring is compressed below half its rest length each of a
+///   node's 8 springs adds at most `c` in every direction and Gershgorin bounds the
+///   spectrum by `ω²max ≤ 12c/m`; `Δt < sqrt(m / (3c))` (0.436 with the defaults) is
+///   stable for any such state. The seed's Δt = 0.4 is 92% of it. This is the limit that
+///   validation enforces.
+/// * **Viscosity.** The seed integrates the damping `−γv` explicitly too. For one mode,
+///   symplectic Euler maps `(x, v)` with trace `2 − ω²Δt² − bΔt` and determinant `1 − bΔt`
+///   (`b = γ/m`), and the Jury conditions give stability iff `ω²Δt² + 2bΔt < 4`. With
+///   `ω²max = 12c/m` the limit is the positive root `Δt = 4 / (sqrt(b² + 48c/m) + b)`, which
+///   is `sqrt(m / (3c))` at `γ = 0` and 0.4358 with the defaults. Heavy damping therefore
+///   lowers the limit: measured on a 32×32 grid with `m = 4`, `c = 7` at 99% of the
+///   undamped limit, `γ = 6` reached NaN within 103 steps. The bound uses the largest `γ`
+///   and the smallest `m`.
+///
+///   Drops steeper than one height per cell can fold the lattice,
+///   where no timestep is safe; the engine then reports [`Error::NonFinite`] instead of
+///   passing NaN on.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
@@ -137,19 +137,19 @@ impl Params {
     }
 
     /// The guaranteed (large-wave) stability limit: `sqrt(m / (3c))` without viscosity,
-    /// a little less with it (see the module docs).
+    /// a little less with it (see the [`Params`] docs).
     pub fn critical_dt(&self) -> f32 {
         critical_dt(self.mass, self.stiffness, self.viscosity)
     }
 
-    /// The linear stability limit at rest `sqrt(m / (c (3 − rest_ratio)))`: see the module docs.
+    /// The linear stability limit at rest `sqrt(m / (c (3 − rest_ratio)))`: see the [`Params`] docs.
     pub fn linear_dt_limit(&self) -> f32 {
         (self.mass / (self.stiffness * (3.0 - self.rest_ratio))).sqrt()
     }
 
     /// Speed of small ripples in world units per **second** of the caller's clock:
     /// `time_scale · h · sqrt(3c(1 − rest_ratio)/m)` (the lattice's long-wave speed per unit
-    /// of model time, see the [`crate::surface`] docs, times the time scale). About 39 with
+    /// of model time, see the crate docs' model section, times the time scale). About 39 with
     /// the defaults. Zero when `rest_ratio = 1` (no tension: ripples do not travel).
     pub fn ripple_speed(&self) -> f32 {
         self.time_scale * self.model_ripple_speed()
@@ -258,7 +258,7 @@ pub const MAX_EXTENT: f64 = 1e15;
 
 /// The large-wave limit for the smallest mass, largest coefficient and largest viscosity:
 /// `sqrt(m / (3c))` without viscosity, else the positive root of
-/// `(12c/m) Δt² + 2(γ/m) Δt = 4` (see the module docs).
+/// `(12c/m) Δt² + 2(γ/m) Δt = 4` (see the [`Params`] docs).
 pub(crate) fn critical_dt(min_mass: f32, max_stiffness: f32, max_viscosity: f32) -> f32 {
     if max_viscosity == 0.0 {
         return (min_mass / (3.0 * max_stiffness)).sqrt();

@@ -1,6 +1,8 @@
 //! Snapshots: bitwise round trips, identical continuation, and refusal of damaged data.
 
-use springwater::snapshot::{Snapshot, MAGIC, VERSION};
+use springwater::Snapshot;
+const MAGIC: [u8; 8] = Snapshot::MAGIC;
+const VERSION: u32 = Snapshot::VERSION;
 use springwater::{Boundary, Error, Family, Params, Spring, SpringId, Surface};
 
 /// A surface that uses every piece of state: drops, velocities, pending forces, per-node
@@ -460,7 +462,7 @@ fn io_failures_keep_the_io_error_as_their_source() {
         );
         let io = err
             .source()
-            .and_then(|e| e.downcast_ref::<springwater::error::IoError>())
+            .and_then(|e| e.downcast_ref::<springwater::IoError>())
             .expect("the I/O error is the source");
         let original = io.source().and_then(|e| e.downcast_ref::<std::io::Error>());
         assert_eq!(original.map(|e| e.kind()), Some(kind));

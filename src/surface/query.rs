@@ -1,31 +1,8 @@
-//! Point queries for game code: height, normal and velocity of the water at a world
-//! `(x, z)`, sampled from the full-resolution simulation (never from the LOD mesh).
-//!
-//! # Method
-//!
-//! A point `(x, z)` of the water's local space is mapped to fractional grid coordinates
-//! `col = x / h`, `row = z / h` (the node positions *at rest*), and the four nodes of the
-//! cell it falls in are blended bilinearly:
-//!
-//! ```text
-//! f(col, row) = (1−fx)(1−fz) f00 + fx(1−fz) f10 + (1−fx) fz f01 + fx fz f11
-//! ```
-//!
-//! So a query at a node's rest position returns that node's value, and values vary
-//! continuously between nodes. Heights are the nodes' current `y`; velocities the nodes'
-//! current velocities; normals the per-node normals of
-//! [`node_normal`] blended the same way and renormalised.
-//! The lattice also moves sideways a little; the queries follow the nodes (the surface
-//! point whose rest position is `(x, z)`), which is what a floating object riding the
-//! water feels.
-//!
-//! Points must lie in the rest footprint `[0, (cols−1)h] × [0, (rows−1)h]` (edges
-//! included) and be finite; anything else is an error, and a batched query that errors
-//! has written nothing. [`Surface::contains`] tells in advance.
+//! Point queries and forces at a point: the bilinear sampling of the rest grid.
 
+use super::Surface;
 use crate::error::{Error, Result};
-use crate::mesh::{node_normal, MeshView};
-use crate::surface::Surface;
+use crate::view::MeshView;
 use glam::Vec3;
 
 /// The cell and the bilinear weights of one query point.
@@ -93,10 +70,10 @@ impl Sample {
     fn normal(&self, view: &MeshView<'_>) -> Vec3 {
         let w = self.weights();
         let (c, r) = (self.c, self.r);
-        let n = w[0] * node_normal(view, c, r)
-            + w[1] * node_normal(view, c + 1, r)
-            + w[2] * node_normal(view, c, r + 1)
-            + w[3] * node_normal(view, c + 1, r + 1);
+        let n = w[0] * view.node_normal(c, r)
+            + w[1] * view.node_normal(c + 1, r)
+            + w[2] * view.node_normal(c, r + 1)
+            + w[3] * view.node_normal(c + 1, r + 1);
         n.try_normalize().unwrap_or(Vec3::Y)
     }
 }
@@ -120,11 +97,35 @@ fn batch<T>(
     Ok(())
 }
 
-/// # Queries
+/// # Queries and forces at a point
 ///
-/// Sampled from the simulation at full resolution; see [`crate::mesh::query`](self) for the
-/// method. Batched forms take `[x, z]` pairs and fill a caller-owned `Vec` (cleared first,
-/// capacity kept).
+/// Height, normal and velocity of the water at a world `(x, z)`, sampled from the
+/// full-resolution simulation (never from the LOD mesh), and forces pushed in at a world
+/// point with the same weights. Batched forms take `[x, z]` pairs and fill a caller-owned
+/// `Vec` (cleared first, capacity kept).
+/// `(x, z)`, sampled from the full-resolution simulation (never from the LOD mesh).
+///
+/// ## Method
+///
+/// A point `(x, z)` of the water's local space is mapped to fractional grid coordinates
+/// `col = x / h`, `row = z / h` (the node positions *at rest*), and the four nodes of the
+/// cell it falls in are blended bilinearly:
+///
+/// ```text
+/// f(col, row) = (1−fx)(1−fz) f00 + fx(1−fz) f10 + (1−fx) fz f01 + fx fz f11
+/// ```
+///
+/// So a query at a node's rest position returns that node's value, and values vary
+/// continuously between nodes. Heights are the nodes' current `y`; velocities the nodes'
+/// current velocities; normals the per-node normals of
+/// [`MeshView::node_normal`] blended the same way and renormalised.
+/// The lattice also moves sideways a little; the queries follow the nodes (the surface
+/// point whose rest position is `(x, z)`), which is what a floating object riding the
+/// water feels.
+///
+/// Points must lie in the rest footprint `[0, (cols−1)h] × [0, (rows−1)h]` (edges
+/// included) and be finite; anything else is an error, and a batched query that errors
+/// has written nothing. [`Surface::contains`] tells in advance.
 impl Surface {
     /// True if `(x, z)` is finite and inside the rest footprint
     /// `[0, (cols−1)h] × [0, (rows−1)h]`, where the queries answer.

@@ -1,4 +1,7 @@
-//! [`MeshView`]: a zero-copy view of the surface for renderers.
+//! [`MeshView`]: a zero-copy view of the surface, the one way the render-side stages
+//! ([`crate::mesh`], [`crate::refraction`], [`crate::buffers`]) read the simulation.
+//! The physics knows nothing of them: [`Surface::mesh_view`](crate::Surface::mesh_view)
+//! hands out this view and that is all.
 
 use crate::error::{Error, Result};
 use crate::grid::Grid;
@@ -110,5 +113,37 @@ impl<'a> MeshView<'a> {
     /// Position of node `i`.
     pub fn position(&self, i: usize) -> glam::Vec3 {
         glam::Vec3::new(self.x[i], self.y[i], self.z[i])
+    }
+
+    /// The normal of node `(col, row)`, computed exactly like [`compute_normals`](crate::mesh::compute_normals) does.
+    ///
+    /// # Panics
+    ///
+    /// If `col` or `row` is outside the grid.
+    pub fn node_normal(&self, col: usize, row: usize) -> glam::Vec3 {
+        let grid = self.grid;
+        assert!(
+            col < grid.cols && row < grid.rows,
+            "node ({col}, {row}) is outside the grid"
+        );
+        let left = grid.index(col.saturating_sub(1), row);
+        let right = grid.index((col + 1).min(grid.cols - 1), row);
+        let up = grid.index(col, row.saturating_sub(1));
+        let down = grid.index(col, (row + 1).min(grid.rows - 1));
+        let (x, y, z) = (self.x, self.y, self.z);
+        let u = [x[right] - x[left], y[right] - y[left], z[right] - z[left]];
+        let v = [x[down] - x[up], y[down] - y[up], z[down] - z[up]];
+        let n = [
+            v[1] * u[2] - v[2] * u[1],
+            v[2] * u[0] - v[0] * u[2],
+            v[0] * u[1] - v[1] * u[0],
+        ];
+        let len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
+        if len2 > f32::MIN_POSITIVE && len2 < f32::INFINITY {
+            let inv = 1.0 / len2.sqrt();
+            glam::Vec3::new(n[0] * inv, n[1] * inv, n[2] * inv)
+        } else {
+            glam::Vec3::Y
+        }
     }
 }

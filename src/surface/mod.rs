@@ -1,16 +1,20 @@
-//! [`Surface`]: the water surface a game owns, steps and reads.
+//! [`Surface`]: the water surface a game owns, steps and reads — all of it here: the
+//! state and stepping (this file), the point queries and forces at a point ([`query`]),
+//! and snapshots ([`snapshot`]).
 
-use crate::disturb::Disturbance;
+mod disturbance;
+pub(crate) mod query;
+pub(crate) mod snapshot;
+
+pub use disturbance::Disturbance;
+
 use crate::error::{Error, Result};
 use crate::forces::{self, simd::Workspace, StepConfig};
 use crate::grid::{Grid, SpringId};
-use crate::mesh::MeshView;
 use crate::params::{self, Params};
 use crate::springs::{self, Band, Springs};
 use crate::state::State;
-
-/// Most substeps one [`Surface::advance`] call may take.
-pub const MAX_SUBSTEPS: usize = 10_000;
+use crate::view::MeshView;
 
 /// Which implementation of the step to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -80,6 +84,9 @@ pub struct Surface {
 }
 
 impl Surface {
+    /// Most substeps one [`Surface::advance`] call may take.
+    pub const MAX_SUBSTEPS: usize = 10_000;
+
     /// A flat surface at rest with the given parameters, validated.
     pub fn new(params: Params) -> Result<Self> {
         params.validate()?;
@@ -169,7 +176,7 @@ impl Surface {
     }
 
     /// The largest safe timestep for the current tables: `sqrt(min m / (3 max c))`, a little
-    /// less with viscosity (see [`crate::params`]).
+    /// less with viscosity (see [`Params`]).
     pub fn critical_dt(&self) -> f32 {
         params::critical_dt(self.min_mass, self.max_stiffness, self.max_viscosity)
     }
@@ -405,7 +412,7 @@ impl Surface {
         let dt = self.params.dt;
         let model = frame_seconds as f64 * self.params.time_scale as f64;
         let substeps = (model / dt as f64 * (1.0 - 1e-5)).ceil();
-        if substeps > MAX_SUBSTEPS as f64 {
+        if substeps > Self::MAX_SUBSTEPS as f64 {
             return Err(Error::InvalidParam {
                 name: "frame seconds",
                 value: frame_seconds as f64,
