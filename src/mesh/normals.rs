@@ -97,6 +97,7 @@ pub fn compute_normals(view: &MeshView<'_>, out: &mut Normals) {
 
 /// The scalar twin of [`compute_normals`]: one [`MeshView::node_normal`] per node. Same results,
 /// bitwise; kept as the oracle for tests and as readable documentation of the kernel.
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub fn compute_normals_scalar(view: &MeshView<'_>, out: &mut Normals) {
     out.resize(view.grid().len());
     let grid = view.grid();

@@ -10,6 +10,7 @@ use glam::Vec3;
 
 /// The scalar twin of [`refract`](super::refract): one [`refract_node`] per node, same checks, same
 /// results.
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub fn refract_scalar(
     view: &MeshView<'_>,
     normals: &Normals,
