@@ -29,6 +29,7 @@ struct Input {
     rest_ratio: f32,
     free: bool,
     acceleration: [f32; 3],
+    time_scale: f32,
     drop: [f32; 4],
     node: u32,
     value: f32,
@@ -51,6 +52,7 @@ fuzz_target!(|input: Input| {
             Boundary::Pinned
         },
         acceleration: input.acceleration,
+        time_scale: input.time_scale,
     };
     if p.validate().is_ok() && p.nodes() <= MAX_BUILD {
         let mut s = Surface::new(p).expect("validate() accepted these params");
@@ -97,6 +99,8 @@ fn exercise(s: &mut Surface, input: &Input) {
     };
     let _ = s.set_spring(id, springwater::Spring { rest: v, stiffness: input.spacing });
     let _ = s.advance(input.dt);
+    let mut params = *s.params();
+    let _ = params.set_ripple_speed(v);
     // Engine and scalar reference agree bitwise, failures included.
     let mut reference = s.clone();
     for _ in 0..4 {
