@@ -358,6 +358,8 @@ fn animate(
         let mut wake = Wake::circle(&surface, 0.3 * cells * h);
         wake.speed *= h;
         wake.radius *= h;
+        // The same push per node as at spacing 1 (the library's strength is a pressure).
+        wake.strength /= h * h;
         wake
     });
     for k in 0..o.frames {
