@@ -7,10 +7,15 @@
 //! * `lod_rebuild`: an index buffer rebuild for an eye 20 units above the water, moving
 //!   between two spots three patches apart (every update rebuilds);
 //! * `lod_rebuild_full`: a rebuild at full detail (level 0 everywhere: the largest buffer);
-//! * `lod_cached`: an update that finds nothing changed (the usual per-frame cost).
+//! * `lod_cached`: an update that finds nothing changed (the usual per-frame cost);
+//! * `interleave_vertices`: packed `Vertex` buffer (position, normal, uv) from the SoA
+//!   slices; `interleave_all`: that plus separate position, normal and uv buffers, in the
+//!   same pass (the aim is a tenth of `step` or less; it is memory-bound, so the ratio
+//!   grows on grids that outgrow the caches).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::Vec3;
+use springwater::buffers::{interleave, Vertex, VertexBuffers};
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use springwater::refraction::{normals_and_refraction, refract, Refraction, RefractionParams};
 use springwater::{Params, Surface};
@@ -68,6 +73,33 @@ fn render(c: &mut Criterion) {
             })
         });
 
+        // The stages' outputs, whichever benches the filter ran.
+        normals_and_refraction(&view, eye, &optics, &mut normals, &mut uv).unwrap();
+        let mut vertices = vec![Vertex::default(); n * n];
+        g.bench_function(BenchmarkId::new("interleave_vertices", &size), |b| {
+            b.iter(|| {
+                let out = VertexBuffers {
+                    vertices: Some(&mut vertices),
+                    ..Default::default()
+                };
+                interleave(black_box(&view), &normals, &uv, out).unwrap()
+            })
+        });
+        let mut positions = vec![[0.0f32; 3]; n * n];
+        let mut normal_buf = vec![[0.0f32; 3]; n * n];
+        let mut uvs = vec![[0.0f32; 2]; n * n];
+        g.bench_function(BenchmarkId::new("interleave_all", &size), |b| {
+            b.iter(|| {
+                let out = VertexBuffers {
+                    positions: Some(&mut positions),
+                    normals: Some(&mut normal_buf),
+                    uvs: Some(&mut uvs),
+                    vertices: Some(&mut vertices),
+                };
+                interleave(black_box(&view), &normals, &uv, out).unwrap()
+            })
+        });
+
         let mut lod = LodMesh::new(LodParams::default()).unwrap();
         let other = eye + Vec3::new(48.0, 0.0, 0.0);
         let mut flip = false;
@@ -77,6 +109,8 @@ fn render(c: &mut Criterion) {
                 assert!(lod.update(&view, if flip { eye } else { other }));
             })
         });
+        // The patch grid exists once the mesh has seen the view (whichever benches ran).
+        lod.update(&view, eye);
         let patches = lod.patch_grid();
         let all_zero = vec![0u8; patches[0] * patches[1]];
         let mut one_coarse = all_zero.clone();

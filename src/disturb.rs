@@ -2,131 +2,46 @@
 //! [`Wake`] (a moving object pushing the surface along a path).
 //!
 //! Both drive a [`Surface`] only through its public API (`drop_at`, `add_force`), so a
-//! game can use them as they are, or read them as examples of writing its own. Call
-//! [`Disturbance::apply`] once before every [`Surface::step`] with that step's timestep:
+//! game can use them as they are, or read them as examples of writing its own. Lengths
+//! are world units; times and rates are model time (a disturbance sees the substep's
+//! model timestep, see [`Params::time_scale`](crate::Params::time_scale)).
+//! [`Surface::advance_with`] applies a disturbance before every substep of a frame; a
+//! pair, a tuple of up to four, a slice or an `Option` of disturbances is a disturbance too:
 //!
 //! ```
-//! use springwater::disturb::{Disturbance, Rain, Wake};
+//! use springwater::disturb::{Rain, Wake};
 //! use springwater::{Params, Surface};
 //!
 //! let mut water = Surface::new(Params::with_size(64, 64))?;
 //! let mut rain = Rain::new(0.5, 7);                  // 0.5 drops per unit of model time
 //! let mut boat = Wake::circle(&water, 16.0);          // circles the middle of the pool
-//! for _ in 0..50 {
-//!     let dt = water.params().dt;
-//!     rain.apply(&mut water, dt)?;
-//!     boat.apply(&mut water, dt)?;
-//!     water.step()?;
+//! for _frame in 0..50 {
+//!     water.advance_with(1.0 / 60.0, &mut (&mut rain, &mut boat))?;
 //! }
 //! # Ok::<(), springwater::Error>(())
 //! ```
 //!
-//! With [`Surface::advance`]-style frame times, [`advance`] does the same for every substep.
+//! Stepping by hand, call [`Disturbance::apply`] right before each [`Surface::step`] with
+//! that step's timestep.
 //!
 //! Both keep to the regime where the timestep limit holds: a raindrop's depth never
 //! exceeds its radius, and the wake pushes with a bounded force spread over several nodes.
 
 use crate::error::{Error, Result};
 use crate::params;
+use crate::rng::Rng;
 use crate::surface::Surface;
 
-/// Something that disturbs a surface as model time passes.
-pub trait Disturbance {
-    /// Disturbs `surface` for the step of length `dt` about to be taken. Call it right
-    /// before [`Surface::step`]: forces it adds apply to that step only.
-    fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()>;
-}
-
-/// Advances `surface` by `frame_dt` like [`Surface::advance`] (equal substeps no longer
-/// than `params().dt`), applying every disturbance before each substep. Returns the
-/// number of substeps. A failing disturbance or substep stops the frame there.
-///
-/// ```
-/// use springwater::disturb::{advance, Disturbance, Rain};
-/// use springwater::{Params, Surface};
-///
-/// let mut water = Surface::new(Params::with_size(64, 64))?;
-/// let mut rain = Rain::new(2.0, 1);
-/// for _frame in 0..30 {
-///     advance(&mut water, 1.0, &mut [&mut rain])?;     // 3 substeps of 1/3
-/// }
-/// assert!(rain.fallen() > 20);
-/// # Ok::<(), springwater::Error>(())
-/// ```
-pub fn advance(
-    surface: &mut Surface,
-    frame_dt: f32,
-    disturbances: &mut [&mut dyn Disturbance],
-) -> Result<usize> {
-    // The same cut as `Surface::advance`, so each `advance` below is one step.
-    let (substeps, sub) = surface.split_frame(frame_dt)?;
-    for _ in 0..substeps {
-        for d in disturbances.iter_mut() {
-            d.apply(surface, sub)?;
-        }
-        surface.advance(sub)?;
-    }
-    Ok(substeps)
-}
-
-/// A small, fast, seedable random number generator (PCG-XSH-RR, 64-bit state, 32-bit
-/// output). Not for cryptography; the same seed gives the same numbers on every platform.
-#[derive(Debug, Clone, PartialEq, Eq)]
-pub struct Rng {
-    state: u64,
-    inc: u64,
-}
-
-impl Rng {
-    const MUL: u64 = 6_364_136_223_846_793_005;
-
-    /// A generator for `seed`. Every seed (including 0) gives a good stream.
-    pub fn new(seed: u64) -> Self {
-        // Spread the seed over both words so nearby seeds give unrelated streams.
-        let mut rng = Self {
-            state: 0,
-            inc: (mix(seed ^ 0x5851_f42d_4c95_7f2d) << 1) | 1,
-        };
-        rng.next_u32();
-        rng.state = rng.state.wrapping_add(mix(seed));
-        rng.next_u32();
-        rng
-    }
-
-    /// The next 32 random bits.
-    pub fn next_u32(&mut self) -> u32 {
-        let old = self.state;
-        self.state = old.wrapping_mul(Self::MUL).wrapping_add(self.inc);
-        let xorshifted = (((old >> 18) ^ old) >> 27) as u32;
-        xorshifted.rotate_right((old >> 59) as u32)
-    }
-
-    /// A uniform number in `[0, 1)` with 24 random bits.
-    pub fn next_f32(&mut self) -> f32 {
-        (self.next_u32() >> 8) as f32 * (1.0 / (1u32 << 24) as f32)
-    }
-
-    /// A uniform number in `[lo, hi)`.
-    pub fn range(&mut self, lo: f32, hi: f32) -> f32 {
-        lo + (hi - lo) * self.next_f32()
-    }
-}
-
-/// SplitMix64's finaliser: a bijection that scatters nearby inputs.
-fn mix(mut z: u64) -> u64 {
-    z = z.wrapping_add(0x9e37_79b9_7f4a_7c15);
-    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-    z ^ (z >> 31)
-}
+pub use crate::surface::Disturbance;
 
 /// Rain: drops at random places and random times, the same ones for the same seed.
 ///
 /// Drops arrive as a Poisson process of `rate` drops per unit of model time. Each one is a
-/// [`Surface::drop_at`] dent of radius in `radius` (grid steps) and height
-/// `−depth × radius × h` in world units, `h` the grid spacing: as steep on any grid, and
-/// no steeper than one height per cell as long as `depth ≤ 1`. Drops are placed uniformly
-/// over the free interior, at least one radius away from the edge.
+/// [`Surface::drop_at`] dent with a radius drawn from `radius` and height
+/// `−depth × radius`, all in world units: as steep on any grid, and within the stable
+/// regime (`|height| ≤ radius`) as long as `depth ≤ 1`. Drops are placed uniformly over
+/// the rest footprint, at least one radius away from its edge where the footprint allows,
+/// so the same seed drops at the same world points on any spacing.
 ///
 /// The times and places depend only on the seed and the model time passed to
 /// [`Disturbance::apply`], not on how that time is cut into steps: a drop due at time
@@ -135,7 +50,8 @@ fn mix(mut z: u64) -> u64 {
 pub struct Rain {
     /// Mean drops per unit of model time (default in [`Rain::new`]: as given). Zero: no rain.
     pub rate: f32,
-    /// Range of drop radii in grid steps (default: `1.5..3.0`).
+    /// Range of drop radii in world units (default: `1.5..3.0`, one and a half to three
+    /// cells at the default spacing of 1). Keep it at one cell or more.
     pub radius: std::ops::Range<f32>,
     /// Drop depth as a fraction of its radius, in `(0, 1]` (default: `0.6`).
     pub depth: f32,
@@ -211,19 +127,17 @@ impl Disturbance for Rain {
             // The rate may have been raised since the last call.
             self.next = self.time + self.wait();
         }
-        let grid = surface.grid();
+        let [width, length] = surface.mesh_view().extent();
         while self.next <= self.time {
             let radius = self.rng.range(self.radius.start, self.radius.end);
-            // Keep the dent off the pinned ring where the grid allows it.
-            let place = |rng: &mut Rng, n: usize| {
-                let n = (n - 1) as f32;
-                let margin = radius.min(n / 2.0);
-                rng.range(margin, n - margin)
+            // Keep the dent off the pinned ring where the footprint allows it.
+            let place = |rng: &mut Rng, size: f32| {
+                let margin = radius.min(size / 2.0);
+                rng.range(margin, size - margin)
             };
-            let col = place(&mut self.rng, grid.cols);
-            let row = place(&mut self.rng, grid.rows);
-            let h = surface.params().spacing;
-            surface.drop_at(col, row, -self.depth * radius * h, radius)?;
+            let x = place(&mut self.rng, width);
+            let z = place(&mut self.rng, length);
+            surface.drop_at(x, z, -self.depth * radius, radius)?;
             self.fallen += 1;
             self.next += self.wait();
         }
@@ -235,28 +149,32 @@ impl Disturbance for Rain {
 /// A wake: an object (a boat, a duck, a finger) moving along a closed path at constant
 /// speed, pushing the water down under it with a Gaussian footprint.
 ///
-/// Each step it adds a downward force `strength · exp(−d²/radius²)` to every free node
-/// within `3 × radius` of the object (`d` in grid steps). Moving faster than the ripples
-/// (about `h·sqrt(3c(1 − rest_ratio)/m)` per unit time, 1.6 with the seed's defaults)
-/// leaves a V-shaped wake behind it.
+/// Each step it presses down with the pressure `strength · exp(−d²/radius²)` (force per
+/// unit area, `d` the distance from the object), over the disc of radius `3 × radius`:
+/// every node there gets that pressure times its cell's area `h²`. Everything is in world
+/// units, so the same wake pushes the same total force along the same path on any
+/// spacing. Moving faster than the ripples (about `h·sqrt(3c(1 − rest_ratio)/m)` per unit
+/// of model time, 1.6 with the seed's defaults; [`Params::ripple_speed`](crate::Params::ripple_speed)
+/// converts to seconds) leaves a V-shaped wake behind it.
 #[derive(Debug, Clone)]
 pub struct Wake {
-    /// Corners of the closed path, in grid coordinates `(col, row)`.
+    /// Corners of the closed path, world `[x, z]` in the water's local space.
     path: Vec<[f32; 2]>,
     /// Cumulative length of the path at each corner; the last entry is the full length.
     lengths: Vec<f32>,
-    /// Speed along the path in grid steps per unit of model time (default: `2.5`).
+    /// Speed along the path in world units per unit of model time (default: `2.5`).
     pub speed: f32,
-    /// Footprint radius in grid steps (default: `2.5`).
+    /// Footprint radius in world units (default: `2.5`).
     pub radius: f32,
-    /// Peak downward force on the node under the object (default: `1.5`).
+    /// Peak downward pressure under the object, force per unit area (default: `1.5`: a
+    /// force of 1.5 on the node under it at the default spacing of 1).
     pub strength: f32,
     distance: f32,
 }
 
 impl Wake {
-    /// A wake along the closed polyline `path` (grid coordinates `(col, row)`), starting
-    /// at its first corner. The path needs at least two distinct finite corners.
+    /// A wake along the closed polyline `path` (world `[x, z]` corners), starting at its
+    /// first corner. The path needs at least two distinct finite corners.
     pub fn new(path: Vec<[f32; 2]>) -> Result<Self> {
         for p in &path {
             params::finite("wake path", p[0])?;
@@ -287,11 +205,11 @@ impl Wake {
         })
     }
 
-    /// A circle of `radius` grid steps around the middle of `surface`, counter-clockwise
-    /// seen from above, as a 64-gon.
+    /// A circle of `radius` world units around the middle of `surface`'s footprint,
+    /// counter-clockwise seen from above, as a 64-gon.
     pub fn circle(surface: &Surface, radius: f32) -> Self {
-        let g = surface.grid();
-        let (cx, cy) = ((g.cols - 1) as f32 / 2.0, (g.rows - 1) as f32 / 2.0);
+        let [width, length] = surface.mesh_view().extent();
+        let (cx, cy) = (width / 2.0, length / 2.0);
         let path = (0..64)
             .map(|k| {
                 let a = k as f32 * std::f32::consts::TAU / 64.0;
@@ -303,7 +221,7 @@ impl Wake {
         })
     }
 
-    /// Where the object is now, in grid coordinates `(col, row)`.
+    /// Where the object is now, world `[x, z]`.
     pub fn position(&self) -> [f32; 2] {
         let total = *self.lengths.last().expect("at least one corner");
         let s = self.distance.rem_euclid(total);
@@ -330,19 +248,22 @@ impl Disturbance for Wake {
         params::finite("wake speed", self.speed)?;
         params::positive("wake radius", self.radius)?;
         params::finite("wake strength", self.strength)?;
-        let [pc, pr] = self.position();
+        let [px, pz] = self.position();
         let grid = surface.grid();
+        let h = surface.params().spacing;
         let reach = 3.0 * self.radius;
         let inv_r2 = 1.0 / (self.radius * self.radius);
+        let peak = -self.strength * h * h;
+        // The nodes whose rest position lies within `reach` of `p` along one axis.
         let span = |p: f32, n: usize| {
-            let lo = (p - reach).ceil().max(0.0) as usize;
-            let hi = ((p + reach).floor().max(-1.0) as isize).min(n as isize - 1);
+            let lo = ((p - reach) / h).ceil().max(0.0).min(n as f32) as usize;
+            let hi = ((p + reach) / h).floor().max(-1.0).min(n as f32 - 1.0) as isize;
             lo..(hi + 1).max(0) as usize
         };
-        for row in span(pr, grid.rows) {
-            for col in span(pc, grid.cols) {
-                let d2 = (col as f32 - pc).powi(2) + (row as f32 - pr).powi(2);
-                let f = -self.strength * (-d2 * inv_r2).exp();
+        for row in span(pz, grid.rows) {
+            for col in span(px, grid.cols) {
+                let d2 = (col as f32 * h - px).powi(2) + (row as f32 * h - pz).powi(2);
+                let f = peak * (-d2 * inv_r2).exp();
                 surface.add_force(row * grid.cols + col, [0.0, f, 0.0])?;
             }
         }
@@ -357,18 +278,6 @@ impl Disturbance for Wake {
 mod tests {
     use super::*;
     use crate::Params;
-
-    #[test]
-    fn rng_is_reproducible_and_spread() {
-        let mut a = Rng::new(42);
-        let mut b = Rng::new(42);
-        let mut c = Rng::new(43);
-        let xs: Vec<u32> = (0..100).map(|_| a.next_u32()).collect();
-        assert_eq!(xs, (0..100).map(|_| b.next_u32()).collect::<Vec<_>>());
-        assert_ne!(xs, (0..100).map(|_| c.next_u32()).collect::<Vec<_>>());
-        let mean = (0..10_000).map(|_| a.next_f32() as f64).sum::<f64>() / 10_000.0;
-        assert!((mean - 0.5).abs() < 0.02, "{mean}");
-    }
 
     #[test]
     fn rain_does_not_depend_on_how_time_is_cut() {
@@ -420,21 +329,43 @@ mod tests {
     }
 
     #[test]
-    fn advance_takes_the_same_substeps_as_the_surface() {
+    fn advance_with_takes_the_same_substeps_as_advance() {
         let p = Params::with_size(32, 32);
         let mut a = Surface::new(p).unwrap();
         let mut b = Surface::new(p).unwrap();
         a.drop_at(16.0, 16.0, -1.0, 2.0).unwrap();
         b.drop_at(16.0, 16.0, -1.0, 2.0).unwrap();
-        for frame_dt in [1.0, 0.4, 0.05, 2.3, 0.0] {
-            let n = advance(&mut a, frame_dt, &mut []).unwrap();
-            assert_eq!(n, b.advance(frame_dt).unwrap());
+        for seconds in [1.0 / 24.0, 1.0 / 60.0, 0.002, 0.1, 0.0] {
+            let n = a.advance_with(seconds, &mut ()).unwrap();
+            assert_eq!(n, b.advance(seconds).unwrap());
             assert_eq!(a.steps(), b.steps());
         }
         assert_eq!(a.positions(), b.positions());
         let mut rain = Rain::new(1.0, 2);
-        assert!(advance(&mut a, f32::NAN, &mut [&mut rain]).is_err());
-        assert!(advance(&mut a, 1e9, &mut [&mut rain]).is_err());
+        assert!(a.advance_with(f32::NAN, &mut rain).is_err());
+        assert!(a.advance_with(1e9, &mut rain).is_err());
+    }
+
+    #[test]
+    fn advance_with_applies_every_disturbance_before_every_substep() {
+        /// Counts its calls and the model time it was given.
+        struct Count(usize, f64);
+        impl Disturbance for Count {
+            fn apply(&mut self, _: &mut Surface, dt: f32) -> Result<()> {
+                self.0 += 1;
+                self.1 += dt as f64;
+                Ok(())
+            }
+        }
+        let mut s = Surface::new(Params::with_size(16, 16)).unwrap();
+        let (mut a, mut b) = (Count(0, 0.0), Count(0, 0.0));
+        let n = s.advance_with(0.1, &mut (&mut a, &mut b)).unwrap();
+        assert_eq!(n, 6); // 2.4 units of model time in steps of 0.4
+        assert_eq!((a.0, b.0), (6, 6));
+        assert!((a.1 - 2.4).abs() < 1e-5 && (s.time() - 2.4).abs() < 1e-5);
+        let mut list: Vec<&mut dyn Disturbance> = vec![&mut a, &mut b];
+        s.advance_with(1.0 / 60.0, list.as_mut_slice()).unwrap();
+        assert_eq!((a.0, b.0), (7, 7));
     }
 
     #[test]

@@ -11,7 +11,8 @@ pub enum Error {
     /// A parameter is not a finite number, or is outside its allowed range.
     #[error("{name} = {value} is invalid: {expected}")]
     InvalidParam {
-        /// The parameter's name as the CLI spells it (`mass`, `dt`, …).
+        /// The parameter's name: the [`Params`](crate::Params) field or the argument
+        /// (`mass`, `dt`, `drop radius`, …).
         name: &'static str,
         /// The value that was refused.
         value: f64,
@@ -36,7 +37,10 @@ pub enum Error {
     },
 
     /// The grid has more nodes than this process can address or allocate.
-    #[error("grid {cols}x{rows} is too large to allocate ({bytes} bytes of state); use a smaller --size")]
+    #[error(
+        "grid {cols}x{rows} is too large to allocate ({bytes} bytes of state); \
+         use at most 2^26 nodes (for example 8192x8192)"
+    )]
     GridTooLarge {
         /// Nodes per row.
         cols: usize,
@@ -127,6 +131,59 @@ pub enum Error {
     /// A snapshot could not be read: truncated, corrupted, or from another format version.
     #[error("snapshot refused: {0}")]
     Snapshot(String),
+
+    /// Reading or writing a snapshot failed in the reader or writer given. The I/O error is
+    /// the [`source`](std::error::Error::source).
+    #[error("cannot {action} the snapshot: {source}")]
+    Io {
+        /// `"read"` or `"write"`.
+        action: &'static str,
+        /// What the reader or writer reported.
+        #[source]
+        source: IoError,
+    },
+}
+
+/// A [`std::io::Error`] that can be cloned and compared (by kind and message), so that
+/// [`Error`](enum@Error) stays `Clone` and `PartialEq`. [`IoError::get_ref`] gives the
+/// original.
+#[derive(Debug, Clone)]
+pub struct IoError(std::sync::Arc<std::io::Error>);
+
+impl IoError {
+    /// The original I/O error.
+    pub fn get_ref(&self) -> &std::io::Error {
+        &self.0
+    }
+
+    /// Its kind.
+    pub fn kind(&self) -> std::io::ErrorKind {
+        self.0.kind()
+    }
+}
+
+impl From<std::io::Error> for IoError {
+    fn from(e: std::io::Error) -> Self {
+        Self(std::sync::Arc::new(e))
+    }
+}
+
+impl PartialEq for IoError {
+    fn eq(&self, other: &Self) -> bool {
+        self.kind() == other.kind() && self.0.to_string() == other.0.to_string()
+    }
+}
+
+impl std::fmt::Display for IoError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        self.0.fmt(f)
+    }
+}
+
+impl std::error::Error for IoError {
+    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
+        Some(&*self.0)
+    }
 }
 
 /// Shorthand for results whose error is [`Error`](enum@Error).

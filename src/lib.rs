@@ -18,72 +18,120 @@
 //! # Ok::<(), springwater::Error>(())
 //! ```
 //!
+//! ## The model
+//!
+//! * **Grid.** Node `(col, row)` has index `row * cols + col` and rests at
+//!   `(col·h, 0, row·h)` in the water's local space, `h` = [`Params::spacing`]; y is up.
+//!   By default the outer ring of nodes is pinned (a pool, [`Boundary`]).
+//! * **Springs** on every grid edge and both diagonals of every cell (families E, S, SE,
+//!   SW: [`Family`]); a spring of rest length `L0` and coefficient `c` at length `L`
+//!   pulls its ends with `c (L − L0)`. Rest lengths are [`Params::rest_ratio`] times the
+//!   initial lengths: below 1 the flat sheet is under tension and vertical ripples travel
+//!   at about `h·sqrt(3c(1 − rest_ratio)/m)` per unit of model time.
+//! * **Motion** `m x'' + γ x' + f = f_ext`, integrated with symplectic Euler at
+//!   [`Params::dt`]; [`Params`] explains the stability limit the timestep must stay below
+//!   and what validation checks.
+//! * **Units.** Lengths are world units everywhere (the unit of `spacing`): drops, forces
+//!   at a point, queries, wakes. Time is *model time* inside the model (`dt`, disturbance
+//!   rates); a game passes seconds to [`Surface::advance`], and [`Params::time_scale`]
+//!   (model time per second, with [`Params::ripple_speed`] to read it as a speed) converts.
+//!
 //! ## The pipeline
 //!
 //! ```text
 //! Params ─validate─▶ Surface (SoA state + spring tables + colour batches)
-//!                       │ step(): forces (colour batches, SIMD, rayon) + integrate
+//!                       │ advance(seconds) / step(): forces (colour batches, SIMD, rayon) + integrate
 //!                       ▼
 //!                    MeshView<'_>  (borrows the SoA arrays: zero copy)
-//!                       ├─▶ normals      (per node)
-//!                       ├─▶ LOD indices  (view-dependent, crack-free, cached per camera)
-//!                       └─▶ refraction   (per node bottom UV, Fresnel)
+//!                       ├─▶ normals      (per node)                    mesh
+//!                       ├─▶ LOD indices  (view-dependent, crack-free)  mesh
+//!                       ├─▶ refraction   (per node bottom UV, Fresnel) refraction
+//!                       └─▶ interleaved positions/normals/UVs/vertices buffers
 //! ```
 //!
-//! * [`params`]: the model's parameters, their defaults and the stability limits.
-//! * [`grid`]: index math and spring families. Row-major, y up.
-//! * [`springs`]: per-spring tables and the colour batches (bands of rows).
-//! * `forces`: the scalar reference step and the SIMD + rayon engine step.
-//! * [`surface`]: [`Surface`], what a game owns.
-//! * [`snapshot`]: save and restore a surface bitwise ([`Snapshot`], a versioned binary
-//!   format with a checksum).
-//! * [`mesh`]: the zero-copy [`MeshView`] and the render-side stages: normals, the LOD
-//!   index buffer ([`mesh::LodMesh`]), point queries ([`Surface::height_at`] and friends).
-//!   Its docs show a renderer's frame.
+//! Arrows run one way: the physics ([`Surface`]) knows nothing of meshes or renderers; the
+//! render-side stages read it only through [`MeshView`].
+//!
+//! * [`Surface`]: what a game owns: stepping, drops and forces, point queries
+//!   ([`Surface::height_at`] and friends), snapshots ([`Snapshot`], a versioned binary
+//!   format with a checksum), the host's thread pool.
+//! * [`Params`], [`Boundary`]: the model's parameters, their defaults and limits.
+//! * [`disturb`]: rain reproducible from a seed, a moving object's wake, and the
+//!   [`disturb::Disturbance`] trait that [`Surface::advance_with`] applies every substep.
+//! * [`mesh`]: normals and the LOD index buffer. Its docs show a renderer's frame.
 //! * [`refraction`]: per-node bottom texture coordinates through the surface, Fresnel.
-//! * [`disturb`]: disturbances worth watching, through the public API: rain reproducible
-//!   from a seed ([`disturb::Rain`]) and a moving object's wake ([`disturb::Wake`]).
+//! * [`buffers`]: the per-node arrays interleaved for a GPU upload (packed [`buffers::Vertex`]).
 //! * `render` (feature `render`): a CPU preview renderer drawing the LOD mesh in
 //!   perspective with the bottom refracted through it, sky reflections and caustics.
-//! * [`baselines`]: comparison kernels for benchmarks (naive AoS, memory floor).
+//!
+//! * [`SimdLevel`]: the instruction set the engine and the render-side stages run. The
+//!   default build detects the CPU once and runs the widest it has (SSE2, AVX2,
+//!   AVX-512); `SPRINGWATER_SIMD=scalar|sse2|avx2|avx512` or
+//!   [`Surface::set_simd_level`] force one. Every level gives the same bits.
 //!
 //! ## Features
 //!
-//! * `parallel` (default): colour batches run on the rayon pool. Results are bitwise
-//!   identical with it off and for any number of threads.
-//! * `cli` (default): the `springwater` command-line tool (turns on `render`). Engines
-//!   embedding the library use `default-features = false, features = ["parallel"]`.
+//! * `parallel` (default): colour batches run on a rayon pool (the global one, or the
+//!   host's: [`Surface::set_thread_pool`]). Results are bitwise identical with it off and
+//!   for any number of threads.
+//! * `cli` (default): the `springwater` command-line tool (turns on `render` and
+//!   `internals`). Engines embedding the library use
+//!   `default-features = false, features = ["parallel"]`.
 //! * `render`: the CPU preview renderer (`springwater::render`). No extra dependencies.
 //! * `serde`: derive `Serialize`/`Deserialize` for [`Params`] and [`Snapshot`].
+//! * `internals`: the unstable `springwater::internals` module (scalar twins of the SIMD
+//!   stages, comparison kernels, the engine's schedule knobs, for the crate's own tests,
+//!   benchmarks and CLI). Not covered by semver.
 
 #![warn(missing_docs)]
 #![deny(unsafe_op_in_unsafe_fn)]
 #![warn(clippy::undocumented_unsafe_blocks)]
 
-pub mod baselines;
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
+mod baselines;
+pub mod buffers;
 pub mod disturb;
-pub mod error;
+mod error;
 mod forces;
-pub mod grid;
+mod grid;
 pub mod mesh;
-pub mod params;
+mod params;
 pub mod refraction;
 #[cfg(feature = "render")]
 pub mod render;
-pub mod simd;
-pub mod snapshot;
-pub mod springs;
+mod rng;
+mod simd;
+mod springs;
 mod state;
-pub mod surface;
+mod surface;
+mod view;
 
-pub use error::{Error, Result};
-pub use forces::engine::MAX_PASS_STEPS;
+pub use error::{Error, IoError, Result};
 pub use grid::{Family, Grid, SpringId};
-pub use mesh::MeshView;
-pub use params::{Boundary, Params};
+pub use params::{Boundary, Params, MAX_NODES};
 pub use simd::SimdLevel;
-pub use snapshot::Snapshot;
-pub use surface::{Energy, Stepper, Surface};
+pub use surface::snapshot::Snapshot;
+pub use surface::{Energy, Spring, Stepper, Surface};
+pub use view::MeshView;
+
+/// Unstable internals for the crate's command line, tests and benchmarks: the scalar
+/// twins the SIMD stages are tested against, the comparison kernels of `bench`, and the
+/// engine's schedule (bands, tiling, steps per pass) that the colouring and parity tests
+/// check. **Not part of the public API**: no semver
+/// promise, may change or vanish in any release. It exists because integration tests,
+/// benchmarks and the binary are outside the crate and can only reach public items; it is
+/// behind the `internals` feature (on with `cli`) and hidden from the docs so that a game
+/// does not build on it by accident.
+#[cfg(feature = "internals")]
+#[doc(hidden)]
+pub mod internals {
+    pub use crate::mesh::normals::compute_normals_scalar;
+    pub use crate::refraction::scalar::{refract_node, refract_scalar};
+
+    pub use crate::baselines::{MemoryFloor, NaiveSurface};
+    pub use crate::forces::engine::MAX_PASS_STEPS;
+    pub use crate::springs::{band_rows, bands, Band, Tiling, MAX_BAND_ROWS, MIN_BAND_ROWS};
+}
 
 /// The README's examples, compiled and run as doc tests.
 #[cfg(doctest)]

@@ -1,35 +1,4 @@
-//! Model parameters with the seed's defaults, their validation and the two timestep limits.
-//!
-//! # Where the timestep limits come from
-//!
-//! Symplectic Euler is stable for a linear oscillator of angular frequency ω iff `ω Δt < 2`.
-//! The stiffest mode of the lattice therefore sets the limit:
-//!
-//! * **Linear limit at rest** ([`Params::linear_dt_limit`]). Around the flat, pre-tensioned
-//!   rest state a spring of coefficient `c`, stretched to length `h` with rest length
-//!   `r·h`, has stiffness `c` along itself and `c(1 − r)` across itself. The stiffest
-//!   mode is the in-plane checkerboard at wave vector (π, 0): the E spring contributes
-//!   `4c`, the two diagonals `2·(c/2 + c(1−r)/2)·2`, the S spring `4c(1 − r)`, which adds up
-//!   to `ω²max = 4c(3 − r)/m`. So small disturbances stay bounded iff
-//!   `Δt < sqrt(m / (c (3 − r)))` (0.478 with the defaults).
-//! * **Large-wave limit** ([`Params::critical_dt`]). A stretched spring stiffens across
-//!   itself up to `c`, so while no spring is compressed below half its rest length each of a
-//!   node's 8 springs adds at most `c` in every direction and Gershgorin bounds the
-//!   spectrum by `ω²max ≤ 12c/m`; `Δt < sqrt(m / (3c))` (0.436 with the defaults) is
-//!   stable for any such state. The seed's Δt = 0.4 is 92% of it. This is the limit that
-//!   validation enforces.
-//! * **Viscosity.** The seed integrates the damping `−γv` explicitly too. For one mode,
-//!   symplectic Euler maps `(x, v)` with trace `2 − ω²Δt² − bΔt` and determinant `1 − bΔt`
-//!   (`b = γ/m`), and the Jury conditions give stability iff `ω²Δt² + 2bΔt < 4`. With
-//!   `ω²max = 12c/m` the limit is the positive root `Δt = 4 / (sqrt(b² + 48c/m) + b)`, which
-//!   is `sqrt(m / (3c))` at `γ = 0` and 0.4358 with the defaults. Heavy damping therefore
-//!   lowers the limit: measured on a 32×32 grid with `m = 4`, `c = 7` at 99% of the
-//!   undamped limit, `γ = 6` reached NaN within 103 steps. The bound uses the largest `γ`
-//!   and the smallest `m`.
-//!
-//!   Drops steeper than one height per cell can fold the lattice,
-//!   where no timestep is safe; the engine then reports [`Error::NonFinite`] instead of
-//!   passing NaN on.
+//! Model parameters with the seed's defaults ([`Params`]; its docs explain the timestep limits).
 
 use crate::error::{Error, Result};
 
@@ -47,8 +16,41 @@ pub enum Boundary {
 
 /// Model parameters. Plain data with the seed's defaults; [`Params::validate`] checks it.
 ///
-/// Units are the model's own: lengths in grid units of the world, time in the seed's
-/// time unit, mass in mass units.
+/// Lengths are world units (the unit of `spacing`, the water's local space); mass is in
+/// mass units; `dt` and the rates of [`crate::disturb`] are in *model time*, the seed's
+/// time unit. [`Params::time_scale`] says how much model time passes per second of a
+/// game's clock, which is what [`Surface::advance`](crate::Surface::advance) takes.
+///
+/// # Where the timestep limits come from
+///
+/// Symplectic Euler is stable for a linear oscillator of angular frequency ω iff `ω Δt < 2`.
+/// The stiffest mode of the lattice therefore sets the limit:
+///
+/// * **Linear limit at rest** ([`Params::linear_dt_limit`]). Around the flat, pre-tensioned
+///   rest state a spring of coefficient `c`, stretched to length `h` with rest length
+///   `r·h`, has stiffness `c` along itself and `c(1 − r)` across itself. The stiffest
+///   mode is the in-plane checkerboard at wave vector (π, 0): the E spring contributes
+///   `4c`, the two diagonals `2·(c/2 + c(1−r)/2)·2`, the S spring `4c(1 − r)`, which adds up
+///   to `ω²max = 4c(3 − r)/m`. So small disturbances stay bounded iff
+///   `Δt < sqrt(m / (c (3 − r)))` (0.478 with the defaults).
+/// * **Large-wave limit** ([`Params::critical_dt`]). A stretched spring stiffens across
+///   itself up to `c`, so while no spring is compressed below half its rest length each of a
+///   node's 8 springs adds at most `c` in every direction and Gershgorin bounds the
+///   spectrum by `ω²max ≤ 12c/m`; `Δt < sqrt(m / (3c))` (0.436 with the defaults) is
+///   stable for any such state. The seed's Δt = 0.4 is 92% of it. This is the limit that
+///   validation enforces.
+/// * **Viscosity.** The seed integrates the damping `−γv` explicitly too. For one mode,
+///   symplectic Euler maps `(x, v)` with trace `2 − ω²Δt² − bΔt` and determinant `1 − bΔt`
+///   (`b = γ/m`), and the Jury conditions give stability iff `ω²Δt² + 2bΔt < 4`. With
+///   `ω²max = 12c/m` the limit is the positive root `Δt = 4 / (sqrt(b² + 48c/m) + b)`, which
+///   is `sqrt(m / (3c))` at `γ = 0` and 0.4358 with the defaults. Heavy damping therefore
+///   lowers the limit: measured on a 32×32 grid with `m = 4`, `c = 7` at 99% of the
+///   undamped limit, `γ = 6` reached NaN within 103 steps. The bound uses the largest `γ`
+///   and the smallest `m`.
+///
+///   Drops steeper than one height per cell can fold the lattice,
+///   where no timestep is safe; the engine then reports [`Error::NonFinite`] instead of
+///   passing NaN on.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Params {
@@ -73,6 +75,22 @@ pub struct Params {
     pub boundary: Boundary,
     /// Uniform acceleration applied to every free node, `[x, y, z]` (default: zero).
     pub acceleration: [f32; 3],
+    /// Model time units per second of the caller's clock, used by
+    /// [`Surface::advance`](crate::Surface::advance) (default: `24.0`). It sets how fast the
+    /// water moves on screen: ripples travel [`Params::ripple_speed`] world units per
+    /// second, and [`Params::set_ripple_speed`] sets this field from a wanted speed.
+    ///
+    /// The default makes a 60 Hz frame one step of the seed's `dt = 0.4` (the cheapest
+    /// animation that uses the seed's timestep), and ripples then cross about 39 cells per
+    /// second: a 128-cell pool in about 3.3 s, which is what the `springwater render`
+    /// preview shows (3 steps per frame at 20 frames per second). Must be finite and > 0.
+    #[cfg_attr(feature = "serde", serde(default = "default_time_scale"))]
+    pub time_scale: f32,
+}
+
+#[cfg(feature = "serde")]
+fn default_time_scale() -> f32 {
+    Params::default().time_scale
 }
 
 impl Default for Params {
@@ -88,6 +106,7 @@ impl Default for Params {
             rest_ratio: 0.5,
             boundary: Boundary::Pinned,
             acceleration: [0.0; 3],
+            time_scale: 24.0,
         }
     }
 }
@@ -118,14 +137,56 @@ impl Params {
     }
 
     /// The guaranteed (large-wave) stability limit: `sqrt(m / (3c))` without viscosity,
-    /// a little less with it (see the module docs).
+    /// a little less with it (see the [`Params`] docs).
     pub fn critical_dt(&self) -> f32 {
         critical_dt(self.mass, self.stiffness, self.viscosity)
     }
 
-    /// The linear stability limit at rest `sqrt(m / (c (3 − rest_ratio)))`: see the module docs.
+    /// The linear stability limit at rest `sqrt(m / (c (3 − rest_ratio)))`: see the [`Params`] docs.
     pub fn linear_dt_limit(&self) -> f32 {
         (self.mass / (self.stiffness * (3.0 - self.rest_ratio))).sqrt()
+    }
+
+    /// Speed of small ripples in world units per **second** of the caller's clock:
+    /// `time_scale · h · sqrt(3c(1 − rest_ratio)/m)` (the lattice's long-wave speed per unit
+    /// of model time, see the crate docs' model section, times the time scale). About 39 with
+    /// the defaults. Zero when `rest_ratio = 1` (no tension: ripples do not travel).
+    pub fn ripple_speed(&self) -> f32 {
+        self.time_scale * self.model_ripple_speed()
+    }
+
+    /// Ripple speed in world units per unit of model time.
+    fn model_ripple_speed(&self) -> f32 {
+        self.spacing * (3.0 * self.stiffness * (1.0 - self.rest_ratio) / self.mass).sqrt()
+    }
+
+    /// Sets [`Params::time_scale`] so that ripples travel `speed` world units per second.
+    /// Refused (nothing changed) when `speed` is not finite and positive, or when the other
+    /// parameters give ripples no speed to scale (`rest_ratio = 1`) or a time scale
+    /// validation would refuse.
+    ///
+    /// ```
+    /// use springwater::Params;
+    ///
+    /// let mut p = Params::with_size(256, 256);
+    /// p.set_ripple_speed(128.0)?;                  // cross the pool in about 2 s
+    /// assert!((p.ripple_speed() - 128.0).abs() < 1e-3);
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn set_ripple_speed(&mut self, speed: f32) -> Result<()> {
+        positive("ripple speed", speed)?;
+        let per_model_time = self.model_ripple_speed();
+        let time_scale = speed / per_model_time;
+        if !(per_model_time.is_finite() && per_model_time > 0.0) {
+            return Err(Error::InvalidParam {
+                name: "ripple speed",
+                value: speed as f64,
+                expected: "a speed the lattice can have: it needs rest_ratio < 1 and valid spacing, mass and stiffness",
+            });
+        }
+        positive("time_scale", time_scale)?;
+        self.time_scale = time_scale;
+        Ok(())
     }
 
     /// Checks every field, including `dt < critical_dt()`.
@@ -173,11 +234,12 @@ impl Params {
         let r = self.rest_ratio;
         if !(r.is_finite() && (0.0..=1.0).contains(&r)) {
             return Err(Error::InvalidParam {
-                name: "rest-ratio",
+                name: "rest_ratio",
                 value: r as f64,
                 expected: "a number in [0, 1]",
             });
         }
+        positive("time_scale", self.time_scale)?;
         for a in self.acceleration {
             if !a.is_finite() {
                 return Err(Error::InvalidParam {
@@ -196,7 +258,7 @@ pub const MAX_EXTENT: f64 = 1e15;
 
 /// The large-wave limit for the smallest mass, largest coefficient and largest viscosity:
 /// `sqrt(m / (3c))` without viscosity, else the positive root of
-/// `(12c/m) Δt² + 2(γ/m) Δt = 4` (see the module docs).
+/// `(12c/m) Δt² + 2(γ/m) Δt = 4` (see the [`Params`] docs).
 pub(crate) fn critical_dt(min_mass: f32, max_stiffness: f32, max_viscosity: f32) -> f32 {
     if max_viscosity == 0.0 {
         return (min_mass / (3.0 * max_stiffness)).sqrt();

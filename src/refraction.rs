@@ -1,6 +1,6 @@
 //! Refraction: which point of the bottom each node shows, and how much it reflects.
 //!
-//! # Method (DESIGN.md §2)
+//! # Method
 //!
 //! The pool has a flat bottom at `y = −depth` carrying a texture that spans the grid's rest
 //! footprint `[0, (cols−1)h] × [0, (rows−1)h]`. For node `P` with unit normal `n` and the
@@ -60,14 +60,18 @@
 //! level ([`MeshView::simd_level`]), and chunks of nodes in parallel with the `parallel`
 //! feature. Every case above is a mask and a `select`, never a branch. Clamps against
 //! constants use the lanes' `min`/`max` (`minps`/`maxps`), which agree with `f32::min`
-//! and `f32::max` there (a NaN input gives the constant). [`refract_node`] is the scalar
+//! and `f32::max` there (a NaN input gives the constant). `refract_node` is the scalar
 //! twin, with the same operations in the same order; it computes the tail of the arrays and
 //! is compared with the lane code, bitwise, in tests.
 
 use crate::error::{Error, Result};
-use crate::mesh::{MeshView, Normals};
+use crate::mesh::Normals;
 use crate::simd::{Chunks, ChunksMut, Vector};
+use crate::view::MeshView;
 use glam::Vec3;
+
+pub(crate) mod scalar;
+pub(crate) use scalar::refract_node;
 
 /// The bottom and the water's optics.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -228,75 +232,6 @@ pub fn normals_and_refraction(
     Ok(())
 }
 
-/// The scalar twin of [`refract`]: one [`refract_node`] per node, same checks, same
-/// results.
-pub fn refract_scalar(
-    view: &MeshView<'_>,
-    normals: &Normals,
-    eye: Vec3,
-    params: &RefractionParams,
-    out: &mut Refraction,
-) -> Result<()> {
-    Refractor::new(view, eye, params)?;
-    check_normals(view, normals)?;
-    let n = view.grid().len();
-    resize(out, n);
-    let extent = extent(view);
-    for i in 0..n {
-        let [u, v, f] = refract_node(view.position(i), normals.get(i), eye, params, extent);
-        (out.u[i], out.v[i], out.fresnel[i]) = (u, v, f);
-    }
-    Ok(())
-}
-
-/// The size of the bottom texture in world units, `((cols−1)h, (rows−1)h)`.
-pub fn extent(view: &MeshView<'_>) -> [f32; 2] {
-    let h = view.spacing();
-    [(view.cols() - 1) as f32 * h, (view.rows() - 1) as f32 * h]
-}
-
-/// `[u, v, fresnel]` for one node at `p` with normal `n`, the bottom texture spanning
-/// `extent` (see [`extent`]). The scalar twin of the lane code in [`refract`].
-pub fn refract_node(
-    p: Vec3,
-    n: Vec3,
-    eye: Vec3,
-    params: &RefractionParams,
-    extent: [f32; 2],
-) -> [f32; 3] {
-    let eta = 1.0 / params.ior;
-    let (scale, es) = eye_scale(eye);
-    // The view vector D = σ(P − E), not normalised: with L = |D|, cosi = c/L and the
-    // refracted direction is T/L (see the module docs), so the hit needs no division by L.
-    let (dx, dy, dz) = (p.x * scale - es.x, p.y * scale - es.y, p.z * scale - es.z);
-    let l2 = dx * dx + dy * dy + dz * dz;
-    let c = -(n.x * dx + n.y * dy + n.z * dz);
-    let q = l2 - eta * eta * (l2 - c * c);
-    let f = eta * c - q.max(0.0).sqrt();
-    let (tx, ty, tz) = (eta * dx + f * n.x, eta * dy + f * n.y, eta * dz + f * n.z);
-    let s = (-params.depth - p.y) / ty;
-    let (ox, oz) = (s * tx, s * tz);
-    let front = c > 0.0;
-    let valid = front && ty < 0.0 && s >= 0.0 && ox.abs() < MAX_TRAVEL && oz.abs() < MAX_TRAVEL;
-    let (hx, hz) = if valid {
-        (p.x + ox, p.z + oz)
-    } else {
-        (p.x, p.z)
-    };
-    let cosi = c / l2.max(f32::MIN_POSITIVE).sqrt();
-
-    let r0 = params.r0();
-    let c_in = (-cosi).min(1.0);
-    let sin2t = params.ior * params.ior * (1.0 - c_in * c_in);
-    let c_back = (1.0 - sin2t).max(0.0).sqrt();
-    let c = if front { cosi.min(1.0) } else { c_back };
-    let m = 1.0 - c;
-    let m2 = m * m;
-    let r = r0 + (1.0 - r0) * (m2 * m2 * m);
-    let r = if !front && sin2t >= 1.0 { 1.0 } else { r };
-    [hx * (1.0 / extent[0]), hz * (1.0 / extent[1]), r]
-}
-
 /// Longest ray, in world units, that still counts as reaching the bottom.
 const MAX_TRAVEL: f32 = 1e30;
 
@@ -349,7 +284,7 @@ impl Refractor {
         Ok(Self {
             eye,
             params: *params,
-            extent: extent(view),
+            extent: view.extent(),
         })
     }
 
@@ -470,7 +405,7 @@ impl<V: Vector> Consts<V> {
 }
 
 /// `[u, v, fresnel]` for a chunk of nodes at `[px, py, pz]` with normals `[nx, ny, nz]`:
-/// [`refract_node`] with masks for its branches.
+/// [`scalar::refract_node`] with masks for its branches.
 #[inline(always)]
 fn refract_lanes<V: Vector>(c: &Consts<V>, [px, py, pz]: [V; 3], [nx, ny, nz]: [V; 3]) -> [V; 3] {
     let (zero, one) = (V::zero(), V::one());

@@ -130,6 +130,7 @@ impl Springs {
 }
 
 /// One batch of springs: a band of rows, with its colour.
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 #[derive(Debug, Clone, PartialEq, Eq)]
 pub struct Band {
     /// 0 for even bands, 1 for odd ones.
@@ -138,6 +139,7 @@ pub struct Band {
     pub rows: Range<usize>,
 }
 
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 impl Band {
     /// The springs of this band on `grid`.
     pub fn springs(&self, grid: Grid) -> impl Iterator<Item = SpringId> + '_ {
@@ -154,6 +156,7 @@ impl Band {
 /// The bands of a grid with `rows` rows, `band_rows` rows each; the last band also takes
 /// the remainder (so it has `band_rows ..< 2·band_rows` rows), and a grid shorter than
 /// `band_rows` is one band.
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub fn bands(rows: usize, band_rows: usize) -> impl Iterator<Item = Band> {
     let tiling = Tiling::new(rows, band_rows, 1);
     (0..tiling.bands()).map(move |b| Band {

@@ -3,7 +3,7 @@
 mod common;
 
 use common::state_bits;
-use springwater::{Error, Family, Params, SpringId, Surface};
+use springwater::{Error, Family, Params, Spring, SpringId, Surface};
 
 #[test]
 fn every_invalid_parameter_is_refused_with_its_name() {
@@ -44,14 +44,14 @@ fn every_invalid_parameter_is_refused_with_its_name() {
                 rest_ratio: 1.5,
                 ..base
             },
-            "rest-ratio",
+            "rest_ratio",
         ),
         (
             Params {
                 rest_ratio: f32::NAN,
                 ..base
             },
-            "rest-ratio",
+            "rest_ratio",
         ),
         (
             Params {
@@ -98,21 +98,81 @@ fn a_timestep_at_or_past_critical_names_the_critical_value() {
         ..Params::default()
     };
     assert!(Surface::new(at).is_err());
-    assert!(Surface::new_unchecked_dt(p).is_ok());
+    assert!(Surface::new_without_dt_check(p).is_ok());
 }
 
 #[test]
 fn advance_splits_a_frame_into_substeps_no_longer_than_dt() {
-    let mut s = Surface::new(Params::with_size(8, 8)).unwrap();
+    // Frames in seconds; a time scale of 10 model time units per second makes the model
+    // times 0, 0.4, 0.41 and 1.0.
+    let mut s = Surface::new(Params {
+        time_scale: 10.0,
+        ..Params::with_size(8, 8)
+    })
+    .unwrap();
     assert_eq!(s.advance(0.0).unwrap(), 0);
-    assert_eq!(s.advance(0.4).unwrap(), 1);
-    assert_eq!(s.advance(0.41).unwrap(), 2);
-    assert_eq!(s.advance(1.0).unwrap(), 3);
+    assert_eq!(s.advance(0.04).unwrap(), 1);
+    assert_eq!(s.advance(0.041).unwrap(), 2);
+    assert_eq!(s.advance(0.1).unwrap(), 3);
     assert!((s.time() - 1.81).abs() < 1e-5);
+    let (n, sub) = s.split_frame(0.041).unwrap();
+    assert_eq!(n, 2);
+    assert!((sub - 0.205).abs() < 1e-6 && sub <= s.params().dt);
     for bad in [-1.0, f32::NAN, f32::INFINITY, 1e9] {
         let before = state_bits(&s);
         assert!(s.advance(bad).is_err(), "{bad}");
         assert!(state_bits(&s) == before);
+    }
+}
+
+#[test]
+fn the_default_time_scale_takes_one_step_per_60_hz_frame() {
+    let p = Params::default();
+    assert_eq!(p.time_scale, 24.0);
+    let mut s = Surface::new(Params::with_size(8, 8)).unwrap();
+    for _ in 0..600 {
+        assert_eq!(s.advance(1.0 / 60.0).unwrap(), 1);
+    }
+    // Ten seconds of frames are 240 units of model time, to the rounding dropped per frame.
+    assert!((s.time() - 240.0).abs() < 240.0 * 1e-5, "{}", s.time());
+    assert_eq!(s.advance(1.0 / 30.0).unwrap(), 2);
+    assert_eq!(s.advance(1.0 / 144.0).unwrap(), 1);
+    // Ripples: about 39 world units per second with the seed's parameters.
+    assert!((p.ripple_speed() - 24.0 * 2.625f32.sqrt()).abs() < 1e-3);
+}
+
+#[test]
+fn the_ripple_speed_sets_the_time_scale() {
+    let mut p = Params::with_size(65, 65);
+    p.set_ripple_speed(32.0).unwrap();
+    assert!((p.ripple_speed() - 32.0).abs() < 1e-4);
+    // Doubling the speed doubles the model time of a frame.
+    let frame = Surface::new(p).unwrap().split_frame(1.0).unwrap();
+    p.set_ripple_speed(64.0).unwrap();
+    let double = Surface::new(p).unwrap().split_frame(1.0).unwrap();
+    let model = |(n, dt): (usize, f32)| n as f32 * dt;
+    assert!((model(double) - 2.0 * model(frame)).abs() < 1e-3);
+    // Refused, nothing changed.
+    let before = p;
+    for bad in [0.0, -1.0, f32::NAN, f32::INFINITY] {
+        assert!(p.set_ripple_speed(bad).is_err());
+        assert_eq!(p, before);
+    }
+    p.rest_ratio = 1.0; // no tension, no travelling ripples
+    assert_eq!(p.ripple_speed(), 0.0);
+    assert!(p.set_ripple_speed(10.0).is_err());
+    for bad in [0.0, -1.0, f32::NAN] {
+        let p = Params {
+            time_scale: bad,
+            ..Params::default()
+        };
+        assert!(matches!(
+            Surface::new(p),
+            Err(Error::InvalidParam {
+                name: "time_scale",
+                ..
+            })
+        ));
     }
 }
 
@@ -141,15 +201,25 @@ fn bad_edits_are_refused_and_change_nothing() {
         origin: 5,
     };
     assert!(s.spring(east_of_last_column).is_none());
-    assert!(s.set_spring(east_of_last_column, 1.0, 7.0).is_err());
+    assert!(s
+        .set_spring(
+            east_of_last_column,
+            Spring {
+                rest: 1.0,
+                stiffness: 7.0
+            }
+        )
+        .is_err());
     assert!(s
         .set_spring(
             SpringId {
                 family: Family::S,
                 origin: 0
             },
-            0.5,
-            100.0
+            Spring {
+                rest: 0.5,
+                stiffness: 100.0
+            }
         )
         .is_err());
     assert!(state_bits(&s) == before);
@@ -163,9 +233,28 @@ fn edits_take_effect() {
         family: Family::SE,
         origin: 7,
     };
-    assert_eq!(s.spring(id), Some((0.5 * std::f32::consts::SQRT_2, 7.0)));
-    s.set_spring(id, 1.0, 6.0).unwrap();
-    assert_eq!(s.spring(id), Some((1.0, 6.0)));
+    assert_eq!(
+        s.spring(id),
+        Some(Spring {
+            rest: 0.5 * std::f32::consts::SQRT_2,
+            stiffness: 7.0
+        })
+    );
+    s.set_spring(
+        id,
+        Spring {
+            rest: 1.0,
+            stiffness: 6.0,
+        },
+    )
+    .unwrap();
+    assert_eq!(
+        s.spring(id),
+        Some(Spring {
+            rest: 1.0,
+            stiffness: 6.0
+        })
+    );
     assert!(!s.is_pinned(7).unwrap());
     s.set_pinned(7, true).unwrap();
     assert!(s.is_pinned(7).unwrap());

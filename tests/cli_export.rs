@@ -220,3 +220,46 @@ fn bench_names_the_level_first_and_an_unknown_level_is_refused() {
         "{stderr}"
     );
 }
+
+/// `--drop COL,ROW,HEIGHT,RADIUS` stays in grid steps whatever the spacing (the command
+/// line's contract), while the library takes world units: at spacing 0.5 the crest is on
+/// node (6, 4) and one radius (2 cells) away the height is 1/e of it.
+#[test]
+fn drop_flags_stay_in_grid_steps_at_any_spacing() {
+    let path = temp("drop.csv");
+    let out = springwater(&[
+        "simulate",
+        "--size",
+        "13x9",
+        "--spacing",
+        "0.5",
+        "--steps",
+        "0",
+        "--drop",
+        "6,4,1,2",
+        "--csv",
+        path.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let csv = std::fs::read_to_string(&path).unwrap();
+    let height = |col: usize, row: usize| -> f32 {
+        let line = csv
+            .lines()
+            .find(|l| l.starts_with(&format!("{col},{row},")))
+            .unwrap();
+        let fields: Vec<&str> = line.split(',').collect();
+        assert_eq!(
+            fields[2].parse::<f32>().unwrap(),
+            col as f32 * 0.5,
+            "x in world units"
+        );
+        fields[3].parse().unwrap()
+    };
+    assert_eq!(height(6, 4), 1.0);
+    assert!((height(8, 4) - (-1.0f32).exp()).abs() < 1e-6);
+    assert!((height(6, 2) - (-1.0f32).exp()).abs() < 1e-6);
+}

@@ -3,8 +3,9 @@
 
 use glam::Vec3;
 use proptest::prelude::*;
-use springwater::mesh::{LodMesh, LodParams, MeshView};
+use springwater::mesh::{LodMesh, LodParams};
 use springwater::Grid;
+use springwater::MeshView;
 use std::collections::HashMap;
 
 /// A flat grid at rest, spacing `h`.

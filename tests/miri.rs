@@ -30,7 +30,13 @@ fn engine_kernels_match_the_reference_on_every_small_width() {
             if cols % 2 == 1 {
                 // One edited spring per family: the engine reads that family's tables.
                 for family in Family::ALL {
-                    let _ = engine.set_spring(SpringId { family, origin: 1 }, 0.3, 6.0);
+                    let _ = engine.set_spring(
+                        SpringId { family, origin: 1 },
+                        springwater::Spring {
+                            rest: 0.3,
+                            stiffness: 6.0,
+                        },
+                    );
                 }
             }
             let mut reference = engine.clone();

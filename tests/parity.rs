@@ -117,7 +117,13 @@ fn build(case: &Case) -> Surface {
     }
     for &(family, origin, rest, coef) in &case.edits {
         // Springs that do not exist (E from the last column, …) are refused: skip them.
-        let _ = s.set_spring(SpringId { family, origin }, rest, coef);
+        let _ = s.set_spring(
+            SpringId { family, origin },
+            springwater::Spring {
+                rest,
+                stiffness: coef,
+            },
+        );
     }
     s
 }
@@ -217,7 +223,7 @@ fn a_failing_pass_stops_at_the_same_step_as_single_steps() {
     let mut p = Params::with_size(24, 40);
     p.viscosity = 0.0;
     p.dt = p.linear_dt_limit() * 1.05;
-    let mut single = Surface::new_unchecked_dt(p).unwrap();
+    let mut single = Surface::new_without_dt_check(p).unwrap();
     let mut rng = Rng(7);
     for i in 0..single.len() {
         single

@@ -3,9 +3,11 @@
 
 use glam::{DVec3, Vec3};
 use proptest::prelude::*;
-use springwater::mesh::{compute_normals, MeshView, Normals};
-use springwater::refraction::{refract, refract_scalar, Refraction, RefractionParams};
+use springwater::internals::refract_scalar;
+use springwater::mesh::{compute_normals, Normals};
+use springwater::refraction::{refract, Refraction, RefractionParams};
 use springwater::Grid;
+use springwater::MeshView;
 
 /// Nodes with arbitrary positions on a `cols × rows` grid, and arbitrary normals.
 #[derive(Debug, Clone)]

@@ -1,6 +1,6 @@
 //! Transactional steps and input validation at every public entry point.
 
-use springwater::{Boundary, Error, Family, Params, SpringId, Stepper, Surface};
+use springwater::{Boundary, Error, Family, Params, Spring, SpringId, Stepper, Surface};
 
 fn surface() -> Surface {
     let mut s = Surface::new(Params::with_size(16, 12)).unwrap();
@@ -121,8 +121,10 @@ fn indices_are_checked() {
                 family: Family::E,
                 origin: n
             },
-            1.0,
-            1.0
+            Spring {
+                rest: 1.0,
+                stiffness: 1.0
+            }
         )
         .is_err());
     // Springs that would leave the grid.
@@ -132,8 +134,10 @@ fn indices_are_checked() {
                 family: Family::E,
                 origin: 15
             },
-            1.0,
-            1.0
+            Spring {
+                rest: 1.0,
+                stiffness: 1.0
+            }
         )
         .is_err());
     assert!(s
@@ -142,8 +146,10 @@ fn indices_are_checked() {
                 family: Family::SW,
                 origin: 16
             },
-            1.0,
-            1.0
+            Spring {
+                rest: 1.0,
+                stiffness: 1.0
+            }
         )
         .is_err());
     assert!(s
@@ -152,8 +158,10 @@ fn indices_are_checked() {
                 family: Family::S,
                 origin: n - 1
             },
-            1.0,
-            1.0
+            Spring {
+                rest: 1.0,
+                stiffness: 1.0
+            }
         )
         .is_err());
     assert_eq!(
@@ -191,8 +199,10 @@ fn values_are_checked() {
                     family: Family::E,
                     origin: 17
                 },
-                1.0,
-                bad
+                Spring {
+                    rest: 1.0,
+                    stiffness: bad
+                }
             )
             .is_err());
     }
@@ -208,8 +218,10 @@ fn values_are_checked() {
                     family: Family::E,
                     origin: 17
                 },
-                bad,
-                1.0
+                Spring {
+                    rest: bad,
+                    stiffness: 1.0
+                }
             )
             .is_err());
         assert!(s.advance(bad).is_err());

@@ -11,7 +11,7 @@ mod common;
 use common::fingerprint;
 use springwater::mesh::{compute_normals, Normals};
 use springwater::refraction::{refract, Refraction, RefractionParams};
-use springwater::{Boundary, Family, Params, SimdLevel, SpringId, Stepper, Surface};
+use springwater::{Boundary, Family, Params, SimdLevel, Spring, SpringId, Stepper, Surface};
 
 /// One fixed set-up: a surface after its disturbances, and how many steps to run.
 struct SetUp {
@@ -49,8 +49,11 @@ fn edited_springs() -> Surface {
     let mut s = Surface::new(Params::with_size(37, 29)).unwrap();
     for (k, family) in Family::ALL.into_iter().enumerate() {
         let origin = 10 * 37 + 5 + 3 * k;
-        s.set_spring(SpringId { family, origin }, 0.4, 5.0 + k as f32)
-            .unwrap();
+        let spring = Spring {
+            rest: 0.4,
+            stiffness: 5.0 + k as f32,
+        };
+        s.set_spring(SpringId { family, origin }, spring).unwrap();
     }
     s.set_mass(14 * 37 + 18, 6.0).unwrap();
     s.set_viscosity(7 * 37 + 9, 0.2).unwrap();

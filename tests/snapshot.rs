@@ -1,7 +1,9 @@
 //! Snapshots: bitwise round trips, identical continuation, and refusal of damaged data.
 
-use springwater::snapshot::{Snapshot, MAGIC, VERSION};
-use springwater::{Boundary, Error, Family, Params, SpringId, Surface};
+use springwater::Snapshot;
+const MAGIC: [u8; 8] = Snapshot::MAGIC;
+const VERSION: u32 = Snapshot::VERSION;
+use springwater::{Boundary, Error, Family, Params, Spring, SpringId, Surface};
 
 /// A surface that uses every piece of state: drops, velocities, pending forces, per-node
 /// mass/viscosity/pins, per-spring tables, steps taken.
@@ -24,8 +26,10 @@ fn busy_surface() -> Surface {
             family: Family::SE,
             origin: 42,
         },
-        0.9,
-        6.0,
+        Spring {
+            rest: 0.9,
+            stiffness: 6.0,
+        },
     )
     .unwrap();
     s.add_velocity(70, [0.0, 0.3, 0.1]).unwrap();
@@ -161,7 +165,42 @@ fn wrong_magic_and_version_are_refused() {
     b[8..12].copy_from_slice(&(VERSION + 1).to_le_bytes());
     fix_crc(&mut b);
     let m = message(&b);
-    assert!(m.contains("version 2"), "{m}");
+    assert!(m.contains(&format!("version {}", VERSION + 1)), "{m}");
+    b[8..12].copy_from_slice(&0u32.to_le_bytes());
+    fix_crc(&mut b);
+    let m = message(&b);
+    assert!(m.contains("version 0"), "{m}");
+}
+
+/// A version 1 snapshot (no time scale: the field was reserved and 0) still loads, with
+/// the default time scale; a version 1 snapshot with that field set is refused.
+#[test]
+fn version_1_snapshots_load_with_the_default_time_scale() {
+    let mut s = Surface::new(Params {
+        time_scale: 50.0,
+        ..Params::with_size(5, 4)
+    })
+    .unwrap();
+    s.drop_at(2.0, 2.0, 0.5, 1.0).unwrap();
+    s.step().unwrap();
+    let v2 = s.to_bytes();
+    assert_eq!(Surface::from_bytes(&v2).unwrap().params().time_scale, 50.0);
+    let mut v1 = v2.clone();
+    v1[8..12].copy_from_slice(&1u32.to_le_bytes());
+    v1[108..112].copy_from_slice(&0u32.to_le_bytes());
+    fix_crc(&mut v1);
+    let loaded = Surface::from_bytes(&v1).unwrap();
+    assert_eq!(loaded.params().time_scale, Params::default().time_scale);
+    assert_eq!(loaded.positions(), s.positions());
+    let mut bad = v2.clone();
+    bad[8..12].copy_from_slice(&1u32.to_le_bytes());
+    fix_crc(&mut bad);
+    assert!(message(&bad).contains("reserved"));
+    // A version 2 snapshot with a time scale that validation refuses is refused.
+    let mut bad = v2;
+    bad[108..112].copy_from_slice(&(-1.0f32).to_le_bytes());
+    fix_crc(&mut bad);
+    assert!(message(&bad).contains("time_scale"), "{}", message(&bad));
 }
 
 #[test]
@@ -342,7 +381,14 @@ fn loaded_spring_tables_reach_the_engine() {
             origin,
         };
         if s.spring(id).is_some() {
-            s.set_spring(id, 0.25, 3.0).unwrap();
+            s.set_spring(
+                id,
+                Spring {
+                    rest: 0.25,
+                    stiffness: 3.0,
+                },
+            )
+            .unwrap();
         }
     }
     s.set_spring(
@@ -350,8 +396,10 @@ fn loaded_spring_tables_reach_the_engine() {
             family: Family::S,
             origin: 30,
         },
-        0.7,
-        5.0,
+        Spring {
+            rest: 0.7,
+            stiffness: 5.0,
+        },
     )
     .unwrap();
     let mut snap = s.snapshot();
@@ -376,4 +424,76 @@ fn loaded_spring_tables_reach_the_engine() {
         .step_with(springwater::Stepper::Reference)
         .unwrap();
     assert_eq!(engine.to_bytes(), reference.to_bytes());
+}
+
+/// A reader or writer that fails with `kind`.
+struct Broken(std::io::ErrorKind);
+
+impl std::io::Read for Broken {
+    fn read(&mut self, _: &mut [u8]) -> std::io::Result<usize> {
+        Err(std::io::Error::new(self.0, "the disk went away"))
+    }
+}
+
+impl std::io::Write for Broken {
+    fn write(&mut self, _: &[u8]) -> std::io::Result<usize> {
+        Err(std::io::Error::new(self.0, "the disk went away"))
+    }
+    fn flush(&mut self) -> std::io::Result<()> {
+        Ok(())
+    }
+}
+
+#[test]
+fn io_failures_keep_the_io_error_as_their_source() {
+    use std::error::Error as _;
+    let s = Surface::new(Params::with_size(4, 4)).unwrap();
+    let write = s
+        .save(Broken(std::io::ErrorKind::PermissionDenied))
+        .unwrap_err();
+    let read = Surface::load(Broken(std::io::ErrorKind::UnexpectedEof)).unwrap_err();
+    for (err, kind, action) in [
+        (write, std::io::ErrorKind::PermissionDenied, "write"),
+        (read, std::io::ErrorKind::UnexpectedEof, "read"),
+    ] {
+        assert!(
+            matches!(&err, Error::Io { action: a, source } if *a == action && source.kind() == kind),
+            "{err:?}"
+        );
+        let io = err
+            .source()
+            .and_then(|e| e.downcast_ref::<springwater::IoError>())
+            .expect("the I/O error is the source");
+        let original = io.source().and_then(|e| e.downcast_ref::<std::io::Error>());
+        assert_eq!(original.map(|e| e.kind()), Some(kind));
+        assert!(err.to_string().contains("the disk went away"), "{err}");
+        assert_eq!(err.clone(), err);
+    }
+    // Format problems have no source.
+    assert!(Surface::from_bytes(b"nonsense")
+        .unwrap_err()
+        .source()
+        .is_none());
+}
+
+#[test]
+fn library_errors_do_not_speak_command_line_flags() {
+    let errors = [
+        Surface::new(Params::with_size(100_000, 100_000)).unwrap_err(),
+        Surface::new(Params::with_size(1, 5)).unwrap_err(),
+        Surface::new(Params {
+            rest_ratio: 2.0,
+            ..Params::default()
+        })
+        .unwrap_err(),
+        Surface::new(Params {
+            dt: 1.0,
+            ..Params::default()
+        })
+        .unwrap_err(),
+    ];
+    for e in errors {
+        let m = e.to_string();
+        assert!(!m.contains("--"), "{m}");
+    }
 }

@@ -12,8 +12,9 @@
 use arbitrary::Arbitrary;
 use glam::Vec3;
 use libfuzzer_sys::fuzz_target;
-use springwater::grid::Grid;
-use springwater::mesh::{compute_normals, LodMesh, LodParams, MeshView, Normals};
+use springwater::Grid;
+use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
+use springwater::MeshView;
 use springwater::refraction::{refract, Refraction, RefractionParams};
 use std::collections::HashSet;
 

@@ -29,6 +29,7 @@ struct Input {
     rest_ratio: f32,
     free: bool,
     acceleration: [f32; 3],
+    time_scale: f32,
     drop: [f32; 4],
     node: u32,
     value: f32,
@@ -51,6 +52,7 @@ fuzz_target!(|input: Input| {
             Boundary::Pinned
         },
         acceleration: input.acceleration,
+        time_scale: input.time_scale,
     };
     if p.validate().is_ok() && p.nodes() <= MAX_BUILD {
         let mut s = Surface::new(p).expect("validate() accepted these params");
@@ -85,6 +87,7 @@ fn exercise(s: &mut Surface, input: &Input) {
     let [c, r, h, rad] = input.drop;
     let _ = s.drop_at(c, r, h, rad);
     let _ = s.add_force(node, [v, -v, v]);
+    let _ = s.add_force_at(c, r, [v, -v, v]);
     let _ = s.add_velocity(node, [v; 3]);
     let _ = s.set_mass(node, v);
     let _ = s.set_viscosity(node, v);
@@ -94,8 +97,10 @@ fn exercise(s: &mut Surface, input: &Input) {
         family: springwater::Family::ALL[node % 4],
         origin: node / 4,
     };
-    let _ = s.set_spring(id, v, input.spacing);
+    let _ = s.set_spring(id, springwater::Spring { rest: v, stiffness: input.spacing });
     let _ = s.advance(input.dt);
+    let mut params = *s.params();
+    let _ = params.set_ripple_speed(v);
     // Engine and scalar reference agree bitwise, failures included.
     let mut reference = s.clone();
     for _ in 0..4 {

@@ -137,7 +137,7 @@ fn min_strain(s: &Surface) -> f32 {
     s.grid()
         .springs()
         .filter_map(|(id, end)| {
-            let (rest, _) = s.spring(id)?;
+            let rest = s.spring(id)?.rest;
             (rest > 0.0).then(|| length(id.origin, end) / rest)
         })
         .fold(f32::INFINITY, f32::min)
@@ -205,8 +205,8 @@ fuzz_target!(|input: Input| {
             let radius = log_range(d.radius, 1.0, 8.0);
             (unit(d.height) * radius, radius)
         };
-        // Drop heights are in world units, radii in grid steps.
-        s.drop_at(col, row, height * h, radius)
+        // The library takes world units; the fuzzer draws cells.
+        s.drop_at(col * h, row * h, height * h, radius * h)
             .expect("finite drop");
     }
     // Impulses that move a node at most 0.04 h per step per component (0.1 h per unit

@@ -1,65 +1,8 @@
-//! View-dependent level of detail: a crack-free `u32` index buffer over the full node array.
-//!
-//! # Patches and levels
-//!
-//! The grid's cells are cut into square patches of `P = 2^k` cells
-//! ([`LodParams::patch_cells`]), row-major, starting at node `(0, 0)`. When `cols − 1` or
-//! `rows − 1` is not a multiple of `P` the last patch of a row or column is narrower: any
-//! grid from 2×2 nodes up works. A patch at level `l` uses every `2^l`-th node of its
-//! rows and columns (its step), always keeping its last row and column, so a patch whose
-//! width is not a multiple of the step ends with one narrower column of cells.
-//!
-//! A patch's level comes from the distance between the eye and the patch's rest footprint
-//! (the rectangle it covers in the plane `y = 0`): level 0 within
-//! [`first_range`](LodParams::first_range) `R`, level `l ≥ 1` for distances in
-//! `[R·2^(l−1), R·2^l)`, capped at [`levels`](LodParams::levels)` − 1` — each level's range
-//! twice the previous one's. The footprint, not the moving surface, sets the distance, so
-//! the levels depend on the camera only and the index buffer can be cached.
-//!
-//! # Hysteresis
-//!
-//! A patch keeps its level until the distance has crossed a range boundary by the factor
-//! `1 + hysteresis`: it coarsens from level `l` when the distance exceeds `R·2^l·(1 + hys)`
-//! and refines when it falls below `R·2^(l−1)/(1 + hys)`. An eye hovering at a boundary
-//! therefore does not flip the mesh every frame. The first update (and the first one after
-//! the grid shape changes) uses the plain distances.
-//!
-//! # Balance and stitching
-//!
-//! The levels are then lowered where needed so that patches sharing an edge differ by at
-//! most one level (2:1 balance). This is a city-block distance transform — each patch's
-//! level becomes `min over patches q of (level(q) + |Δcol| + |Δrow|)` — done exactly by one
-//! forward and one backward sweep.
-//!
-//! Each patch edge then gets one list of vertices, the one of the *coarser* of the two
-//! patches sharing it (at the grid border: the patch's own). Because steps are powers of
-//! two starting at the patch corner, the coarser list is a subset of the finer side's own
-//! vertices. Both patches use exactly that list on the edge, so every edge segment between
-//! two patches is drawn by one triangle on each side, in opposite directions: no crack and
-//! no T-junction. Inside a patch:
-//!
-//! * no stitched edge: two triangles per cell of the patch's own step;
-//! * stitched, at least two cells each way: the inner cells keep two triangles each, and
-//!   the ring of border cells becomes four trapezoids, each between an edge's vertex list
-//!   and the row (or column) of inner vertices next to it;
-//! * stitched, one cell thick: the whole patch is one such strip between its two long edges.
-//!
-//! A strip between two parallel rows of vertices is triangulated by zipping along them,
-//! each time adding the triangle whose new diagonal is shorter. Any order of a zip covers
-//! the (convex) strip exactly once with triangles that have two corners on one row and
-//! one on the other, so none is degenerate.
-//!
-//! Every triangle is written counter-clockwise seen from +y (its face normal points up) and
-//! indexes the full row-major node array: `index = row·cols + col`.
-//!
-//! # Caching
-//!
-//! [`LodMesh::update`] recomputes the levels (a few operations per patch) and rebuilds the
-//! index buffer only if some level changed. The buffers keep their capacity.
+//! The view-dependent, crack-free LOD index buffer ([`LodMesh`]; its docs give the method).
 
-use super::view::MeshView;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
+use crate::view::MeshView;
 use glam::Vec3;
 
 /// LOD parameters. Plain data with defaults; [`LodParams::validate`] checks it.
@@ -95,12 +38,12 @@ impl LodParams {
         let p = self.patch_cells;
         if !(p.is_power_of_two() && p <= 4096) {
             return Err(Error::InvalidParam {
-                name: "patch-cells",
+                name: "patch_cells",
                 value: p as f64,
                 expected: "a power of two from 1 to 4096 (for example 16)",
             });
         }
-        crate::params::positive("first-range", self.first_range)?;
+        crate::params::positive("first_range", self.first_range)?;
         let max = self.max_levels();
         if !(1..=max).contains(&self.levels) {
             return Err(Error::LodLevels {
@@ -156,7 +99,7 @@ struct Scratch {
     inner: Vec<(u32, u32)>,
 }
 
-/// A cached, view-dependent, crack-free triangle index buffer (see the [module docs](self)).
+/// A cached, view-dependent, crack-free triangle index buffer .
 ///
 /// ```
 /// use springwater::mesh::{LodMesh, LodParams};
@@ -173,6 +116,65 @@ struct Scratch {
 /// assert_eq!(lod.triangle_levels().len(), lod.indices().len() / 3);
 /// # Ok::<(), springwater::Error>(())
 /// ```
+///
+/// # Method
+///
+/// ## Patches and levels
+///
+/// The grid's cells are cut into square patches of `P = 2^k` cells
+/// ([`LodParams::patch_cells`]), row-major, starting at node `(0, 0)`. When `cols − 1` or
+/// `rows − 1` is not a multiple of `P` the last patch of a row or column is narrower: any
+/// grid from 2×2 nodes up works. A patch at level `l` uses every `2^l`-th node of its
+/// rows and columns (its step), always keeping its last row and column, so a patch whose
+/// width is not a multiple of the step ends with one narrower column of cells.
+///
+/// A patch's level comes from the distance between the eye and the patch's rest footprint
+/// (the rectangle it covers in the plane `y = 0`): level 0 within
+/// [`first_range`](LodParams::first_range) `R`, level `l ≥ 1` for distances in
+/// `[R·2^(l−1), R·2^l)`, capped at [`levels`](LodParams::levels)` − 1` — each level's range
+/// twice the previous one's. The footprint, not the moving surface, sets the distance, so
+/// the levels depend on the camera only and the index buffer can be cached.
+///
+/// ## Hysteresis
+///
+/// A patch keeps its level until the distance has crossed a range boundary by the factor
+/// `1 + hysteresis`: it coarsens from level `l` when the distance exceeds `R·2^l·(1 + hys)`
+/// and refines when it falls below `R·2^(l−1)/(1 + hys)`. An eye hovering at a boundary
+/// therefore does not flip the mesh every frame. The first update (and the first one after
+/// the grid shape changes) uses the plain distances.
+///
+/// ## Balance and stitching
+///
+/// The levels are then lowered where needed so that patches sharing an edge differ by at
+/// most one level (2:1 balance). This is a city-block distance transform — each patch's
+/// level becomes `min over patches q of (level(q) + |Δcol| + |Δrow|)` — done exactly by one
+/// forward and one backward sweep.
+///
+/// Each patch edge then gets one list of vertices, the one of the *coarser* of the two
+/// patches sharing it (at the grid border: the patch's own). Because steps are powers of
+/// two starting at the patch corner, the coarser list is a subset of the finer side's own
+/// vertices. Both patches use exactly that list on the edge, so every edge segment between
+/// two patches is drawn by one triangle on each side, in opposite directions: no crack and
+/// no T-junction. Inside a patch:
+///
+/// * no stitched edge: two triangles per cell of the patch's own step;
+/// * stitched, at least two cells each way: the inner cells keep two triangles each, and
+///   the ring of border cells becomes four trapezoids, each between an edge's vertex list
+///   and the row (or column) of inner vertices next to it;
+/// * stitched, one cell thick: the whole patch is one such strip between its two long edges.
+///
+/// A strip between two parallel rows of vertices is triangulated by zipping along them,
+/// each time adding the triangle whose new diagonal is shorter. Any order of a zip covers
+/// the (convex) strip exactly once with triangles that have two corners on one row and
+/// one on the other, so none is degenerate.
+///
+/// Every triangle is written counter-clockwise seen from +y (its face normal points up) and
+/// indexes the full row-major node array: `index = row·cols + col`.
+///
+/// ## Caching
+///
+/// [`LodMesh::update`] recomputes the levels (a few operations per patch) and rebuilds the
+/// index buffer only if some level changed. The buffers keep their capacity.
 #[derive(Debug, Clone)]
 pub struct LodMesh {
     params: LodParams,
@@ -451,7 +453,7 @@ fn vertices(lo: u32, hi: u32, step: u32, out: &mut Vec<u32>) {
 }
 
 /// Triangulates one patch `[c0, c1] × [r0, r1]` at `level`, with the edge vertex lists of
-/// levels `[north, south, west, east]` (see the module docs).
+/// levels `[north, south, west, east]` (see the [`LodMesh`] docs).
 fn patch(
     emit: &mut Emit<'_>,
     s: &mut Scratch,

@@ -1,4 +1,4 @@
-//! Render-side stages that read the simulation through a borrowed [`MeshView`].
+//! Render-side stages that read the simulation through a borrowed [`MeshView`](crate::MeshView).
 //!
 //! ```text
 //! Surface ──mesh_view()──▶ MeshView<'_>   (borrows x, y, z: zero copy)
@@ -11,8 +11,9 @@
 //! frame, and every index buffer indexes the full row-major node array, so a renderer
 //! uploads the positions, normals and UVs as they are and draws the LOD triangles.
 //! [`normals_and_refraction`](crate::refraction::normals_and_refraction) does the two
-//! per-node stages in one pass. Game code asks the full-resolution simulation, not the
-//! mesh, for heights, normals and velocities: [`query`].
+//! per-node stages in one pass, and [`crate::buffers`] interleaves the results for a GPU
+//! upload. Game code asks the full-resolution simulation, not the mesh, for heights,
+//! normals and velocities ([`Surface::height_at`](crate::Surface::height_at) and friends).
 //!
 //! # A frame
 //!
@@ -31,7 +32,7 @@
 //! water.drop_at(64.0, 48.0, 1.0, 3.0)?;
 //! for frame in 0..3 {
 //!     let eye = Vec3::new(64.0, 30.0, -20.0 + frame as f32);   // the camera, in water space
-//!     water.advance(1.0)?;                                     // simulate
+//!     water.advance(1.0 / 60.0)?;                              // simulate a 60 Hz frame
 //!     let view = water.mesh_view();                            // borrow, no copy
 //!     compute_normals(&view, &mut normals);
 //!     refract(&view, &normals, eye, &bottom, &mut uv)?;
@@ -45,15 +46,12 @@
 //! # Ok::<(), springwater::Error>(())
 //! ```
 
-pub mod lod;
-pub mod normals;
-pub mod query;
-mod view;
+mod lod;
+pub(crate) mod normals;
 
 pub use lod::{LodMesh, LodParams};
 pub(crate) use normals::normals_row;
-pub use normals::{compute_normals, compute_normals_scalar, node_normal, Normals};
-pub use view::MeshView;
+pub use normals::{compute_normals, Normals};
 
 /// Runs `f(chunk_index, [x, y, z])` on matching chunks of `len` elements of three equally
 /// long buffers: on the rayon pool with the `parallel` feature, in order without it. Each

@@ -1,37 +1,7 @@
-//! Per-node surface normals from central differences.
-//!
-//! # Method
-//!
-//! For node `(col, row)` with position `P(col, row)` the two tangents are differences of
-//! its neighbours' current positions (the full 3-D positions, so the lattice's sideways
-//! motion is taken into account):
-//!
-//! ```text
-//! u = P(col+1, row) − P(col−1, row)     along the row (+x at rest)
-//! v = P(col, row+1) − P(col, row−1)     across rows   (+z at rest)
-//! n = normalize(v × u)
-//! ```
-//!
-//! At the border the missing neighbour is replaced by the node itself (a one-sided
-//! difference). The cross product's direction does not depend on the tangents' lengths,
-//! so central and one-sided differences mix without rescaling. `v × u` is `+y` for the flat
-//! rest state, and it is the orientation of the counter-clockwise triangles of
-//! [`LodMesh`](crate::mesh::LodMesh): the normal points up wherever the surface has not
-//! folded over. Where the tangents are parallel or zero (a collapsed node) the normal is
-//! `(0, 1, 0)`, so the output is always unit length and finite.
-//!
-//! # Vectorisation
-//!
-//! Rows run in parallel (rayon, with the `parallel` feature). Inside a row, interior
-//! columns are computed a chunk of lanes at a time, at the view's SIMD level
-//! ([`MeshView::simd_level`]): left/right neighbours
-//! are the same row loaded one element earlier and later, up/down neighbours the rows
-//! above and below. The first column and the tail of a row that does not fill a lane run
-//! through [`node_normal`], the scalar twin, which performs the same operations in the same
-//! order — the two agree bitwise (tested).
+//! Per-node normals ([`compute_normals`]; its docs give the method).
 
-use super::view::MeshView;
 use crate::simd::{Chunks, ChunksMut, Kernel, Vector};
+use crate::view::MeshView;
 
 /// Unit normals, one per node, row-major: `x[i], y[i], z[i]` is node `i`'s normal.
 ///
@@ -75,7 +45,7 @@ impl Normals {
     }
 }
 
-/// Computes the normal of every node of `view` into `out` (see the [module docs](self)).
+/// Computes the normal of every node of `view` into `out` .
 ///
 /// ```
 /// use springwater::mesh::{compute_normals, Normals};
@@ -88,6 +58,36 @@ impl Normals {
 /// assert_eq!(normals.get(20), glam::Vec3::Y);          // flat water: straight up
 /// # Ok::<(), springwater::Error>(())
 /// ```
+///
+/// # Method
+///
+/// For node `(col, row)` with position `P(col, row)` the two tangents are differences of
+/// its neighbours' current positions (the full 3-D positions, so the lattice's sideways
+/// motion is taken into account):
+///
+/// ```text
+/// u = P(col+1, row) − P(col−1, row)     along the row (+x at rest)
+/// v = P(col, row+1) − P(col, row−1)     across rows   (+z at rest)
+/// n = normalize(v × u)
+/// ```
+///
+/// At the border the missing neighbour is replaced by the node itself (a one-sided
+/// difference). The cross product's direction does not depend on the tangents' lengths,
+/// so central and one-sided differences mix without rescaling. `v × u` is `+y` for the flat
+/// rest state, and it is the orientation of the counter-clockwise triangles of
+/// [`LodMesh`](crate::mesh::LodMesh): the normal points up wherever the surface has not
+/// folded over. Where the tangents are parallel or zero (a collapsed node) the normal is
+/// `(0, 1, 0)`, so the output is always unit length and finite.
+///
+/// # Vectorisation
+///
+/// Rows run in parallel (rayon, with the `parallel` feature). Inside a row, interior
+/// columns are computed a chunk of SIMD lanes at a time, at the view's level
+/// ([`MeshView::simd_level`]): left/right neighbours are the same row loaded one element
+/// earlier and later, up/down neighbours the rows above and below. The first column and
+/// the tail of a row that does not fill a chunk run through [`MeshView::node_normal`], the
+/// scalar twin, which performs the same operations in the same order — the two agree
+/// bitwise at every level (tested).
 pub fn compute_normals(view: &MeshView<'_>, out: &mut Normals) {
     out.resize(view.grid().len());
     let cols = view.cols();
@@ -96,51 +96,20 @@ pub fn compute_normals(view: &MeshView<'_>, out: &mut Normals) {
     });
 }
 
-/// The scalar twin of [`compute_normals`]: one [`node_normal`] per node. Same results,
+/// The scalar twin of [`compute_normals`]: one [`MeshView::node_normal`] per node. Same results,
 /// bitwise; kept as the oracle for tests and as readable documentation of the kernel.
+#[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub fn compute_normals_scalar(view: &MeshView<'_>, out: &mut Normals) {
     out.resize(view.grid().len());
     let grid = view.grid();
     for i in 0..grid.len() {
         let (c, r) = grid.coords(i);
-        let n = node_normal(view, c, r);
+        let n = view.node_normal(c, r);
         (out.x[i], out.y[i], out.z[i]) = (n.x, n.y, n.z);
     }
 }
 
-/// The normal of node `(col, row)`, computed exactly like [`compute_normals`] does.
-///
-/// # Panics
-///
-/// If `col` or `row` is outside the grid.
-pub fn node_normal(view: &MeshView<'_>, col: usize, row: usize) -> glam::Vec3 {
-    let grid = view.grid();
-    assert!(
-        col < grid.cols && row < grid.rows,
-        "node ({col}, {row}) is outside the grid"
-    );
-    let left = grid.index(col.saturating_sub(1), row);
-    let right = grid.index((col + 1).min(grid.cols - 1), row);
-    let up = grid.index(col, row.saturating_sub(1));
-    let down = grid.index(col, (row + 1).min(grid.rows - 1));
-    let (x, y, z) = (view.x(), view.y(), view.z());
-    let u = [x[right] - x[left], y[right] - y[left], z[right] - z[left]];
-    let v = [x[down] - x[up], y[down] - y[up], z[down] - z[up]];
-    let n = [
-        v[1] * u[2] - v[2] * u[1],
-        v[2] * u[0] - v[0] * u[2],
-        v[0] * u[1] - v[1] * u[0],
-    ];
-    let len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
-    if len2 > f32::MIN_POSITIVE && len2 < f32::INFINITY {
-        let inv = 1.0 / len2.sqrt();
-        glam::Vec3::new(n[0] * inv, n[1] * inv, n[2] * inv)
-    } else {
-        glam::Vec3::Y
-    }
-}
-
-/// One row of normals: lanes over the interior columns, [`node_normal`] for the rest.
+/// One row of normals: lanes over the interior columns, [`MeshView::node_normal`] for the rest.
 pub(crate) fn normals_row(view: &MeshView<'_>, row: usize, out: [&mut [f32]; 3]) {
     crate::simd::dispatch(view.simd_level(), NormalsRow { view, row, out })
 }
@@ -202,7 +171,7 @@ impl Kernel for NormalsRow<'_, '_, '_> {
         }
         let c = 1 + count * V::LANES;
         for col in std::iter::once(0).chain(c..cols) {
-            let n = node_normal(view, col, row);
+            let n = view.node_normal(col, row);
             (ox[col], oy[col], oz[col]) = (n.x, n.y, n.z);
         }
     }

@@ -96,7 +96,7 @@ impl Camera {
     /// Checks that the camera can form an image: finite points, eye ≠ target, a field of
     /// view in (0°, 180°) and an image between 1×1 and 16384×16384 pixels.
     pub fn validate(&self) -> Result<()> {
-        for (name, v) in [("eye", self.eye), ("look-at", self.look_at)] {
+        for (name, v) in [("eye", self.eye), ("look_at", self.look_at)] {
             if !v.is_finite() {
                 return Err(Error::InvalidParam {
                     name,
@@ -108,7 +108,7 @@ impl Camera {
         let dist = (self.look_at - self.eye).length();
         if dist.is_nan() || dist <= 1e-4 {
             return Err(Error::InvalidParam {
-                name: "look-at",
+                name: "look_at",
                 value: dist as f64,
                 expected: "a point away from the eye",
             });

@@ -46,7 +46,7 @@
 //! use it as a CPU preview or a reference image for its GPU shader. It needs nothing
 //! beyond what the library already depends on (`glam`, and `rayon` under `parallel`).
 //!
-//! The rasteriser ([`raster`]) is about 250 lines written for this job rather than a
+//! The rasteriser (the private `raster` module) is about 250 lines written for this job rather than a
 //! crate: what it draws is one kind of primitive (triangles with nine interpolated
 //! values over a depth buffer), and writing it lets it split the image into bands of
 //! rows that rayon shades in parallel while the picture stays bit-identical for any
@@ -56,9 +56,9 @@
 //! to its types and leaving the parallel split, and whether the picture depends on it,
 //! to a dependency; the glue would be about as long as the rasteriser.
 
-pub mod camera;
-pub mod raster;
-pub mod texture;
+mod camera;
+mod raster;
+mod texture;
 
 use std::time::{Duration, Instant};
 
@@ -68,8 +68,9 @@ pub use camera::Camera;
 pub use texture::Texture;
 
 use crate::error::{Error, Result};
-use crate::mesh::{compute_normals, LodMesh, LodParams, MeshView, Normals};
+use crate::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use crate::refraction::{refract, Refraction, RefractionParams};
+use crate::view::MeshView;
 use raster::{ClipVertex, Rasteriser, Target, NO_WIRE, VALUES};
 use texture::SrgbEncoder;
 

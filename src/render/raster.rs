@@ -90,6 +90,7 @@ impl Rasteriser {
 
     /// Triangles accepted so far this frame (after clipping; a clipped triangle can
     /// become two).
+    #[cfg(test)]
     pub fn triangles(&self) -> usize {
         self.tris.len()
     }

@@ -1,7 +1,7 @@
 //! [`Texture`]: the pool bottom (an image or the built-in tiles), stored in linear light.
 
-use crate::disturb::Rng;
 use crate::error::{Error, Result};
+use crate::rng::Rng;
 
 /// An RGB image in linear light (`f32` per channel, 0..1), sampled bilinearly with
 /// clamp-to-edge. `u` runs along +x (columns), `v` along +z (rows); `(0, 0)` is the

@@ -1,4 +1,4 @@
-//! Flag parsing shared by every subcommand: the model flags of DESIGN.md §3.
+//! Flag parsing shared by every subcommand: the model flags every command takes.
 
 use lexopt::{Arg, Parser, ValueExt};
 
@@ -101,16 +101,19 @@ impl ModelArgs {
 
     /// A validated surface with the drops applied.
     pub fn surface(&self) -> CliResult<Surface> {
-        let mut s = Surface::new(self.params).map_err(|e| e.to_string())?;
+        let mut s = Surface::new(self.params).map_err(lib_error)?;
         self.apply_drops(&mut s)?;
         Ok(s)
     }
 
-    /// Applies every `--drop` to `s`.
+    /// Applies every `--drop` to `s`. The flag speaks grid steps (`COL,ROW` and `RADIUS`
+    /// in cells, the contract of the command line); the library speaks world units, so
+    /// they are multiplied by the spacing here. `HEIGHT` is a length in world units.
     pub fn apply_drops(&self, s: &mut Surface) -> CliResult<()> {
-        for [c, r, h, rad] in &self.drops {
-            s.drop_at(*c, *r, *h, *rad)
-                .map_err(|e| format!("--drop: {e}"))?;
+        let spacing = s.params().spacing;
+        for &[col, row, height, radius] in &self.drops {
+            s.drop_at(col * spacing, row * spacing, height, radius * spacing)
+                .map_err(|e| format!("--drop {col},{row},{height},{radius}: {e}"))?;
         }
         Ok(())
     }
@@ -125,6 +128,36 @@ impl ModelArgs {
                 .map(|pool| pool.install(f))
                 .map_err(|e| format!("cannot start {n} threads: {e}")),
         }
+    }
+}
+
+/// A library error in the command line's words: the flag that set the refused value goes
+/// first (the library names `Params` fields and arguments, not flags).
+pub fn lib_error(e: springwater::Error) -> String {
+    use springwater::Error;
+    let flag = match &e {
+        Error::GridTooSmall { .. } | Error::GridTooLarge { .. } => Some("--size"),
+        Error::TimestepTooLarge { .. } => Some("--dt"),
+        Error::InvalidParam { name, .. } => match *name {
+            "spacing" => Some("--spacing"),
+            "mass" => Some("--mass"),
+            "stiffness" => Some("--stiffness"),
+            "viscosity" => Some("--viscosity"),
+            "dt" => Some("--dt"),
+            "rest_ratio" => Some("--rest-ratio"),
+            "look_at" => Some("--look-at"),
+            "eye" => Some("--eye"),
+            "patch_cells" => Some("--patch-cells"),
+            "depth" => Some("--depth"),
+            "ior" => Some("--ior"),
+            "field of view" => Some("--fov"),
+            _ => None,
+        },
+        _ => None,
+    };
+    match flag {
+        Some(flag) => format!("{flag}: {e}"),
+        None => e.to_string(),
     }
 }
 

@@ -3,7 +3,7 @@
 
 use crate::args::{next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
 use lexopt::Parser;
-use springwater::baselines::{MemoryFloor, NaiveSurface};
+use springwater::internals::{MemoryFloor, NaiveSurface, MAX_PASS_STEPS};
 use springwater::{Stepper, Surface};
 use std::time::Instant;
 
@@ -59,10 +59,10 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             }
             Flag::Long(l) if l == "pass-steps" => {
                 let k: usize = value(p, "--pass-steps")?;
-                if !(1..=springwater::MAX_PASS_STEPS).contains(&k) {
+                if !(1..=MAX_PASS_STEPS).contains(&k) {
                     return Err(format!(
                         "--pass-steps must be between 1 and {}",
-                        springwater::MAX_PASS_STEPS
+                        MAX_PASS_STEPS
                     ));
                 }
                 pass_steps = Some(k);

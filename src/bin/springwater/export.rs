@@ -3,7 +3,9 @@
 //! and the LOD triangles for the eye as `f a/a/a b/b/b c/c/c` (1-based, counter-clockwise
 //! seen from +y).
 
-use crate::args::{list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
+use crate::args::{
+    lib_error, list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs,
+};
 use crate::simulate::{create, run_steps};
 use lexopt::Parser;
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
@@ -43,8 +45,10 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     optics.depth =
         depth.ok_or("export: --depth D is required (the bottom's depth below the rest surface)")?;
     let obj = obj.ok_or("export: --obj FILE is required")?;
-    optics.validate().map_err(|e| format!("export: {e}"))?;
-    let mut lod = LodMesh::new(lod).map_err(|e| format!("export: {e}"))?;
+    optics
+        .validate()
+        .map_err(|e| format!("export: {}", lib_error(e)))?;
+    let mut lod = LodMesh::new(lod).map_err(|e| format!("export: {}", lib_error(e)))?;
     let mut surface = model.surface()?;
     // Open the output first: an unwritable path fails before any work is done.
     let file = create(&obj)?;

@@ -1,6 +1,8 @@
 //! `springwater render`: the water as an animated GIF (and/or PNG frames).
 
-use crate::args::{list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
+use crate::args::{
+    lib_error, list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs,
+};
 use crate::image::{read_png, write_png, GifWriter, Histogram, Palette};
 use crate::simulate::create;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
@@ -139,7 +141,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         camera.look_at = l.into();
     }
     camera.fov_y_degrees = o.fov;
-    camera.validate().map_err(|e| format!("camera: {e}"))?;
+    camera
+        .validate()
+        .map_err(|e| format!("camera: {}", lib_error(e)))?;
     let bottom = match &o.bottom {
         Some(path) => read_png(path)?,
         None => Texture::pool_tiles_for(
@@ -155,7 +159,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     render_params.refraction.ior = o.ior;
     render_params.look.caustics = o.caustics;
     render_params.lod_pixels = Some(o.lod_pixels);
-    let mut renderer = Renderer::new(render_params, bottom).map_err(|e| e.to_string())?;
+    let mut renderer = Renderer::new(render_params, bottom).map_err(lib_error)?;
 
     // Open every output before any work: an unwritable path fails at once.
     let gif_file = o
@@ -344,9 +348,20 @@ fn animate(
     let mut surface = model.surface()?;
     // Every pass starts from the same LOD state, so passes draw the same frames.
     renderer.reset().map_err(|e| e.to_string())?;
+    // Rain and wake sized in cells, as they look on any spacing (the library takes world
+    // units).
+    let h = surface.params().spacing;
     let mut rain = Rain::new(o.rain, o.seed);
-    let cols_rows = surface.params().cols.min(surface.params().rows) as f32;
-    let mut wake = o.wake.then(|| Wake::circle(&surface, 0.3 * cols_rows));
+    rain.radius = 1.5 * h..3.0 * h;
+    let cells = surface.params().cols.min(surface.params().rows) as f32;
+    let mut wake = o.wake.then(|| {
+        let mut wake = Wake::circle(&surface, 0.3 * cells * h);
+        wake.speed *= h;
+        wake.radius *= h;
+        // The same push per node as at spacing 1 (the library's strength is a pressure).
+        wake.strength /= h * h;
+        wake
+    });
     for k in 0..o.frames {
         let t = Instant::now();
         let steps = if k == 0 {
@@ -384,11 +399,9 @@ fn animate(
 
 /// The object making the wake: a red and white ball floating where the wake is.
 fn boat(surface: &Surface, wake: &Wake) -> Ball {
-    let h = surface.params().spacing;
-    let [col, row] = wake.position();
-    let (x, z) = (col * h, row * h);
+    let [x, z] = wake.position();
     let y = surface.height_at(x, z).unwrap_or(0.0);
-    let radius = 0.8 * wake.radius * h;
+    let radius = 0.8 * wake.radius;
     Ball {
         centre: glam::Vec3::new(x, y + 0.2 * radius, z),
         radius,

@@ -1,31 +1,8 @@
-//! Point queries for game code: height, normal and velocity of the water at a world
-//! `(x, z)`, sampled from the full-resolution simulation (never from the LOD mesh).
-//!
-//! # Method
-//!
-//! A point `(x, z)` of the water's local space is mapped to fractional grid coordinates
-//! `col = x / h`, `row = z / h` (the node positions *at rest*), and the four nodes of the
-//! cell it falls in are blended bilinearly:
-//!
-//! ```text
-//! f(col, row) = (1−fx)(1−fz) f00 + fx(1−fz) f10 + (1−fx) fz f01 + fx fz f11
-//! ```
-//!
-//! So a query at a node's rest position returns that node's value, and values vary
-//! continuously between nodes. Heights are the nodes' current `y`; velocities the nodes'
-//! current velocities; normals the per-node normals of
-//! [`node_normal`] blended the same way and renormalised.
-//! The lattice also moves sideways a little; the queries follow the nodes (the surface
-//! point whose rest position is `(x, z)`), which is what a floating object riding the
-//! water feels.
-//!
-//! Points must lie in the rest footprint `[0, (cols−1)h] × [0, (rows−1)h]` (edges
-//! included) and be finite; anything else is an error, and a batched query that errors
-//! has written nothing. [`Surface::contains`] tells in advance.
+//! Point queries and forces at a point: the bilinear sampling of the rest grid.
 
+use super::Surface;
 use crate::error::{Error, Result};
-use crate::mesh::{node_normal, MeshView};
-use crate::surface::Surface;
+use crate::view::MeshView;
 use glam::Vec3;
 
 /// The cell and the bilinear weights of one query point.
@@ -42,7 +19,7 @@ impl Sample {
     fn at(view: &MeshView<'_>, x: f32, z: f32) -> Result<Self> {
         crate::params::finite("query x", x)?;
         crate::params::finite("query z", z)?;
-        let [width, length] = crate::refraction::extent(view);
+        let [width, length] = view.extent();
         if !((0.0..=width).contains(&x) && (0.0..=length).contains(&z)) {
             return Err(Error::OutsideGrid {
                 x,
@@ -93,10 +70,10 @@ impl Sample {
     fn normal(&self, view: &MeshView<'_>) -> Vec3 {
         let w = self.weights();
         let (c, r) = (self.c, self.r);
-        let n = w[0] * node_normal(view, c, r)
-            + w[1] * node_normal(view, c + 1, r)
-            + w[2] * node_normal(view, c, r + 1)
-            + w[3] * node_normal(view, c + 1, r + 1);
+        let n = w[0] * view.node_normal(c, r)
+            + w[1] * view.node_normal(c + 1, r)
+            + w[2] * view.node_normal(c, r + 1)
+            + w[3] * view.node_normal(c + 1, r + 1);
         n.try_normalize().unwrap_or(Vec3::Y)
     }
 }
@@ -120,11 +97,35 @@ fn batch<T>(
     Ok(())
 }
 
-/// # Queries
+/// # Queries and forces at a point
 ///
-/// Sampled from the simulation at full resolution; see [`crate::mesh::query`](self) for the
-/// method. Batched forms take `[x, z]` pairs and fill a caller-owned `Vec` (cleared first,
-/// capacity kept).
+/// Height, normal and velocity of the water at a world `(x, z)`, sampled from the
+/// full-resolution simulation (never from the LOD mesh), and forces pushed in at a world
+/// point with the same weights. Batched forms take `[x, z]` pairs and fill a caller-owned
+/// `Vec` (cleared first, capacity kept).
+/// `(x, z)`, sampled from the full-resolution simulation (never from the LOD mesh).
+///
+/// ## Method
+///
+/// A point `(x, z)` of the water's local space is mapped to fractional grid coordinates
+/// `col = x / h`, `row = z / h` (the node positions *at rest*), and the four nodes of the
+/// cell it falls in are blended bilinearly:
+///
+/// ```text
+/// f(col, row) = (1−fx)(1−fz) f00 + fx(1−fz) f10 + (1−fx) fz f01 + fx fz f11
+/// ```
+///
+/// So a query at a node's rest position returns that node's value, and values vary
+/// continuously between nodes. Heights are the nodes' current `y`; velocities the nodes'
+/// current velocities; normals the per-node normals of
+/// [`MeshView::node_normal`] blended the same way and renormalised.
+/// The lattice also moves sideways a little; the queries follow the nodes (the surface
+/// point whose rest position is `(x, z)`), which is what a floating object riding the
+/// water feels.
+///
+/// Points must lie in the rest footprint `[0, (cols−1)h] × [0, (rows−1)h]` (edges
+/// included) and be finite; anything else is an error, and a batched query that errors
+/// has written nothing. [`Surface::contains`] tells in advance.
 impl Surface {
     /// True if `(x, z)` is finite and inside the rest footprint
     /// `[0, (cols−1)h] × [0, (rows−1)h]`, where the queries answer.
@@ -148,6 +149,48 @@ impl Surface {
     pub fn height_at(&self, x: f32, z: f32) -> Result<f32> {
         let view = self.mesh_view();
         Ok(Sample::at(&view, x, z)?.blend(view.cols(), view.y()))
+    }
+
+    /// Adds `force` at the world point `(x, z)` for the next step only: the force is spread
+    /// onto the four nodes of the cell holding the point with exactly the bilinear weights
+    /// [`Surface::height_at`] reads with (its adjoint), so what a floating body feels and
+    /// what it pushes into the water agree, and the spread forces sum to `force`.
+    ///
+    /// The point must be finite and inside the rest footprint; every component of `force`
+    /// finite, and the accumulated force on each node too. On error nothing changes.
+    ///
+    /// ```
+    /// use springwater::{Params, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(33, 33))?;
+    /// water.add_force_at(10.25, 20.0, [0.0, -4.0, 0.0])?;   // a quarter of the way to x = 11
+    /// let fy = water.forces()[1];
+    /// assert_eq!(fy[20 * 33 + 10], -3.0);
+    /// assert_eq!(fy[20 * 33 + 11], -1.0);
+    /// assert!(water.add_force_at(-1.0, 0.0, [0.0, 1.0, 0.0]).is_err());
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn add_force_at(&mut self, x: f32, z: f32, force: [f32; 3]) -> Result<()> {
+        for f in force {
+            crate::params::finite("force", f)?;
+        }
+        let view = self.mesh_view();
+        let sample = Sample::at(&view, x, z)?;
+        let cols = view.cols();
+        let (w, corners) = (sample.weights(), sample.corners(cols));
+        let ext = &self.state.ext;
+        let sums: [[f32; 3]; 4] =
+            std::array::from_fn(|k| std::array::from_fn(|c| ext[c][corners[k]] + w[k] * force[c]));
+        for f in sums.iter().flatten() {
+            crate::params::finite("accumulated force", *f)?;
+        }
+        for (k, sum) in sums.iter().enumerate() {
+            for (c, &f) in sum.iter().enumerate() {
+                self.state.ext[c][corners[k]] = f;
+            }
+        }
+        self.state.ext_pending = true;
+        Ok(())
     }
 
     /// Unit normal of the water at world `(x, z)`: node normals blended bilinearly and

@@ -1,16 +1,21 @@
-//! [`Surface`]: the water surface a game owns, steps and reads.
+//! [`Surface`]: the water surface a game owns, steps and reads — all of it here: the
+//! state and stepping (this file), the point queries and forces at a point ([`query`]),
+//! and snapshots ([`snapshot`]).
+
+mod disturbance;
+pub(crate) mod query;
+pub(crate) mod snapshot;
+
+pub use disturbance::Disturbance;
 
 use crate::error::{Error, Result};
 use crate::forces::{self, engine::Workspace, StepConfig};
 use crate::grid::{Grid, SpringId};
-use crate::mesh::MeshView;
 use crate::params::{self, Params};
 use crate::simd::SimdLevel;
-use crate::springs::{self, Band, Springs};
+use crate::springs::Springs;
 use crate::state::State;
-
-/// Most substeps one [`Surface::advance`] call may take.
-pub const MAX_SUBSTEPS: usize = 10_000;
+use crate::view::MeshView;
 
 /// Which implementation of the step to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -20,6 +25,16 @@ pub enum Stepper {
     Engine,
     /// The plain scalar loops the engine is tested against.
     Reference,
+}
+
+/// One spring's parameters, as [`Surface::spring`] reads and [`Surface::set_spring`]
+/// writes them. Named fields, so the two numbers cannot be swapped silently.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Spring {
+    /// Rest length `L0` in world units (≥ 0).
+    pub rest: f32,
+    /// Coefficient `c` (> 0): the force per unit of stretch.
+    pub stiffness: f32,
 }
 
 /// Kinetic and spring potential energy of the surface (computed in `f64`).
@@ -45,7 +60,7 @@ impl Energy {
 ///
 /// let mut water = Surface::new(Params::with_size(64, 48))?;
 /// water.drop_at(32.0, 24.0, 1.5, 3.0)?;       // a drop in the middle
-/// water.advance(1.0 / 60.0 * 24.0)?;           // one 60 Hz frame in model time units
+/// water.advance(1.0 / 60.0)?;                 // one 60 Hz frame: seconds in
 /// let [_x, y, _z] = water.positions();
 /// assert!(y.iter().any(|&h| h != 0.0));
 /// # Ok::<(), springwater::Error>(())
@@ -66,9 +81,15 @@ pub struct Surface {
     pub(crate) max_viscosity: f32,
     steps: u64,
     time: f64,
+    /// The host's thread pool the engine steps on; `None`: rayon's global pool.
+    #[cfg(feature = "parallel")]
+    pub(crate) pool: Option<std::sync::Arc<rayon::ThreadPool>>,
 }
 
 impl Surface {
+    /// Most substeps one [`Surface::advance`] call may take.
+    pub const MAX_SUBSTEPS: usize = 10_000;
+
     /// A flat surface at rest with the given parameters, validated.
     ///
     /// The engine runs the widest SIMD level the CPU has, or the one `SPRINGWATER_SIMD`
@@ -79,8 +100,10 @@ impl Surface {
     }
 
     /// Like [`Surface::new`] but without the critical-timestep check: for experiments
-    /// that probe the stability limit on purpose. Every other field is still validated.
-    pub fn new_unchecked_dt(params: Params) -> Result<Self> {
+    /// that probe the stability limit on purpose (such a surface may well blow up; its
+    /// steps then return [`Error::NonFinite`]). Every other field is still validated, and
+    /// nothing here is `unsafe`.
+    pub fn new_without_dt_check(params: Params) -> Result<Self> {
         params.validate_except_dt()?;
         Self::build(params).with_env_simd()
     }
@@ -132,11 +155,14 @@ impl Surface {
             steps: progress.0,
             time: progress.1,
             params,
+            #[cfg(feature = "parallel")]
+            pool: None,
         }
     }
 
     /// Fixes the band height (colour granularity) of the engine instead of
-    /// [`springs::band_rows`]. Results do not change by a bit; for benchmarks and tests.
+    /// `band_rows`. Results do not change by a bit; for benchmarks and tests.
+    #[cfg(feature = "internals")]
     #[doc(hidden)]
     pub fn set_band_rows(&mut self, band_rows: usize) {
         let pass_steps = self.workspace.pass_steps;
@@ -169,13 +195,14 @@ impl Surface {
         self.steps
     }
 
-    /// Model time simulated so far.
+    /// Model time simulated so far (in the seed's time unit; divide by
+    /// `params().time_scale` for seconds of the caller's clock).
     pub fn time(&self) -> f64 {
         self.time
     }
 
     /// The largest safe timestep for the current tables: `sqrt(min m / (3 max c))`, a little
-    /// less with viscosity (see [`crate::params`]).
+    /// less with viscosity (see [`Params`]).
     pub fn critical_dt(&self) -> f32 {
         params::critical_dt(self.min_mass, self.max_stiffness, self.max_viscosity)
     }
@@ -238,6 +265,7 @@ impl Surface {
 
     /// Fixes how many steps one engine pass takes (`1..=8`, clamped; default 4). Results
     /// do not change by a bit; for benchmarks and tests.
+    #[cfg(feature = "internals")]
     #[doc(hidden)]
     pub fn set_pass_steps(&mut self, steps: usize) {
         self.workspace.pass_steps = steps.clamp(1, forces::engine::MAX_PASS_STEPS);
@@ -269,9 +297,55 @@ impl Surface {
         }
     }
 
+    /// Runs the engine's steps on `pool`, the host's rayon thread pool, instead of rayon's
+    /// global pool (`None` goes back to it). Every stepping call ([`Surface::step`],
+    /// [`Surface::step_n`], [`Surface::advance`], [`Surface::advance_with`]) then runs its
+    /// colour batches on that pool's threads; disturbances and the caller's code between
+    /// substeps stay on the calling thread. Results are bitwise the same on any pool and
+    /// any number of threads. Clones of the surface share the pool.
+    ///
+    /// The render-side stages ([`crate::mesh`], [`crate::refraction`],
+    /// [`crate::buffers`]) use whichever pool they are called in: call them inside
+    /// `pool.install(|| …)` to keep them on the host's pool too.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use springwater::{Params, Surface};
+    ///
+    /// let pool = Arc::new(rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap());
+    /// let mut water = Surface::new(Params::with_size(64, 64))?;
+    /// water.set_thread_pool(Some(pool.clone()));
+    /// water.drop_at(32.0, 32.0, 1.0, 3.0)?;
+    /// water.advance(1.0 / 60.0)?;                      // on the host's two threads
+    /// assert!(water.thread_pool().is_some());
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    #[cfg(feature = "parallel")]
+    pub fn set_thread_pool(&mut self, pool: Option<std::sync::Arc<rayon::ThreadPool>>) {
+        self.pool = pool;
+    }
+
+    /// The host's thread pool set with [`Surface::set_thread_pool`], if any.
+    #[cfg(feature = "parallel")]
+    pub fn thread_pool(&self) -> Option<&std::sync::Arc<rayon::ThreadPool>> {
+        self.pool.as_ref()
+    }
+
+    /// `n` engine steps on the host's pool if one is set (see
+    /// [`Surface::set_thread_pool`]), else where the caller is.
+    fn engine_steps(&mut self, n: u64, dt: f32) -> Result<()> {
+        #[cfg(feature = "parallel")]
+        if let Some(pool) = self.pool.clone() {
+            if pool.current_thread_index().is_none() {
+                return pool.install(|| self.engine_steps_here(n, dt));
+            }
+        }
+        self.engine_steps_here(n, dt)
+    }
+
     /// `n` engine steps, in passes of up to `pass_steps`. A pass that fails is redone one
     /// step at a time, so the error names the exact step and node.
-    fn engine_steps(&mut self, n: u64, dt: f32) -> Result<()> {
+    fn engine_steps_here(&mut self, n: u64, dt: f32) -> Result<()> {
         if self.simd == SimdLevel::Scalar {
             for _ in 0..n {
                 self.step_dt(dt, Stepper::Reference)?;
@@ -287,7 +361,7 @@ impl Surface {
                 self.commit(k, dt);
             } else if k > 1 {
                 for _ in 0..k {
-                    self.engine_steps(1, dt)?;
+                    self.engine_steps_here(1, dt)?;
                 }
             } else {
                 let node = self.state.first_non_finite_next().unwrap_or(0);
@@ -315,54 +389,102 @@ impl Surface {
         }
     }
 
-    /// Advances model time `frame_dt` in equal substeps no longer than `params().dt`, so a
-    /// game can pass its frame time without ever asking for an unstable step. Returns the
-    /// number of substeps taken. A failing substep stops the frame there (earlier substeps
-    /// stay applied, the failing one is not) and returns its error.
-    pub fn advance(&mut self, frame_dt: f32) -> Result<usize> {
-        let (substeps, dt) = self.split_frame(frame_dt)?;
+    /// Advances the water by one frame of a game's clock: `frame_seconds` seconds, that is
+    /// `frame_seconds × params().time_scale` of model time, in equal substeps no longer
+    /// than `params().dt`, so the frame time can be passed as it is and never asks for an
+    /// unstable step. Returns the number of substeps taken (0 for a frame of 0 s).
+    ///
+    /// A failing substep stops the frame there (earlier substeps stay applied, the failing
+    /// one is not) and returns its error. See [`Surface::advance_with`] to disturb the
+    /// water before every substep.
+    pub fn advance(&mut self, frame_seconds: f32) -> Result<usize> {
+        let (substeps, dt) = self.split_frame(frame_seconds)?;
         self.engine_steps(substeps as u64, dt)?;
         Ok(substeps)
     }
 
-    /// How [`Surface::advance`] cuts `frame_dt`: the number of equal substeps and their
-    /// length, never longer than `params().dt` (not even by a rounding error).
-    pub fn split_frame(&self, frame_dt: f32) -> Result<(usize, f32)> {
-        params::non_negative("frame_dt", frame_dt)?;
+    /// [`Surface::advance`] with `disturbance` applied before every substep, with that
+    /// substep's model timestep: rain, wakes, buoyancy, anything implementing
+    /// [`Disturbance`] (tuples, slices and `&mut` of disturbances are disturbances too).
+    /// A failing disturbance or substep stops the frame there and returns its error.
+    ///
+    /// ```
+    /// use springwater::disturb::{Rain, Wake};
+    /// use springwater::{Params, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(64, 64))?;
+    /// let mut rain = Rain::new(2.0, 1);                   // 2 drops per unit of model time
+    /// let mut boat = Wake::circle(&water, 16.0);
+    /// for _frame in 0..60 {
+    ///     water.advance_with(1.0 / 60.0, &mut (&mut rain, &mut boat))?;
+    /// }
+    /// assert!(rain.fallen() > 20);                        // 24 units of model time
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn advance_with<D: Disturbance + ?Sized>(
+        &mut self,
+        frame_seconds: f32,
+        disturbance: &mut D,
+    ) -> Result<usize> {
+        let (substeps, dt) = self.split_frame(frame_seconds)?;
+        for _ in 0..substeps {
+            disturbance.apply(self, dt)?;
+            self.engine_steps(1, dt)?;
+        }
+        Ok(substeps)
+    }
+
+    /// How [`Surface::advance`] cuts a frame of `frame_seconds`: the number of equal
+    /// substeps and their length in model time, never longer than `params().dt` (not even
+    /// by a rounding error).
+    ///
+    /// A frame whose model time is within a relative 10⁻⁵ of a whole number of timesteps
+    /// takes that number (the sliver of model time left over is dropped), so that a 60 Hz
+    /// frame at the default time scale is one step of `dt`, not two steps of `dt / 2`
+    /// because `(1/60) × 24` rounds a little above 0.4 in `f32`.
+    pub fn split_frame(&self, frame_seconds: f32) -> Result<(usize, f32)> {
+        params::non_negative("frame seconds", frame_seconds)?;
         let dt = self.params.dt;
-        let substeps = (frame_dt / dt).ceil();
-        if substeps > MAX_SUBSTEPS as f32 {
+        let model = frame_seconds as f64 * self.params.time_scale as f64;
+        let substeps = (model / dt as f64 * (1.0 - 1e-5)).ceil();
+        if substeps > Self::MAX_SUBSTEPS as f64 {
             return Err(Error::InvalidParam {
-                name: "frame_dt",
-                value: frame_dt as f64,
-                expected: "at most 10000 timesteps long",
+                name: "frame seconds",
+                value: frame_seconds as f64,
+                expected:
+                    "a frame of at most 10000 timesteps (frame seconds × time_scale ≤ 10000 dt)",
             });
         }
         let substeps = substeps as usize;
         let sub = if substeps == 0 {
             0.0
         } else {
-            (frame_dt / substeps as f32).min(dt)
+            ((model / substeps as f64) as f32).min(dt)
         };
         Ok((substeps, sub))
     }
 
-    /// Drops a disturbance: adds `height · exp(−d²/radius²)` to y of every free node,
-    /// `d` the node's distance from `(col, row)` in grid steps (fractional coordinates
-    /// allowed, also outside the grid). Drops with `|height| ≤ radius` keep the lattice in
-    /// the regime where `critical_dt` guarantees stability.
-    pub fn drop_at(&mut self, col: f32, row: f32, height: f32, radius: f32) -> Result<()> {
-        params::finite("drop col", col)?;
-        params::finite("drop row", row)?;
+    /// Drops a disturbance: adds `height · exp(−d²/radius²)` to y of every free node, `d`
+    /// the distance from the node's rest position `(col·h, row·h)` to the point `(x, z)`.
+    ///
+    /// Everything is in world units: `x`, `z` in the water's local space (any finite point,
+    /// also outside the footprint), `height` and `radius` in the same length unit as
+    /// `params().spacing`. Drops with `|height| ≤ radius` and a radius of at least one cell
+    /// keep the lattice in the regime where `critical_dt` guarantees stability.
+    /// On error nothing changes.
+    pub fn drop_at(&mut self, x: f32, z: f32, height: f32, radius: f32) -> Result<()> {
+        params::finite("drop x", x)?;
+        params::finite("drop z", z)?;
         params::finite("drop height", height)?;
         params::positive("drop radius", radius)?;
         let grid = self.grid();
+        let h = self.params.spacing;
         let inv_r2 = 1.0 / (radius * radius);
         // `d2 * inv_r2` is 0 × ∞ = NaN at the centre when radius² underflows: the weight
         // there is 1 by definition.
         let lift = |y: &[f32], i: usize| {
             let (c, r) = grid.coords(i);
-            let d2 = (c as f32 - col).powi(2) + (r as f32 - row).powi(2);
+            let d2 = (c as f32 * h - x).powi(2) + (r as f32 * h - z).powi(2);
             let w = if d2 == 0.0 { 1.0 } else { (-d2 * inv_r2).exp() };
             y[i] + height * w
         };
@@ -549,22 +671,38 @@ impl Surface {
         &self.state.pinned
     }
 
-    /// `(rest length, coefficient)` of a spring; `None` if the grid has no such spring.
-    pub fn spring(&self, id: SpringId) -> Option<(f32, f32)> {
+    /// A spring's rest length and coefficient; `None` if the grid has no such spring.
+    pub fn spring(&self, id: SpringId) -> Option<Spring> {
         (id.origin < self.len() && self.grid().spring_end(id.family, id.origin).is_some()).then(
             || {
                 let f = id.family as usize;
-                (
-                    self.springs.rest[f][id.origin],
-                    self.springs.coef[f][id.origin],
-                )
+                Spring {
+                    rest: self.springs.rest[f][id.origin],
+                    stiffness: self.springs.coef[f][id.origin],
+                }
             },
         )
     }
 
-    /// Sets a spring's rest length (≥ 0) and coefficient (> 0). Refused if the spring does
-    /// not exist or the coefficient would put `params().dt` past the critical timestep.
-    pub fn set_spring(&mut self, id: SpringId, rest: f32, coef: f32) -> Result<()> {
+    /// Sets a spring's rest length (≥ 0) and coefficient (> 0). Refused, with nothing
+    /// changed, if the spring does not exist or the coefficient would put `params().dt` at
+    /// or past the critical timestep.
+    ///
+    /// ```
+    /// use springwater::{Family, Params, Spring, SpringId, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(8, 8))?;
+    /// let id = SpringId { family: Family::E, origin: 9 };
+    /// assert_eq!(water.spring(id), Some(Spring { rest: 0.5, stiffness: 7.0 }));
+    /// water.set_spring(id, Spring { rest: 0.8, stiffness: 5.0 })?;
+    /// assert_eq!(water.spring(id).unwrap().stiffness, 5.0);
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn set_spring(&mut self, id: SpringId, spring: Spring) -> Result<()> {
+        let Spring {
+            rest,
+            stiffness: coef,
+        } = spring;
         self.check_node(id.origin)?;
         if self.grid().spring_end(id.family, id.origin).is_none() {
             return Err(Error::OutOfRange {
@@ -587,12 +725,14 @@ impl Surface {
 
     /// The colour batches the engine uses on the current thread pool: bands of rows, even
     /// bands colour 0, odd bands colour 1 (see [`crate::springs`]), as they stand at the
-    /// start of a pass ([`springs::Tiling`] says how they lean through its steps).
-    pub fn bands(&self) -> impl Iterator<Item = Band> {
+    /// start of a pass (the tiling says how they lean through its steps).
+    #[cfg(feature = "internals")]
+    #[doc(hidden)]
+    pub fn bands(&self) -> impl Iterator<Item = crate::springs::Band> {
         let tiling = self
             .workspace
             .tiling(self.params.rows, self.workspace.pass_steps);
-        springs::bands(self.params.rows, tiling.band_rows)
+        crate::springs::bands(self.params.rows, tiling.band_rows)
     }
 
     /// Kinetic plus spring potential energy, a diagnostic (`O(nodes)`).

@@ -1,63 +1,20 @@
-//! Snapshots: the complete state of a [`Surface`], saved and restored bitwise.
-//!
-//! A game saves a surface with [`Surface::save`] (or [`Surface::to_bytes`]) and gets it back
-//! with [`Surface::load`], [`Surface::from_bytes`] or, into an existing surface,
-//! [`Surface::restore`]. A restored surface continues **bitwise identically** to the one
-//! that was saved: every buffer the step reads is stored with its exact bits. The engine's
-//! per-band scratch buffers are not state (a step overwrites them before reading) and are
-//! rebuilt.
-//!
-//! Engines that serialise their own way convert to the plain-data [`Snapshot`] with
-//! [`Surface::snapshot`] and back with [`Surface::from_snapshot`]; with the `serde` feature
-//! it implements `Serialize` and `Deserialize`. Both paths run the same validation.
-//!
-//! # Format (version 1)
-//!
-//! Little-endian throughout; `n = cols × rows`. Per-node arrays hold exactly `n` values
-//! (no SIMD padding); spring tables are indexed by origin node, with `0.0` for springs
-//! that do not exist (E from the last column, S from the last row, …).
-//!
-//! | offset | size | field |
-//! |---|---|---|
-//! | 0 | 8 | magic `b"SPRWATER"` |
-//! | 8 | 4 | format version `u32` (1) |
-//! | 12 | 4 | flags `u32`: bit 0 = external forces pending; other bits 0 |
-//! | 16 | 8 | total length in bytes `u64`, checksum included |
-//! | 24 | 8, 8 | `cols`, `rows` as `u64` |
-//! | 40 | 6 × 4 | `spacing`, `mass`, `stiffness`, `viscosity`, `dt`, `rest_ratio` (`f32`) |
-//! | 64 | 4 | boundary `u32`: 0 = pinned, 1 = free |
-//! | 68 | 3 × 4 | uniform acceleration x, y, z (`f32`) |
-//! | 80 | 8 | steps taken `u64` |
-//! | 88 | 8 | model time `f64` |
-//! | 96 | 3 × 4 | `min_mass`, `max_stiffness`, `max_viscosity` (`f32`): the bounds behind `critical_dt` |
-//! | 108 | 4 | reserved, 0 |
-//! | 112 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z |
-//! | | 2 × 4n | mass, viscosity per node |
-//! | | n | pinned per node, `u8` 0 or 1 |
-//! | | 8 × 4n | rest length then coefficient, for families E, S, SE, SW |
-//! | end − 4 | 4 | CRC-32 (IEEE) of every byte before it |
-//!
-//! The total is `116 + 77 n` bytes. Loading refuses, with [`Error::Snapshot`] and a message
-//! that says what is wrong: a wrong magic or version, a total length that disagrees with
-//! `cols × rows` or with the bytes present, a checksum mismatch, parameters that
-//! [`Params::validate`] refuses, non-finite values, masses or coefficients out of range,
-//! pinned nodes that move, springs outside the grid, and bounds that do not cover the
-//! tables. Lengths are checked against the bytes actually present before anything is
-//! allocated, so a lying length field costs nothing. A refused snapshot changes nothing.
+//! Snapshots: the complete state of a [`Surface`] saved and restored bitwise (the format
+//! is documented on [`Snapshot`]).
 
+use super::Surface;
 use crate::error::{Error, Result};
 use crate::grid::Grid;
 use crate::params::{self, Boundary, Params, MAX_NODES};
 use crate::simd::Floats;
 use crate::springs::Springs;
 use crate::state::State;
-use crate::surface::Surface;
 use std::io::{Read, Write};
 
 /// The first eight bytes of every snapshot.
-pub const MAGIC: [u8; 8] = *b"SPRWATER";
-/// The format version this build writes and reads.
-pub const VERSION: u32 = 1;
+pub(crate) const MAGIC: [u8; 8] = *b"SPRWATER";
+/// The format version this build writes. It reads this one and version 1 (which had no
+/// `time_scale`: such snapshots get the default).
+pub(crate) const VERSION: u32 = 2;
 /// Bytes before the per-node arrays.
 const HEADER: usize = 112;
 /// Bytes per node: 11 `f32` arrays, 1 `u8`, 8 `f32` spring arrays.
@@ -66,11 +23,58 @@ const PER_NODE: usize = 11 * 4 + 1 + 8 * 4;
 const CRC: usize = 4;
 const FLAG_FORCES_PENDING: u32 = 1;
 
-/// The complete state of a surface as plain data, one value per node (no padding).
+/// The complete state of a [`Surface`] as plain data, saved and restored bitwise.
 ///
-/// Produced by [`Surface::snapshot`], turned back into a surface by
-/// [`Surface::from_snapshot`], which validates everything. With the `serde` feature it can
-/// be serialised in any format serde supports.
+/// A game saves a surface with [`Surface::save`] (or [`Surface::to_bytes`]) and gets it back
+/// with [`Surface::load`], [`Surface::from_bytes`] or, into an existing surface,
+/// [`Surface::restore`]. A restored surface continues **bitwise identically** to the one
+/// that was saved: every buffer the step reads is stored with its exact bits. The engine's
+/// per-band scratch buffers are not state (a step overwrites them before reading) and are
+/// rebuilt.
+///
+/// Engines that serialise their own way convert to the plain-data [`Snapshot`] with
+/// [`Surface::snapshot`] and back with [`Surface::from_snapshot`]; with the `serde` feature
+/// it implements `Serialize` and `Deserialize`. Both paths run the same validation.
+///
+/// # Format (version 2)
+///
+/// Little-endian throughout; `n = cols × rows`. Per-node arrays hold exactly `n` values
+/// (no SIMD padding); spring tables are indexed by origin node, with `0.0` for springs
+/// that do not exist (E from the last column, S from the last row, …).
+///
+/// | offset | size | field |
+/// |---|---|---|
+/// | 0 | 8 | magic `b"SPRWATER"` |
+/// | 8 | 4 | format version `u32` (2; version 1 is read too) |
+/// | 12 | 4 | flags `u32`: bit 0 = external forces pending; other bits 0 |
+/// | 16 | 8 | total length in bytes `u64`, checksum included |
+/// | 24 | 8, 8 | `cols`, `rows` as `u64` |
+/// | 40 | 6 × 4 | `spacing`, `mass`, `stiffness`, `viscosity`, `dt`, `rest_ratio` (`f32`) |
+/// | 64 | 4 | boundary `u32`: 0 = pinned, 1 = free |
+/// | 68 | 3 × 4 | uniform acceleration x, y, z (`f32`) |
+/// | 80 | 8 | steps taken `u64` |
+/// | 88 | 8 | model time `f64` |
+/// | 96 | 3 × 4 | `min_mass`, `max_stiffness`, `max_viscosity` (`f32`): the bounds behind `critical_dt` |
+/// | 108 | 4 | `time_scale` (`f32`, model time per second); reserved and 0 in version 1, read as the default |
+/// | 112 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z |
+/// | | 2 × 4n | mass, viscosity per node |
+/// | | n | pinned per node, `u8` 0 or 1 |
+/// | | 8 × 4n | rest length then coefficient, for families E, S, SE, SW |
+/// | end − 4 | 4 | CRC-32 (IEEE) of every byte before it |
+///
+/// The total is `116 + 77 n` bytes. Loading refuses, with [`Error::Snapshot`] and a message
+/// that says what is wrong: a wrong magic or version, a total length that disagrees with
+/// `cols × rows` or with the bytes present, a checksum mismatch, parameters that
+/// [`Params::validate`] refuses, non-finite values, masses or coefficients out of range,
+/// pinned nodes that move, springs outside the grid, and bounds that do not cover the
+/// tables. Lengths are checked against the bytes actually present before anything is
+/// allocated, so a lying length field costs nothing. A refused snapshot changes nothing.
+///
+/// # As plain data
+///
+/// One value per node (no padding). Produced by [`Surface::snapshot`], turned back into a
+/// surface by [`Surface::from_snapshot`], which validates everything. With the `serde`
+/// feature it can be serialised in any format serde supports.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Snapshot {
@@ -116,6 +120,12 @@ fn bad(msg: impl Into<String>) -> Error {
 }
 
 impl Snapshot {
+    /// The first eight bytes of every binary snapshot.
+    pub const MAGIC: [u8; 8] = MAGIC;
+    /// The binary format version this build writes. It reads this one and version 1
+    /// (which had no `time_scale`: such snapshots get the default).
+    pub const VERSION: u32 = VERSION;
+
     /// Encodes the snapshot in the binary format of the module docs.
     ///
     /// Only the array lengths are checked here (every array must hold `cols × rows`
@@ -182,7 +192,7 @@ impl Snapshot {
         b.extend_from_slice(&self.min_mass.to_le_bytes());
         b.extend_from_slice(&self.max_stiffness.to_le_bytes());
         b.extend_from_slice(&self.max_viscosity.to_le_bytes());
-        b.extend_from_slice(&0u32.to_le_bytes());
+        b.extend_from_slice(&p.time_scale.to_le_bytes());
         debug_assert_eq!(b.len(), HEADER);
         let arrays = self
             .positions
@@ -228,7 +238,7 @@ impl Snapshot {
             )));
         }
         let mut r = Cursor { bytes: body, at: 8 };
-        let _version = r.u32();
+        let version = r.u32();
         let flags = r.u32();
         let _total = r.u64();
         let cols = r.u64() as usize;
@@ -255,23 +265,28 @@ impl Snapshot {
             rest_ratio,
             boundary,
             acceleration,
+            time_scale: Params::default().time_scale,
         };
         let steps = r.u64();
         let time = r.f64();
         let min_mass = r.f32();
         let max_stiffness = r.f32();
         let max_viscosity = r.f32();
-        let reserved = r.u32();
+        let time_scale = r.f32();
         if flags & !FLAG_FORCES_PENDING != 0 {
             return Err(bad(format!(
                 "unknown flags {flags:#x}: written by an incompatible writer"
             )));
         }
-        if reserved != 0 {
-            return Err(bad(
-                "the reserved header field is not 0: written by an incompatible writer",
-            ));
-        }
+        let params = match version {
+            1 if time_scale.to_bits() != 0 => {
+                return Err(bad(
+                    "the reserved header field of a version 1 snapshot is not 0: written by an incompatible writer",
+                ))
+            }
+            1 => params,
+            _ => Params { time_scale, ..params },
+        };
         let n = cols * rows; // bounded by check_header
         let mut f32s = || r.f32s(n);
         let positions = [f32s(), f32s(), f32s()];
@@ -443,9 +458,9 @@ fn check_header(bytes: &[u8]) -> Result<usize> {
     }
     let mut r = Cursor { bytes, at: 8 };
     let version = r.u32();
-    if version != VERSION {
+    if !(1..=VERSION).contains(&version) {
         return Err(bad(format!(
-            "format version {version}, this build of springwater reads version {VERSION}"
+            "format version {version}, this build of springwater reads versions 1 to {VERSION}"
         )));
     }
     let _flags = r.u32();
@@ -524,7 +539,7 @@ impl Surface {
     }
 
     /// A surface from a snapshot, after checking every invariant the engine relies on
-    /// (see the [module docs](crate::snapshot)). Errors are [`Error::Snapshot`].
+    /// (see the [`Snapshot`] docs). Errors are [`Error::Snapshot`].
     pub fn from_snapshot(snap: Snapshot) -> Result<Surface> {
         snap.validate()?;
         let p = snap.params;
@@ -562,7 +577,7 @@ impl Surface {
         ))
     }
 
-    /// The snapshot in the binary format of the [module docs](crate::snapshot).
+    /// The snapshot in the binary format of the [`Snapshot`] docs.
     pub fn to_bytes(&self) -> Vec<u8> {
         self.snapshot().encode()
     }
@@ -571,7 +586,10 @@ impl Surface {
     pub fn save(&self, mut w: impl Write) -> Result<()> {
         w.write_all(&self.to_bytes())
             .and_then(|()| w.flush())
-            .map_err(|e| bad(format!("cannot write: {e}")))
+            .map_err(|e| Error::Io {
+                action: "write",
+                source: e.into(),
+            })
     }
 
     /// A surface from a binary snapshot: exactly the bytes [`Surface::to_bytes`] wrote.
@@ -584,7 +602,10 @@ impl Surface {
     /// Reading grows the buffer as bytes arrive, so a header announcing a huge grid over a
     /// short stream fails with "truncated" instead of allocating.
     pub fn load(mut r: impl Read) -> Result<Surface> {
-        let io = |e: std::io::Error| bad(format!("cannot read: {e}"));
+        let io = |e: std::io::Error| Error::Io {
+            action: "read",
+            source: e.into(),
+        };
         let mut bytes = Vec::with_capacity(HEADER);
         (&mut r)
             .take(HEADER as u64)
@@ -600,7 +621,15 @@ impl Surface {
 
     /// Replaces this surface's state with a binary snapshot. On error `self` is unchanged.
     pub fn restore(&mut self, bytes: &[u8]) -> Result<()> {
-        *self = Surface::from_bytes(bytes)?;
+        let restored = Surface::from_bytes(bytes)?;
+        // The host's thread pool is a setting of this surface, not state: it stays.
+        #[cfg(feature = "parallel")]
+        let pool = self.pool.take();
+        *self = restored;
+        #[cfg(feature = "parallel")]
+        {
+            self.pool = pool;
+        }
         Ok(())
     }
 }

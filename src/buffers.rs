@@ -1,0 +1,275 @@
+//! Renderer-ready vertex data: the per-node arrays interleaved into caller-owned buffers a
+//! GPU upload takes as they are (Bevy's mesh attributes, a wgpu or Vulkan vertex buffer).
+//!
+//! The simulation and the render-side stages keep structure-of-arrays slices (`x`, `y`,
+//! `z` in [`MeshView`], [`Normals`], [`Refraction`]), which is what their SIMD loops want.
+//! [`interleave`] turns them, in one pass over the nodes, into any of:
+//!
+//! * positions `[[f32; 3]]`, normals `[[f32; 3]]`, refraction texture coordinates
+//!   `[[f32; 2]]`;
+//! * packed [`Vertex`]es (`#[repr(C)]`, [`bytemuck::Pod`]: `bytemuck::cast_slice` gives the
+//!   bytes), 32 bytes each: position, normal, uv.
+//!
+//! Every buffer is the caller's, one element per node in row-major order (the order the
+//! LOD index buffer indexes), and is checked before anything is written: a buffer of the
+//! wrong length is an error and no buffer is touched. The values are copied bit for bit.
+//!
+//! ```
+//! use springwater::buffers::{interleave, Vertex, VertexBuffers};
+//! use springwater::refraction::{normals_and_refraction, Refraction, RefractionParams};
+//! use springwater::mesh::Normals;
+//! use springwater::{Params, Surface};
+//!
+//! let mut water = Surface::new(Params::with_size(65, 49))?;
+//! water.drop_at(32.0, 24.0, 1.0, 3.0)?;
+//! let (mut normals, mut uv) = (Normals::new(), Refraction::default());
+//! let mut vertices = vec![Vertex::default(); water.len()];       // kept between frames
+//! let mut positions = vec![[0.0f32; 3]; water.len()];
+//!
+//! water.advance(1.0 / 60.0)?;
+//! let view = water.mesh_view();
+//! let eye = glam::Vec3::new(32.0, 20.0, -10.0);
+//! normals_and_refraction(&view, eye, &RefractionParams::default(), &mut normals, &mut uv)?;
+//! interleave(&view, &normals, &uv, VertexBuffers {
+//!     vertices: Some(&mut vertices),
+//!     positions: Some(&mut positions),
+//!     ..Default::default()
+//! })?;
+//! let bytes: &[u8] = bytemuck::cast_slice(&vertices);               // upload these
+//! assert_eq!(bytes.len(), 32 * water.len());
+//! assert_eq!(positions[24 * 65 + 32][1], view.y()[24 * 65 + 32]);
+//! # Ok::<(), springwater::Error>(())
+//! ```
+
+use crate::error::{Error, Result};
+use crate::mesh::Normals;
+use crate::refraction::Refraction;
+use crate::view::MeshView;
+
+/// One node's vertex, packed for a GPU vertex buffer: 8 `f32`, 32 bytes, no padding.
+///
+/// Attribute offsets: position 0, normal 12, uv 24 (bytes).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, bytemuck::Pod, bytemuck::Zeroable)]
+pub struct Vertex {
+    /// Position in the water's local space (y up).
+    pub position: [f32; 3],
+    /// Unit normal.
+    pub normal: [f32; 3],
+    /// Bottom texture coordinate through the surface ([`Refraction`]'s `u`, `v`).
+    pub uv: [f32; 2],
+}
+
+/// The buffers [`interleave`] fills; `None` skips one. Each given buffer must hold exactly
+/// one element per node.
+#[derive(Debug, Default)]
+pub struct VertexBuffers<'a> {
+    /// Positions `[x, y, z]`.
+    pub positions: Option<&'a mut [[f32; 3]]>,
+    /// Normals `[x, y, z]`.
+    pub normals: Option<&'a mut [[f32; 3]]>,
+    /// Refraction texture coordinates `[u, v]`.
+    pub uvs: Option<&'a mut [[f32; 2]]>,
+    /// Packed vertices.
+    pub vertices: Option<&'a mut [Vertex]>,
+}
+
+/// Nodes per task when the work is split over threads, and per block of the pass.
+const BLOCK: usize = 4096;
+
+/// Fills every buffer of `out` from `view`'s positions, `normals` and `uv`, one element
+/// per node, in one pass (see the [module docs](self)). `normals` and `uv` must be this
+/// view's (one value per node: run the stages on it first).
+///
+/// Errors, with nothing written: [`Error::LengthMismatch`] when `normals`, `uv` or a buffer
+/// does not hold one element per node.
+pub fn interleave(
+    view: &MeshView<'_>,
+    normals: &Normals,
+    uv: &Refraction,
+    out: VertexBuffers<'_>,
+) -> Result<()> {
+    let n = view.grid().len();
+    let check = |what, got: usize| {
+        if got == n {
+            Ok(())
+        } else {
+            Err(Error::LengthMismatch {
+                what,
+                got,
+                expected: n,
+            })
+        }
+    };
+    for c in [&normals.x, &normals.y, &normals.z] {
+        check("normals", c.len())?;
+    }
+    for c in [&uv.u, &uv.v] {
+        check("refraction coordinates", c.len())?;
+    }
+    if let Some(b) = &out.positions {
+        check("position buffer", b.len())?;
+    }
+    if let Some(b) = &out.normals {
+        check("normal buffer", b.len())?;
+    }
+    if let Some(b) = &out.uvs {
+        check("uv buffer", b.len())?;
+    }
+    if let Some(b) = &out.vertices {
+        check("vertex buffer", b.len())?;
+    }
+    let src = Source {
+        p: [view.x(), view.y(), view.z()],
+        n: [&normals.x, &normals.y, &normals.z],
+        uv: [&uv.u, &uv.v],
+    };
+    split(src, out);
+    Ok(())
+}
+
+/// The structure-of-arrays inputs, all of one length.
+#[derive(Clone, Copy)]
+struct Source<'a> {
+    p: [&'a [f32]; 3],
+    n: [&'a [f32]; 3],
+    uv: [&'a [f32]; 2],
+}
+
+impl<'a> Source<'a> {
+    fn len(&self) -> usize {
+        self.p[0].len()
+    }
+
+    fn split_at(self, mid: usize) -> (Self, Self) {
+        let cut3 = |s: [&'a [f32]; 3]| {
+            let parts = s.map(|c| c.split_at(mid));
+            (parts.map(|p| p.0), parts.map(|p| p.1))
+        };
+        let (p0, p1) = cut3(self.p);
+        let (n0, n1) = cut3(self.n);
+        let uv = self.uv.map(|c| c.split_at(mid));
+        (
+            Self {
+                p: p0,
+                n: n0,
+                uv: uv.map(|p| p.0),
+            },
+            Self {
+                p: p1,
+                n: n1,
+                uv: uv.map(|p| p.1),
+            },
+        )
+    }
+}
+
+fn split_opt<T>(b: Option<&mut [T]>, mid: usize) -> (Option<&mut [T]>, Option<&mut [T]>) {
+    match b {
+        Some(b) => {
+            let (lo, hi) = b.split_at_mut(mid);
+            (Some(lo), Some(hi))
+        }
+        None => (None, None),
+    }
+}
+
+/// Halves the work until it is one block, running the halves on the rayon pool with the
+/// `parallel` feature. Every element is written by the same code either way.
+fn split(src: Source<'_>, out: VertexBuffers<'_>) {
+    let len = src.len();
+    if len <= BLOCK {
+        fill(src, out);
+        return;
+    }
+    let mid = len / 2;
+    let (s0, s1) = src.split_at(mid);
+    let (p0, p1) = split_opt(out.positions, mid);
+    let (n0, n1) = split_opt(out.normals, mid);
+    let (u0, u1) = split_opt(out.uvs, mid);
+    let (v0, v1) = split_opt(out.vertices, mid);
+    let lo = VertexBuffers {
+        positions: p0,
+        normals: n0,
+        uvs: u0,
+        vertices: v0,
+    };
+    let hi = VertexBuffers {
+        positions: p1,
+        normals: n1,
+        uvs: u1,
+        vertices: v1,
+    };
+    #[cfg(feature = "parallel")]
+    rayon::join(|| split(s0, lo), || split(s1, hi));
+    #[cfg(not(feature = "parallel"))]
+    {
+        split(s0, lo);
+        split(s1, hi);
+    }
+}
+
+/// One block: each requested buffer in turn, while the block's inputs are in cache.
+/// Zipped iterators over slices of one length: no bounds checks, and the compiler
+/// vectorises the gathers into interleaved stores.
+fn fill(src: Source<'_>, out: VertexBuffers<'_>) {
+    let [x, y, z] = src.p;
+    let [nx, ny, nz] = src.n;
+    let [u, v] = src.uv;
+    if let Some(o) = out.positions {
+        for (o, ((x, y), z)) in o.iter_mut().zip(x.iter().zip(y).zip(z)) {
+            *o = [*x, *y, *z];
+        }
+    }
+    if let Some(o) = out.normals {
+        for (o, ((x, y), z)) in o.iter_mut().zip(nx.iter().zip(ny).zip(nz)) {
+            *o = [*x, *y, *z];
+        }
+    }
+    if let Some(o) = out.uvs {
+        for (o, (u, v)) in o.iter_mut().zip(u.iter().zip(v)) {
+            *o = [*u, *v];
+        }
+    }
+    if let Some(o) = out.vertices {
+        vertices(src, o);
+    }
+}
+
+/// Packed vertices, four nodes at a time: two 4 × 4 transposes turn the eight streams'
+/// four-lane loads into the four vertices' two halves (`[x, y, z, nx]`, `[ny, nz, u, v]`).
+/// The tail (fewer than four nodes) is copied one node at a time. `f32x4` here is the
+/// shape of half a vertex, not the engine's lane width.
+fn vertices(src: Source<'_>, out: &mut [Vertex]) {
+    use wide::f32x4;
+    let [x, y, z] = src.p;
+    let [nx, ny, nz] = src.n;
+    let [u, v] = src.uv;
+    let halves: &mut [[f32; 4]] = bytemuck::cast_slice_mut(out);
+    let (quads, _) = halves.as_chunks_mut::<8>();
+    let m = quads.len();
+    // Each stream as `m` chunks of four: indexing them below with `k < m` is in bounds by
+    // construction, and the compiler drops the checks.
+    let [x, y, z, nx, ny, nz, u, v] =
+        [x, y, z, nx, ny, nz, u, v].map(|s| &s.as_chunks::<4>().0[..m]);
+    for (k, quad) in quads.iter_mut().enumerate() {
+        let load = |s: &[[f32; 4]]| f32x4::new(s[k]);
+        let front = f32x4::transpose([load(x), load(y), load(z), load(nx)]);
+        let back = f32x4::transpose([load(ny), load(nz), load(u), load(v)]);
+        for j in 0..4 {
+            quad[2 * j] = front[j].to_array();
+            quad[2 * j + 1] = back[j].to_array();
+        }
+    }
+    let done = 4 * m;
+    let [x, y, z] = src.p;
+    let [nx, ny, nz] = src.n;
+    let [u, v] = src.uv;
+    for (i, o) in out.iter_mut().enumerate().skip(done) {
+        *o = Vertex {
+            position: [x[i], y[i], z[i]],
+            normal: [nx[i], ny[i], nz[i]],
+            uv: [u[i], v[i]],
+        };
+    }
+}
