@@ -96,9 +96,11 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         surface.set_pass_steps(k);
     }
     if model.drops.is_empty() {
+        // The same drop as `--drop COLS/2,ROWS/2,1,4` (grid steps) at any spacing.
         let p = surface.params();
+        let h = p.spacing;
         surface
-            .drop_at(p.cols as f32 / 2.0, p.rows as f32 / 2.0, 1.0, 4.0)
+            .drop_at(p.cols as f32 / 2.0 * h, p.rows as f32 / 2.0 * h, 1.0, 4.0 * h)
             .map_err(|e| e.to_string())?;
     }
     let threads = model.threads.unwrap_or_else(rayon::current_num_threads);
