@@ -168,7 +168,7 @@ pub fn bands(rows: usize, band_rows: usize) -> impl Iterator<Item = Band> {
 /// How one engine pass of `levels` steps cuts the rows among the bands.
 ///
 /// A pass advances the state `levels` steps while each band streams its rows once (see
-/// `src/forces/simd.rs`). Level `l` means the state after `l` steps. At each level every row
+/// `src/forces/engine/`). Level `l` means the state after `l` steps. At each level every row
 /// is integrated by exactly one band, and the cut between two bands leans with the level,
 /// one row per step, always into the even band:
 ///

@@ -46,15 +46,16 @@
 //! use it as a CPU preview or a reference image for its GPU shader. It needs nothing
 //! beyond what the library already depends on (`glam`, and `rayon` under `parallel`).
 //!
-//! The rasteriser (the private `raster` module) is about 250 lines written for this job rather than a
-//! crate: what it draws is one kind of primitive (triangles with nine interpolated
-//! values over a depth buffer), and writing it lets it split the image into bands of
-//! rows that rayon shades in parallel while the picture stays bit-identical for any
-//! thread count, with no `unsafe` (only `simd.rs` has any). Of the crates looked at,
-//! tiny-skia draws 2-D paths with no per-vertex values to interpolate, and euc (shaders
-//! behind its own `Pipeline` trait, maths in `vek` types) would mean converting our data
-//! to its types and leaving the parallel split, and whether the picture depends on it,
-//! to a dependency; the glue would be about as long as the rasteriser.
+//! The rasteriser (the private `raster` module) is about 250 lines written for this job
+//! rather than a crate: what it draws is one kind of primitive (triangles with nine
+//! interpolated values over a depth buffer), and writing it lets it split the image into
+//! bands of rows that rayon shades in parallel while the picture stays bit-identical for
+//! any thread count, with no `unsafe` (only the lane layer, `src/simd/`, and the engine
+//! have any). Of the crates looked at, tiny-skia draws 2-D paths with no per-vertex
+//! values to interpolate, and euc (shaders behind its own `Pipeline` trait, maths in
+//! `vek` types) would mean converting our data to its types and leaving the parallel
+//! split, and whether the picture depends on it, to a dependency; the glue would be about
+//! as long as the rasteriser.
 
 mod camera;
 mod raster;

@@ -100,7 +100,12 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         let p = surface.params();
         let h = p.spacing;
         surface
-            .drop_at(p.cols as f32 / 2.0 * h, p.rows as f32 / 2.0 * h, 1.0, 4.0 * h)
+            .drop_at(
+                p.cols as f32 / 2.0 * h,
+                p.rows as f32 / 2.0 * h,
+                1.0,
+                4.0 * h,
+            )
             .map_err(|e| e.to_string())?;
     }
     let threads = model.threads.unwrap_or_else(rayon::current_num_threads);
