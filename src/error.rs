@@ -128,6 +128,14 @@ pub enum Error {
         max: u32,
     },
 
+    /// The host's job system ([`Surface::set_job_system`](crate::Surface::set_job_system))
+    /// returned without running every task it was given. The step was not applied.
+    #[error(
+        "the job system returned before running every task it was given; the step was not \
+         applied (JobSystem::run must call the task once for each index below the count)"
+    )]
+    JobSystem,
+
     /// A snapshot could not be read: truncated, corrupted, or from another format version.
     #[error("snapshot refused: {0}")]
     Snapshot(String),

@@ -54,7 +54,8 @@
 //!
 //! * [`Surface`]: what a game owns: stepping, drops and forces, point queries
 //!   ([`Surface::height_at`] and friends), snapshots ([`Snapshot`], a versioned binary
-//!   format with a checksum), the host's thread pool.
+//!   format with a checksum), the host's threads ([`Surface::set_thread_pool`], or any
+//!   [`JobSystem`] with [`Surface::set_job_system`]).
 //! * [`Params`], [`Boundary`]: the model's parameters, their defaults and limits.
 //! * [`disturb`]: rain reproducible from a seed, a moving object's wake, and the
 //!   [`disturb::Disturbance`] trait that [`Surface::advance_with`] applies every substep.
@@ -94,6 +95,7 @@ pub mod disturb;
 mod error;
 mod forces;
 mod grid;
+mod jobs;
 pub mod mesh;
 mod params;
 pub mod refraction;
@@ -108,6 +110,7 @@ mod view;
 
 pub use error::{Error, IoError, Result};
 pub use grid::{Family, Grid, SpringId};
+pub use jobs::JobSystem;
 pub use params::{Boundary, Params, MAX_NODES};
 pub use simd::SimdLevel;
 pub use surface::snapshot::Snapshot;

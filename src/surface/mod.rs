@@ -9,13 +9,16 @@ pub(crate) mod snapshot;
 pub use disturbance::Disturbance;
 
 use crate::error::{Error, Result};
-use crate::forces::{self, engine::Workspace, StepConfig};
+use crate::forces::engine::{PassEnd, Workspace};
+use crate::forces::{self, StepConfig};
 use crate::grid::{Grid, SpringId};
+use crate::jobs::{Host, JobSystem, Runner};
 use crate::params::{self, Params};
 use crate::simd::SimdLevel;
 use crate::springs::Springs;
 use crate::state::State;
 use crate::view::MeshView;
+use std::sync::Arc;
 
 /// Which implementation of the step to run.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -73,7 +76,7 @@ pub struct Surface {
     workspace: Workspace,
     reference: forces::scalar::Scratch,
     /// The instruction set the engine runs.
-    simd: SimdLevel,
+    pub(crate) simd: SimdLevel,
     /// Smallest node mass, largest spring coefficient and largest viscosity ever set: they
     /// set `critical_dt`.
     pub(crate) min_mass: f32,
@@ -81,9 +84,8 @@ pub struct Surface {
     pub(crate) max_viscosity: f32,
     steps: u64,
     time: f64,
-    /// The host's thread pool the engine steps on; `None`: rayon's global pool.
-    #[cfg(feature = "parallel")]
-    pub(crate) pool: Option<std::sync::Arc<rayon::ThreadPool>>,
+    /// The host's threads the engine steps on; `None`: rayon's global pool.
+    pub(crate) host: Option<Host>,
 }
 
 impl Surface {
@@ -108,7 +110,7 @@ impl Surface {
         Self::build(params).with_env_simd()
     }
 
-    fn with_env_simd(mut self) -> Result<Self> {
+    pub(crate) fn with_env_simd(mut self) -> Result<Self> {
         self.simd = SimdLevel::from_env()?;
         Ok(self)
     }
@@ -155,8 +157,7 @@ impl Surface {
             steps: progress.0,
             time: progress.1,
             params,
-            #[cfg(feature = "parallel")]
-            pool: None,
+            host: None,
         }
     }
 
@@ -320,32 +321,61 @@ impl Surface {
     /// assert!(water.thread_pool().is_some());
     /// # Ok::<(), springwater::Error>(())
     /// ```
+    ///
+    /// Setting a pool replaces a job system set with [`Surface::set_job_system`].
     #[cfg(feature = "parallel")]
-    pub fn set_thread_pool(&mut self, pool: Option<std::sync::Arc<rayon::ThreadPool>>) {
-        self.pool = pool;
+    pub fn set_thread_pool(&mut self, pool: Option<Arc<rayon::ThreadPool>>) {
+        self.host = pool.map(Host::Pool);
     }
 
     /// The host's thread pool set with [`Surface::set_thread_pool`], if any.
     #[cfg(feature = "parallel")]
-    pub fn thread_pool(&self) -> Option<&std::sync::Arc<rayon::ThreadPool>> {
-        self.pool.as_ref()
-    }
-
-    /// `n` engine steps on the host's pool if one is set (see
-    /// [`Surface::set_thread_pool`]), else where the caller is.
-    fn engine_steps(&mut self, n: u64, dt: f32) -> Result<()> {
-        #[cfg(feature = "parallel")]
-        if let Some(pool) = self.pool.clone() {
-            if pool.current_thread_index().is_none() {
-                return pool.install(|| self.engine_steps_here(n, dt));
-            }
+    pub fn thread_pool(&self) -> Option<&Arc<rayon::ThreadPool>> {
+        match &self.host {
+            Some(Host::Pool(pool)) => Some(pool),
+            _ => None,
         }
-        self.engine_steps_here(n, dt)
     }
 
-    /// `n` engine steps, in passes of up to `pass_steps`. A pass that fails is redone one
-    /// step at a time, so the error names the exact step and node.
-    fn engine_steps_here(&mut self, n: u64, dt: f32) -> Result<()> {
+    /// Runs the engine's colour batches through `jobs`, the host's own job system (an
+    /// engine's worker threads, Bevy's task pools, a C engine's scheduler), instead of
+    /// rayon (`None` goes back to rayon's global pool). Each pass of the engine hands it
+    /// two batches of independent tasks, one per colour, from the thread that called the
+    /// stepping method; see [`JobSystem`]. Results are bitwise the same as on rayon's
+    /// pool, whatever threads and order the job system uses. Clones of the surface share
+    /// the job system; setting one replaces a pool set with `set_thread_pool`.
+    ///
+    /// If the job system returns without running every task it was given, the step fails
+    /// with [`Error::JobSystem`] and the surface is unchanged.
+    pub fn set_job_system(&mut self, jobs: Option<Arc<dyn JobSystem>>) {
+        self.host = jobs.map(Host::Jobs);
+    }
+
+    /// The host's job system set with [`Surface::set_job_system`], if any.
+    pub fn job_system(&self) -> Option<&Arc<dyn JobSystem>> {
+        match &self.host {
+            Some(Host::Jobs(jobs)) => Some(jobs),
+            _ => None,
+        }
+    }
+
+    /// `n` engine steps on the host's threads if they are set (see
+    /// [`Surface::set_thread_pool`], [`Surface::set_job_system`]), else where the caller is.
+    fn engine_steps(&mut self, n: u64, dt: f32) -> Result<()> {
+        match self.host.clone() {
+            #[cfg(feature = "parallel")]
+            Some(Host::Pool(pool)) if pool.current_thread_index().is_none() => {
+                pool.install(|| self.engine_steps_on(n, dt, Runner::Here))
+            }
+            Some(Host::Jobs(jobs)) => self.engine_steps_on(n, dt, Runner::Jobs(&*jobs)),
+            _ => self.engine_steps_on(n, dt, Runner::Here),
+        }
+    }
+
+    /// `n` engine steps, in passes of up to `pass_steps`, each colour run by `runner`. A
+    /// pass that fails is redone one step at a time, so the error names the exact step
+    /// and node.
+    fn engine_steps_on(&mut self, n: u64, dt: f32, runner: Runner<'_>) -> Result<()> {
         if self.simd == SimdLevel::Scalar {
             for _ in 0..n {
                 self.step_dt(dt, Stepper::Reference)?;
@@ -357,15 +387,18 @@ impl Surface {
         while left > 0 {
             let k = left.min(self.workspace.pass_steps as u64) as usize;
             let (state, springs, ws) = (&mut self.state, &self.springs, &mut self.workspace);
-            if forces::engine::pass(state, springs, ws, cfg, k, self.simd) {
-                self.commit(k, dt);
-            } else if k > 1 {
-                for _ in 0..k {
-                    self.engine_steps_here(1, dt)?;
+            match forces::engine::pass(state, springs, ws, cfg, k, self.simd, runner) {
+                PassEnd::Done => self.commit(k, dt),
+                PassEnd::Incomplete => return Err(Error::JobSystem),
+                PassEnd::NonFinite if k > 1 => {
+                    for _ in 0..k {
+                        self.engine_steps_on(1, dt, runner)?;
+                    }
                 }
-            } else {
-                let node = self.state.first_non_finite_next().unwrap_or(0);
-                return Err(self.non_finite(node));
+                PassEnd::NonFinite => {
+                    let node = self.state.first_non_finite_next().unwrap_or(0);
+                    return Err(self.non_finite(node));
+                }
             }
             left -= k as u64;
         }
@@ -729,9 +762,15 @@ impl Surface {
     #[cfg(feature = "internals")]
     #[doc(hidden)]
     pub fn bands(&self) -> impl Iterator<Item = crate::springs::Band> {
+        let workers = match &self.host {
+            Some(Host::Jobs(jobs)) => Runner::Jobs(&**jobs).workers(),
+            #[cfg(feature = "parallel")]
+            Some(Host::Pool(pool)) => pool.current_num_threads(),
+            None => Runner::Here.workers(),
+        };
         let tiling = self
             .workspace
-            .tiling(self.params.rows, self.workspace.pass_steps);
+            .tiling(self.params.rows, self.workspace.pass_steps, workers);
         crate::springs::bands(self.params.rows, tiling.band_rows)
     }
 

@@ -568,13 +568,7 @@ impl Surface {
         // from the tables, so recomputed rather than stored.
         springs.refresh(Grid::new(p.cols, p.rows));
         let bounds = [snap.min_mass, snap.max_stiffness, snap.max_viscosity];
-        Ok(Surface::from_parts(
-            p,
-            state,
-            springs,
-            bounds,
-            (snap.steps, snap.time),
-        ))
+        Surface::from_parts(p, state, springs, bounds, (snap.steps, snap.time)).with_env_simd()
     }
 
     /// The snapshot in the binary format of the [`Snapshot`] docs.
@@ -622,14 +616,12 @@ impl Surface {
     /// Replaces this surface's state with a binary snapshot. On error `self` is unchanged.
     pub fn restore(&mut self, bytes: &[u8]) -> Result<()> {
         let restored = Surface::from_bytes(bytes)?;
-        // The host's thread pool is a setting of this surface, not state: it stays.
-        #[cfg(feature = "parallel")]
-        let pool = self.pool.take();
+        // Where and how the engine runs (the host's threads, the SIMD level) are settings
+        // of this surface, not state: they stay.
+        let (host, simd) = (self.host.take(), self.simd);
         *self = restored;
-        #[cfg(feature = "parallel")]
-        {
-            self.pool = pool;
-        }
+        self.host = host;
+        self.simd = simd;
         Ok(())
     }
 }

@@ -27,9 +27,12 @@ mod schedule;
 mod scratch;
 
 use super::StepConfig;
+use crate::jobs::Runner;
 use crate::simd::{Kernel, SimdLevel, Vector};
 use crate::springs::{Springs, Tiling};
 use crate::state::State;
+use schedule::Claims;
+pub(crate) use schedule::PassEnd;
 use scratch::Row;
 use std::any::Any;
 
@@ -62,6 +65,8 @@ pub(crate) struct Workspace {
     /// `Vec<Handoff<V>>` for that vector type: slot `b` holds what crosses the cut above
     /// band `b` (slot 0 is unused).
     handoffs: Option<Box<dyn Any + Send + Sync>>,
+    /// One flag per band: which bands of the running colour have been taken by a task.
+    claims: Claims,
 }
 
 impl Clone for Workspace {
@@ -72,6 +77,7 @@ impl Clone for Workspace {
             pass_steps: self.pass_steps,
             made_for: None,
             handoffs: None,
+            claims: Claims::new(0),
         }
     }
 }
@@ -92,18 +98,20 @@ impl Workspace {
             pass_steps: DEFAULT_PASS_STEPS,
             made_for: None,
             handoffs: None,
+            claims: Claims::new(0),
         }
     }
 
-    /// The tiling for a pass of `levels` steps and its handoff slots, made again when the
-    /// tiling, the width or the vector type changes.
+    /// The tiling for a pass of `levels` steps on `workers` threads, its handoff slots and
+    /// band claims, made again when the tiling, the width or the vector type changes.
     fn prepare<V: Vector>(
         &mut self,
         cols: usize,
         rows: usize,
         levels: usize,
-    ) -> (Tiling, &mut Vec<Handoff<V>>) {
-        let tiling = self.tiling(rows, levels);
+        workers: usize,
+    ) -> (Tiling, &mut Vec<Handoff<V>>, &mut Claims) {
+        let tiling = self.tiling(rows, levels, workers);
         let key = (tiling, cols, std::any::TypeId::of::<V>());
         if self.made_for != Some(key) || self.handoffs.is_none() {
             let slots = if tiling.bands() > 1 {
@@ -120,6 +128,7 @@ impl Workspace {
                 })
                 .collect();
             self.handoffs = Some(Box::new(handoffs));
+            self.claims = Claims::new(tiling.bands());
             self.made_for = Some(key);
         }
         let handoffs = self
@@ -127,32 +136,22 @@ impl Workspace {
             .as_mut()
             .and_then(|h| h.downcast_mut::<Vec<Handoff<V>>>())
             .expect("the handoffs were made for this vector type");
-        (tiling, handoffs)
+        (tiling, handoffs, &mut self.claims)
     }
 
-    /// How a pass of `levels` steps cuts `rows` rows on the current thread pool.
-    pub fn tiling(&self, rows: usize, levels: usize) -> Tiling {
+    /// How a pass of `levels` steps cuts `rows` rows for `workers` threads.
+    pub fn tiling(&self, rows: usize, levels: usize, workers: usize) -> Tiling {
         let band_rows = self
             .fixed_band_rows
-            .unwrap_or_else(|| crate::springs::band_rows(rows, threads()));
+            .unwrap_or_else(|| crate::springs::band_rows(rows, workers));
         Tiling::new(rows, band_rows, levels)
     }
 }
 
-#[cfg(feature = "parallel")]
-fn threads() -> usize {
-    rayon::current_num_threads()
-}
-
-#[cfg(not(feature = "parallel"))]
-fn threads() -> usize {
-    1
-}
-
 /// One engine pass of `levels` steps (`1..=MAX_PASS_STEPS`) from the front into the back
 /// buffers, with the lanes of `level` (clamped to the CPU's; the portable lanes for
-/// [`SimdLevel::Scalar`], whose callers run the scalar reference instead). Returns
-/// `false` if any new value, at any level, is not finite.
+/// [`SimdLevel::Scalar`], whose callers run the scalar reference instead), each colour's
+/// bands run by `runner`.
 pub(crate) fn pass(
     state: &mut State,
     springs: &Springs,
@@ -160,7 +159,8 @@ pub(crate) fn pass(
     cfg: StepConfig,
     levels: usize,
     level: SimdLevel,
-) -> bool {
+    runner: Runner<'_>,
+) -> PassEnd {
     crate::simd::dispatch(
         level,
         Pass {
@@ -169,6 +169,7 @@ pub(crate) fn pass(
             ws,
             cfg,
             levels,
+            runner,
         },
     )
 }
@@ -180,13 +181,22 @@ struct Pass<'a> {
     ws: &'a mut Workspace,
     cfg: StepConfig,
     levels: usize,
+    runner: Runner<'a>,
 }
 
 impl Kernel for Pass<'_> {
-    type Output = bool;
+    type Output = PassEnd;
 
     #[inline(always)]
-    fn run<V: Vector>(self) -> bool {
-        schedule::pass_with::<V>(self.state, self.springs, self.ws, self.cfg, self.levels)
+    fn run<V: Vector>(self) -> PassEnd {
+        let Pass {
+            state,
+            springs,
+            ws,
+            cfg,
+            levels,
+            runner,
+        } = self;
+        schedule::pass_with::<V>(state, springs, ws, cfg, levels, runner)
     }
 }

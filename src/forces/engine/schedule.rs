@@ -8,10 +8,12 @@
 //! in parallel: it reads those rows wherever it needs a row at a level that it did not
 //! integrate itself.
 //!
-//! Bands of one colour write disjoint rows, so each task gets `&mut` slices of its own
-//! rows of the back buffer and of its own handoff slots (split with `split_at_mut`: no
-//! atomics, no locks). A step allocates nothing: handoffs live in the [`Workspace`], and
-//! each worker thread keeps its rings from pass to pass ([`with_scratch`]).
+//! Bands of one colour write disjoint rows, so each task takes `&mut` slices of its own
+//! rows of the back buffer and of its own handoff slots ([`Disjoint`]): no atomics on the
+//! state, no locks. Each colour's bands are one batch of independent tasks for a
+//! [`Runner`]: rayon's pool, or the host's job system ([`crate::JobSystem`]). A step
+//! allocates nothing: handoffs live in the [`Workspace`], and each worker thread keeps its
+//! rings from pass to pass ([`with_scratch`]).
 //!
 //! Within a band, a pass is a wavefront over rows and levels ([`band`]): as soon as row
 //! `r` of level `l−1` exists, row `r−1` of level `l` can be integrated, because a row only
@@ -20,10 +22,12 @@
 use super::row::{advance_row, down_springs, Inputs, Level, RowOut};
 use super::scratch::{with_scratch, Scratch};
 use super::{Handoff, StepConfig, Workspace, MAX_PASS_STEPS, STREAM_MIN_NODES};
+use crate::jobs::Runner;
 use crate::simd::Vector;
 use crate::springs::{Springs, Tiling};
 use crate::state::{State, Xyz};
 use std::ops::Range;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 /// The back-buffer rows one task may write: rows `first_row ..` of x, y, z, vx, vy, vz.
 struct Rows<'a> {
@@ -32,25 +36,7 @@ struct Rows<'a> {
     out: [&'a mut [f32]; 6],
 }
 
-impl<'a> Rows<'a> {
-    /// Splits at `row` (clamped to the rows held): `(rows before, rows from)`.
-    fn split_at_row(self, row: usize) -> (Rows<'a>, Rows<'a>) {
-        let held = self.out[0].len() / self.cols;
-        let at = row.saturating_sub(self.first_row).min(held);
-        let [a, b, c, d, e, f] = self.out.map(|s| s.split_at_mut(at * self.cols));
-        let head = Rows {
-            first_row: self.first_row,
-            cols: self.cols,
-            out: [a.0, b.0, c.0, d.0, e.0, f.0],
-        };
-        let tail = Rows {
-            first_row: self.first_row + at,
-            cols: self.cols,
-            out: [a.1, b.1, c.1, d.1, e.1, f.1],
-        };
-        (head, tail)
-    }
-
+impl Rows<'_> {
     /// Row `r` (held by this task), for [`advance_row`] to write.
     fn row(&mut self, r: usize) -> [&mut [f32]; 6] {
         let at = (r - self.first_row) * self.cols;
@@ -59,32 +45,134 @@ impl<'a> Rows<'a> {
     }
 }
 
-/// Every row of the back buffers (`next_pos`, `next_vel`), for the tasks to split.
-fn back_rows<'a>(pos: &'a mut Xyz, vel: &'a mut Xyz, cols: usize, n: usize) -> Rows<'a> {
-    let [px, py, pz] = pos;
-    let [vx, vy, vz] = vel;
-    let out = [px, py, pz, vx, vy, vz].map(|b| &mut b[..n]);
-    Rows {
-        first_row: 0,
-        cols,
-        out,
+/// A mutable slice that the tasks of one colour, running at once, take disjoint parts of.
+///
+/// Which part a task takes follows from its band: band `b` owns the back-buffer rows
+/// `cut(b, levels) .. cut(b + 1, levels)` (cuts never decrease, so no two bands share a
+/// row) and, if it is even, the handoff slots `b` and `b + 1` (the next even band's are
+/// `b + 2` and `b + 3`). [`Claims`] make sure each band runs at most once per colour,
+/// whatever the job system does, so no part is ever taken twice.
+struct Disjoint<'a, T> {
+    ptr: *mut T,
+    len: usize,
+    _borrow: std::marker::PhantomData<&'a mut [T]>,
+}
+
+// SAFETY: a `Disjoint` is a `&mut [T]` handed out in non-overlapping parts; sending or
+// sharing it across threads is sending those parts, which needs `T: Send`.
+unsafe impl<T: Send> Send for Disjoint<'_, T> {}
+// SAFETY: as above; shared access only ever produces non-overlapping `&mut` parts.
+unsafe impl<T: Send> Sync for Disjoint<'_, T> {}
+
+impl<'a, T> Disjoint<'a, T> {
+    fn new(s: &'a mut [T]) -> Self {
+        Self {
+            ptr: s.as_mut_ptr(),
+            len: s.len(),
+            _borrow: std::marker::PhantomData,
+        }
+    }
+
+    /// `self[range]`, mutable.
+    ///
+    /// # Safety
+    ///
+    /// No other part overlapping `range` may be alive while this one is.
+    unsafe fn part(&self, range: Range<usize>) -> &'a mut [T] {
+        assert!(range.start <= range.end && range.end <= self.len);
+        // SAFETY: in bounds (checked above) of a slice borrowed mutably for `'a`; the
+        // caller guarantees no overlapping part is alive.
+        unsafe { std::slice::from_raw_parts_mut(self.ptr.add(range.start), range.len()) }
     }
 }
 
+/// The back buffers (`next_pos`, `next_vel`), for the tasks to take their bands' rows of.
+struct BackRows<'a> {
+    cols: usize,
+    out: [Disjoint<'a, f32>; 6],
+}
+
+impl<'a> BackRows<'a> {
+    fn new(pos: &'a mut Xyz, vel: &'a mut Xyz, cols: usize, n: usize) -> Self {
+        let [px, py, pz] = pos;
+        let [vx, vy, vz] = vel;
+        let out = [px, py, pz, vx, vy, vz].map(|b| Disjoint::new(&mut b[..n]));
+        Self { cols, out }
+    }
+
+    /// The rows `rows` of every buffer.
+    ///
+    /// # Safety
+    ///
+    /// No other task may hold rows overlapping `rows` at the same time.
+    unsafe fn rows(&self, rows: Range<usize>) -> Rows<'a> {
+        let cols = self.cols;
+        let span = rows.start * cols..rows.end * cols;
+        Rows {
+            first_row: rows.start,
+            cols,
+            // SAFETY: the caller holds these rows alone.
+            out: self.out.each_ref().map(|d| unsafe { d.part(span.clone()) }),
+        }
+    }
+}
+
+/// One flag per band of a colour: a band runs only if it is the first to claim its flag.
+/// That keeps each band's rows and handoff slots with one task even if a job system
+/// calls a task twice, and tells whether every band ran.
+pub(super) struct Claims(Vec<AtomicBool>);
+
+impl Claims {
+    pub fn new(bands: usize) -> Self {
+        Self((0..bands).map(|_| AtomicBool::new(false)).collect())
+    }
+
+    fn reset(&mut self) {
+        self.0.iter_mut().for_each(|c| *c.get_mut() = false);
+    }
+
+    /// Whether band `b` is still free (it is then claimed).
+    fn claim(&self, b: usize) -> bool {
+        self.0
+            .get(b)
+            .is_some_and(|c| !c.swap(true, Ordering::AcqRel))
+    }
+
+    /// Whether every band of `colour` has been claimed.
+    fn all(&mut self, colour: usize) -> bool {
+        self.0
+            .iter_mut()
+            .skip(colour)
+            .step_by(2)
+            .all(|c| *c.get_mut())
+    }
+}
+
+/// How a pass ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum PassEnd {
+    /// Every new value is finite: the back buffers hold the state after the pass.
+    Done,
+    /// Some new value, at some level, is not finite.
+    NonFinite,
+    /// The job system returned without running every band.
+    Incomplete,
+}
+
 /// One engine pass of `levels` steps (`1..=MAX_PASS_STEPS`) from the front into the back
-/// buffers with vector type `V`. Returns `false` if any new value, at any level, is not
-/// finite.
+/// buffers with vector type `V`, each colour's bands run by `runner`.
 pub(super) fn pass_with<V: Vector>(
     state: &mut State,
     springs: &Springs,
     ws: &mut Workspace,
     cfg: StepConfig,
     levels: usize,
-) -> bool {
+    runner: Runner<'_>,
+) -> PassEnd {
     debug_assert!((1..=MAX_PASS_STEPS).contains(&levels));
     let grid = state.grid;
     let (cols, rows, n) = (grid.cols, grid.rows, grid.len());
-    let (t, handoffs) = ws.prepare::<V>(cols, rows, levels);
+    let (t, handoffs, claims) = ws.prepare::<V>(cols, rows, levels, runner.workers());
     let inp = Inputs::<V>::new(
         cols,
         rows,
@@ -100,108 +188,65 @@ pub(super) fn pass_with<V: Vector>(
         n >= STREAM_MIN_NODES,
     );
     let bands = t.bands();
+    let back = BackRows::new(&mut state.next_pos, &mut state.next_vel, cols, n);
+    // SAFETY (both colours): a band takes only its own rows at the last level, and each
+    // band runs at most once per colour (`Claims`); cuts never decrease, so the rows of
+    // two bands never overlap.
+    debug_assert!((0..bands).all(|b| t.cut(b, levels) <= t.cut(b + 1, levels)));
 
     // Colour 0: even bands, each writing the handoff slots on both of its cuts.
-    let ok_even = for_each_band(
-        &t,
-        0..bands,
-        Slots {
-            first: 0,
-            slots: &mut handoffs[..],
-        },
-        back_rows(&mut state.next_pos, &mut state.next_vel, cols, n),
-        &|slots: Slots<V>, b| slots.split(b),
-        &|b, slots: Slots<V>, mut rows| {
-            let (above, below) = slots.of_band(b);
-            band(&inp, &t, b, Handoffs::Give(above, below), &mut rows)
-        },
-    );
+    let slots = Disjoint::new(&mut handoffs[..]);
+    let even_ok = run_colour(runner, claims, bands, 0, &|b| {
+        // SAFETY: see above.
+        let mut rows = unsafe { back.rows(t.rows_at(b, levels)) };
+        // SAFETY: slots `b` and `b + 1` belong to even band `b` alone (the next even band's
+        // are `b + 2` and `b + 3`), and `b` runs once.
+        let mine = unsafe { slots.part(b.min(slots.len)..(b + 2).min(slots.len)) };
+        let mut mine = mine.iter_mut();
+        let above = mine.next().filter(|_| b > 0);
+        let below = mine.next();
+        band(&inp, &t, b, Handoffs::Give(above, below), &mut rows)
+    });
+    let Some(even_ok) = even_ok else {
+        return PassEnd::Incomplete;
+    };
 
     // Colour 1: odd bands, reading what the even bands handed over.
     let handoffs = &handoffs[..];
-    let (_, from_band_1) =
-        back_rows(&mut state.next_pos, &mut state.next_vel, cols, n).split_at_row(t.cut(1, levels));
-    let ok_odd = for_each_band(
-        &t,
-        1..bands,
-        (),
-        from_band_1,
-        &|(), _| ((), ()),
-        &|b, (), mut rows| {
-            let take = |s: usize| handoffs.get(s).filter(|_| s < bands);
-            band(&inp, &t, b, Handoffs::Take(take(b), take(b + 1)), &mut rows)
-        },
-    );
-    ok_even && ok_odd
-}
-
-/// Handoff slots `first ..` for the even bands of one task.
-struct Slots<'a, V> {
-    first: usize,
-    slots: &'a mut [Handoff<V>],
-}
-
-impl<'a, V> Slots<'a, V> {
-    /// Slots before band `b`'s and from it.
-    fn split(self, b: usize) -> (Slots<'a, V>, Slots<'a, V>) {
-        let at = (b - self.first).min(self.slots.len());
-        let (l, r) = self.slots.split_at_mut(at);
-        (
-            Slots {
-                first: self.first,
-                slots: l,
-            },
-            Slots {
-                first: self.first + at,
-                slots: r,
-            },
-        )
-    }
-
-    /// The slots on band `b`'s two cuts (above, below), where there is a cut.
-    fn of_band(self, b: usize) -> (Option<&'a mut Handoff<V>>, Option<&'a mut Handoff<V>>) {
-        let mut it = self.slots[b - self.first..].iter_mut();
-        let above = it.next().filter(|_| b > 0);
-        (above, it.next())
+    let odd_ok = run_colour(runner, claims, bands, 1, &|b| {
+        // SAFETY: see above.
+        let mut rows = unsafe { back.rows(t.rows_at(b, levels)) };
+        let take = |s: usize| handoffs.get(s).filter(|_| s < bands);
+        band(&inp, &t, b, Handoffs::Take(take(b), take(b + 1)), &mut rows)
+    });
+    match odd_ok {
+        None => PassEnd::Incomplete,
+        Some(true) if even_ok => PassEnd::Done,
+        Some(_) => PassEnd::NonFinite,
     }
 }
 
-/// Runs `f` on the bands `bands.start, bands.start + 2, …` (one colour), splitting the
-/// range, the shared part `s` and the back-buffer rows recursively with `rayon::join` (in
-/// order without the `parallel` feature). Returns `false` if any band did.
-fn for_each_band<S: Send>(
-    t: &Tiling,
-    bands: Range<usize>,
-    s: S,
-    rows: Rows<'_>,
-    split: &(impl Fn(S, usize) -> (S, S) + Sync),
-    f: &(impl Fn(usize, S, Rows<'_>) -> bool + Sync),
-) -> bool {
-    let count = bands.len().div_ceil(2);
-    if count == 0 {
-        return true;
-    }
-    if count == 1 {
-        return f(bands.start, s, rows);
-    }
-    let mid = bands.start + 2 * (count / 2);
-    let (sl, sr) = split(s, mid);
-    let (rl, rr) = rows.split_at_row(t.cut(mid, t.levels));
-    let (a, b) = join(
-        || for_each_band(t, bands.start..mid, sl, rl, split, f),
-        || for_each_band(t, mid..bands.end, sr, rr, split, f),
-    );
-    a && b
-}
-
-#[cfg(feature = "parallel")]
-fn join<A: Send, B: Send>(a: impl FnOnce() -> A + Send, b: impl FnOnce() -> B + Send) -> (A, B) {
-    rayon::join(a, b)
-}
-
-#[cfg(not(feature = "parallel"))]
-fn join<A, B>(a: impl FnOnce() -> A, b: impl FnOnce() -> B) -> (A, B) {
-    (a(), b())
+/// Runs `f` on the bands of `colour` (`colour, colour + 2, …`) through `runner`, each at
+/// most once. Returns whether every band returned `true`, or `None` if some band did not
+/// run.
+fn run_colour(
+    runner: Runner<'_>,
+    claims: &mut Claims,
+    bands: usize,
+    colour: usize,
+    f: &(dyn Fn(usize) -> bool + Sync),
+) -> Option<bool> {
+    let count = bands.saturating_sub(colour).div_ceil(2);
+    claims.reset();
+    let ok = AtomicBool::new(true);
+    let shared: &Claims = claims;
+    runner.run(count, &|i| {
+        let b = colour + 2 * i;
+        if b < bands && shared.claim(b) && !f(b) {
+            ok.store(false, Ordering::Relaxed);
+        }
+    });
+    claims.all(colour).then(|| ok.into_inner())
 }
 
 /// A band's handoff slots on its two cuts (above, below): written by an even band, read

@@ -1,0 +1,205 @@
+//! The step's colour batches run on a host's own job system ([`JobSystem`]) with results
+//! bitwise identical to rayon's pool, whatever threads and order the host uses; a job
+//! system that breaks its contract (skips tasks, runs one twice, passes indices out of
+//! range) cannot corrupt the state.
+
+mod common;
+
+use common::state_bits;
+use springwater::disturb::{Rain, Wake};
+use springwater::{Error, JobSystem, Params, Surface};
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex};
+
+/// Runs every task on the calling thread, last index first.
+struct Backwards;
+
+impl JobSystem for Backwards {
+    fn workers(&self) -> usize {
+        3
+    }
+    fn run(&self, count: usize, task: &(dyn Fn(usize) + Sync)) {
+        (0..count).rev().for_each(task);
+    }
+}
+
+/// Spreads the tasks over `threads` scoped threads that take indices from a shared
+/// counter, the way a work-stealing job system does; counts the batches it ran.
+struct Scoped {
+    threads: usize,
+    batches: AtomicUsize,
+}
+
+impl JobSystem for Scoped {
+    fn workers(&self) -> usize {
+        self.threads
+    }
+    fn run(&self, count: usize, task: &(dyn Fn(usize) + Sync)) {
+        self.batches.fetch_add(1, Ordering::Relaxed);
+        let next = AtomicUsize::new(0);
+        std::thread::scope(|s| {
+            for _ in 0..self.threads {
+                s.spawn(|| loop {
+                    let i = next.fetch_add(1, Ordering::Relaxed);
+                    if i >= count {
+                        break;
+                    }
+                    task(i);
+                });
+            }
+        });
+    }
+}
+
+/// Breaks the contract in one of several ways.
+enum Broken {
+    /// Never runs the last task.
+    SkipsLast,
+    /// Runs every task twice, the second time on other threads at once.
+    RunsTwice,
+    /// Also calls indices past the count.
+    PastTheEnd,
+}
+
+impl JobSystem for Broken {
+    fn workers(&self) -> usize {
+        2
+    }
+    fn run(&self, count: usize, task: &(dyn Fn(usize) + Sync)) {
+        match self {
+            Broken::SkipsLast => (0..count.saturating_sub(1)).for_each(task),
+            Broken::RunsTwice => std::thread::scope(|s| {
+                for _ in 0..2 {
+                    s.spawn(|| (0..count).for_each(task));
+                }
+            }),
+            Broken::PastTheEnd => (0..count + 3).for_each(task),
+        }
+    }
+}
+
+/// Drops, forces, single steps, multi-step passes and frames with disturbances, on a grid
+/// tall enough for many bands.
+fn run(jobs: Option<Arc<dyn JobSystem>>) -> Surface {
+    let mut s = Surface::new(Params::with_size(97, 140)).unwrap();
+    s.set_job_system(jobs);
+    s.drop_at(30.0, 40.0, 1.5, 3.0).unwrap();
+    s.drop_at(70.0, 110.0, -1.0, 2.5).unwrap();
+    s.add_force_at(48.5, 70.25, [0.3, 2.0, -0.1]).unwrap();
+    for _ in 0..10 {
+        s.step().unwrap();
+    }
+    s.step_n(37).unwrap();
+    let mut rain = Rain::new(0.8, 5);
+    let mut wake = Wake::circle(&s, 30.0);
+    for _ in 0..20 {
+        s.advance_with(1.0 / 30.0, &mut (&mut rain, &mut wake))
+            .unwrap();
+    }
+    s
+}
+
+#[test]
+fn a_hosts_job_system_gives_the_default_bits() {
+    let default = run(None);
+    let scoped = Arc::new(Scoped {
+        threads: 4,
+        batches: AtomicUsize::new(0),
+    });
+    let cases: [(&str, Arc<dyn JobSystem>); 3] = [
+        ("backwards on one thread", Arc::new(Backwards)),
+        ("four scoped threads", scoped.clone()),
+        (
+            "a broken one running tasks twice",
+            Arc::new(Broken::RunsTwice),
+        ),
+    ];
+    for (name, jobs) in cases {
+        let hosted = run(Some(jobs));
+        assert_eq!(hosted.steps(), default.steps());
+        assert!(
+            state_bits(&hosted) == state_bits(&default),
+            "{name}: the state differs from rayon's pool"
+        );
+    }
+    // Every pass went through the job system: two colours per pass.
+    assert!(scoped.batches.load(Ordering::Relaxed) >= 2 * 20);
+    let past = run(Some(Arc::new(Broken::PastTheEnd)));
+    assert!(state_bits(&past) == state_bits(&default));
+}
+
+#[test]
+fn a_job_system_that_skips_a_task_fails_the_step_and_changes_nothing() {
+    let mut s = Surface::new(Params::with_size(64, 96)).unwrap();
+    s.drop_at(32.0, 40.0, 1.0, 3.0).unwrap();
+    s.step_n(4).unwrap();
+    let before = state_bits(&s);
+    s.set_job_system(Some(Arc::new(Broken::SkipsLast)));
+    for result in [s.step(), s.step_n(6), s.advance(0.1).map(|_| ())] {
+        assert_eq!(result, Err(Error::JobSystem));
+        assert!(state_bits(&s) == before);
+        assert_eq!(s.steps(), 4);
+    }
+    let message = Error::JobSystem.to_string();
+    assert!(message.contains("job system"), "{message}");
+    s.set_job_system(None);
+    s.step().unwrap();
+}
+
+#[test]
+fn the_job_system_is_kept_by_clones_and_restores_and_replaces_a_pool() {
+    let jobs: Arc<dyn JobSystem> = Arc::new(Backwards);
+    let mut s = Surface::new(Params::with_size(33, 33)).unwrap();
+    s.set_job_system(Some(jobs.clone()));
+    let saved = s.to_bytes();
+    s.drop_at(16.0, 16.0, 1.0, 3.0).unwrap();
+    s.restore(&saved).unwrap();
+    assert!(Arc::ptr_eq(s.job_system().unwrap(), &jobs));
+    assert!(Arc::ptr_eq(s.clone().job_system().unwrap(), &jobs));
+    assert!(Surface::from_bytes(&saved).unwrap().job_system().is_none());
+    #[cfg(feature = "parallel")]
+    {
+        let pool = Arc::new(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(2)
+                .build()
+                .unwrap(),
+        );
+        s.set_thread_pool(Some(pool));
+        assert!(s.job_system().is_none());
+        s.set_job_system(Some(jobs));
+        assert!(s.thread_pool().is_none());
+    }
+}
+
+/// A job system whose tasks record the thread they ran on: the batches really spread.
+#[test]
+fn the_bands_spread_over_the_hosts_threads() {
+    struct Recording(
+        Scoped,
+        Mutex<std::collections::HashSet<std::thread::ThreadId>>,
+    );
+    impl JobSystem for Recording {
+        fn workers(&self) -> usize {
+            self.0.workers()
+        }
+        fn run(&self, count: usize, task: &(dyn Fn(usize) + Sync)) {
+            self.0.run(count, &|i| {
+                self.1.lock().unwrap().insert(std::thread::current().id());
+                std::thread::sleep(std::time::Duration::from_millis(1));
+                task(i)
+            });
+        }
+    }
+    let jobs = Arc::new(Recording(
+        Scoped {
+            threads: 3,
+            batches: AtomicUsize::new(0),
+        },
+        Mutex::new(Default::default()),
+    ));
+    let mut s = Surface::new(Params::with_size(64, 256)).unwrap();
+    s.set_job_system(Some(jobs.clone()));
+    s.step_n(8).unwrap();
+    assert!(jobs.1.lock().unwrap().len() >= 2);
+}
