@@ -1,0 +1,99 @@
+//! Surface handles. A `SwSurface *` is a key into a registry of live surfaces, never
+//! dereferenced: a NULL, stale (destroyed) or made-up handle is an error status, not a
+//! crash. Each surface sits behind its own lock, so overlapping calls on one surface
+//! (from two threads, or from a job system's task) get `SW_ERROR_BUSY` instead of racing.
+
+use crate::status::{Failure, Outcome, SW_ERROR_BUSY, SW_ERROR_INTERNAL, SW_ERROR_INVALID_HANDLE};
+use springwater::mesh::{LodMesh, Normals};
+use springwater::refraction::Refraction;
+use springwater::Surface;
+use std::collections::HashMap;
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Arc, Mutex, RwLock, TryLockError};
+
+/// A water surface (opaque). Create it with `sw_surface_create` or `sw_surface_load`,
+/// free it with `sw_surface_destroy`.
+pub struct SwSurface {
+    _opaque: [u8; 0],
+}
+
+/// What a handle owns: the surface and the render-side buffers kept between frames.
+pub(crate) struct Water {
+    pub surface: Surface,
+    pub lod: LodMesh,
+    pub normals: Normals,
+    pub uv: Refraction,
+    pub queries: Queries,
+}
+
+/// The batched queries' buffers, kept between calls.
+#[derive(Default)]
+pub(crate) struct Queries {
+    pub points: Vec<[f32; 2]>,
+    pub heights: Vec<f32>,
+    pub normals: Vec<glam::Vec3>,
+    pub velocities: Vec<glam::Vec3>,
+}
+
+type Entry = Arc<Mutex<Water>>;
+
+static REGISTRY: RwLock<Option<HashMap<usize, Entry>>> = RwLock::new(None);
+/// Handles are never reused: a destroyed handle stays invalid.
+static NEXT: AtomicUsize = AtomicUsize::new(1);
+
+/// Registers `water` and returns its new handle.
+pub(crate) fn insert(water: Water) -> *mut SwSurface {
+    let key = NEXT.fetch_add(1, Ordering::Relaxed);
+    let mut map = REGISTRY.write().unwrap_or_else(|e| e.into_inner());
+    map.get_or_insert_with(HashMap::new)
+        .insert(key, Arc::new(Mutex::new(water)));
+    key as *mut SwSurface
+}
+
+/// Removes `handle`; whether it was live. A call still running on it finishes first.
+pub(crate) fn remove(handle: *const SwSurface) -> bool {
+    let mut map = REGISTRY.write().unwrap_or_else(|e| e.into_inner());
+    map.as_mut()
+        .and_then(|m| m.remove(&(handle as usize)))
+        .is_some()
+}
+
+/// Runs `f` on the surface behind `handle`, holding its lock.
+pub(crate) fn with<T>(
+    handle: *const SwSurface,
+    f: impl FnOnce(&mut Water) -> Outcome<T>,
+) -> Outcome<T> {
+    if handle.is_null() {
+        return Err(Failure::null("surface"));
+    }
+    let entry = {
+        let map = REGISTRY.read().unwrap_or_else(|e| e.into_inner());
+        map.as_ref()
+            .and_then(|m| m.get(&(handle as usize)).cloned())
+    };
+    let Some(entry) = entry else {
+        return Err(Failure::new(
+            SW_ERROR_INVALID_HANDLE,
+            format!(
+                "surface handle {handle:p} is not a live surface (never created, or destroyed)"
+            ),
+        ));
+    };
+    let mut water = match entry.try_lock() {
+        Ok(water) => water,
+        Err(TryLockError::WouldBlock) => {
+            return Err(Failure::new(
+                SW_ERROR_BUSY,
+                "another call on this surface is in progress; calls on one surface must not \
+                 overlap",
+            ))
+        }
+        Err(TryLockError::Poisoned(_)) => {
+            return Err(Failure::new(
+                SW_ERROR_INTERNAL,
+                "this surface failed internally in an earlier call; destroy it",
+            ))
+        }
+    };
+    f(&mut water)
+}

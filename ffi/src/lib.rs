@@ -1,0 +1,1040 @@
+//! # springwater-ffi
+//!
+//! The C ABI of [springwater](https://docs.rs/springwater): a water surface simulated on
+//! the CPU as a mass-spring lattice, for C, C++ and C# engines. Build it with
+//! `cargo build --release -p springwater-ffi` and link `libspringwater_ffi.a`
+//! (static) or `libspringwater_ffi.so` / `.dylib` / `springwater_ffi.dll` (dynamic);
+//! include `ffi/include/springwater.h`, which cbindgen generates from this crate (a test
+//! fails when the checked-in header is out of date).
+//!
+//! This crate is a thin layer over the library's public API: every function checks its
+//! arguments, calls the Rust method of the same name and turns the result into a status.
+//!
+//! ## Conventions
+//!
+//! * **Handles.** A `SwSurface *` is opaque and never dereferenced by the library: it is a
+//!   key into a table of live surfaces. NULL, destroyed and made-up handles give
+//!   `SW_ERROR_INVALID_HANDLE` (or `SW_ERROR_NULL_POINTER`), never a crash. Different
+//!   surfaces may be used from different threads at once; calls on one surface must not
+//!   overlap (an overlapping call returns `SW_ERROR_BUSY` and changes nothing).
+//! * **Status codes.** Every function that can fail returns an `SwStatus` (`int32_t`):
+//!   `SW_OK` (0) or a negative `SW_ERROR_*` code. `sw_last_error` gives the calling
+//!   thread's last message. A call that fails changes nothing.
+//! * **Checked input.** Every pointer is checked for NULL (out-pointers documented as
+//!   optional may be NULL), every buffer length against what the call writes, every
+//!   float for finiteness, every enum value against its constants. No panic crosses the
+//!   boundary: an internal failure is `SW_ERROR_INTERNAL`, and that surface should be
+//!   destroyed.
+//! * **Types for any language.** Enums and booleans are `int32_t` with `#define`d
+//!   values; structs hold only integers, floats and pointers (C# `StructLayout.Sequential`
+//!   maps them as they are); no varargs, no callbacks but the job system's.
+//! * **Units.** World units for lengths and points (`x, z` in the water's local space, y
+//!   up), seconds for frame times; the same as the Rust API.
+
+mod handle;
+mod jobs;
+mod status;
+
+pub use handle::SwSurface;
+pub use jobs::{sw_surface_set_job_system, SwEnqueueTaskFn, SwFinishTaskFn, SwJobSystem, SwTaskFn};
+pub use status::*;
+
+use handle::Water;
+use springwater::buffers::{interleave, Vertex, VertexBuffers};
+use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
+use springwater::refraction::{normals_and_refraction, refract, Refraction, RefractionParams};
+use springwater::{Boundary, Params, SimdLevel, Surface};
+use std::ffi::c_char;
+
+/// What happens at the edge of the grid (`SW_BOUNDARY_*`).
+pub type SwBoundary = i32;
+/// The outer ring of nodes is pinned: a pool with walls.
+pub const SW_BOUNDARY_PINNED: SwBoundary = 0;
+/// No node is pinned: the sheet floats freely.
+pub const SW_BOUNDARY_FREE: SwBoundary = 1;
+
+/// An instruction set the engine can run (`SW_SIMD_*`). Every level gives the same bits.
+pub type SwSimdLevel = i32;
+/// No SIMD: the scalar reference loops.
+pub const SW_SIMD_SCALAR: SwSimdLevel = 0;
+/// SSE2 (every x86-64 CPU).
+pub const SW_SIMD_SSE2: SwSimdLevel = 1;
+/// AVX2.
+pub const SW_SIMD_AVX2: SwSimdLevel = 2;
+/// AVX-512F.
+pub const SW_SIMD_AVX512: SwSimdLevel = 3;
+
+/// A boolean: 0 false, 1 true.
+pub type SwBool = i32;
+
+/// The model's parameters; `sw_params_default()` gives the seed's defaults.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct SwParams {
+    /// Nodes per row (at least 2).
+    pub cols: u32,
+    /// Rows of nodes (at least 2).
+    pub rows: u32,
+    /// Rest distance between neighbouring nodes, in world units.
+    pub spacing: f32,
+    /// Mass of each node.
+    pub mass: f32,
+    /// Spring coefficient `c`.
+    pub stiffness: f32,
+    /// Viscosity `γ` (damping per unit of velocity).
+    pub viscosity: f32,
+    /// Timestep of one step, in model time (below the critical timestep).
+    pub dt: f32,
+    /// Rest length over initial length of every spring (below 1: the sheet is under
+    /// tension and ripples travel).
+    pub rest_ratio: f32,
+    /// Model time per second of the caller's clock (how fast the water moves).
+    pub time_scale: f32,
+    /// Uniform acceleration on free nodes, x.
+    pub acceleration_x: f32,
+    /// Uniform acceleration on free nodes, y.
+    pub acceleration_y: f32,
+    /// Uniform acceleration on free nodes, z.
+    pub acceleration_z: f32,
+    /// `SW_BOUNDARY_PINNED` or `SW_BOUNDARY_FREE`.
+    pub boundary: SwBoundary,
+}
+
+/// The view-dependent LOD index buffer's parameters; `sw_lod_params_default()` gives the
+/// defaults.
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct SwLodParams {
+    /// Patch size in cells, a power of two from 1 to 4096.
+    pub patch_cells: u32,
+    /// Number of levels, 1 to log2(patch_cells) + 1.
+    pub levels: u32,
+    /// Distance from the eye within which patches get full detail, in world units; each
+    /// further level's range is twice the previous one's.
+    pub first_range: f32,
+    /// Relative distance past a range boundary before a patch changes level, 0 to 1.
+    pub hysteresis: f32,
+}
+
+/// The eye and the bottom for the refraction texture coordinates;
+/// `sw_refraction_default()` gives the defaults (set the eye).
+#[repr(C)]
+#[derive(Debug, Clone, Copy)]
+pub struct SwRefraction {
+    /// The eye in the water's local space, x.
+    pub eye_x: f32,
+    /// The eye, y (up).
+    pub eye_y: f32,
+    /// The eye, z.
+    pub eye_z: f32,
+    /// Depth of the flat bottom below the rest surface `y = 0` (at least 0).
+    pub depth: f32,
+    /// Index of refraction of the water (1 to 10; water 1.333).
+    pub ior: f32,
+}
+
+/// One node's packed vertex: 8 floats, 32 bytes (position at byte 0, normal at 12, the
+/// refracted bottom texture coordinate at 24). The layout of the library's `Vertex`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SwVertex {
+    /// Position in the water's local space (y up).
+    pub position: [f32; 3],
+    /// Unit normal.
+    pub normal: [f32; 3],
+    /// Bottom texture coordinate seen through the surface.
+    pub uv: [f32; 2],
+}
+
+const _: () = {
+    assert!(std::mem::size_of::<SwVertex>() == std::mem::size_of::<Vertex>());
+    assert!(std::mem::align_of::<SwVertex>() == std::mem::align_of::<Vertex>());
+    assert!(std::mem::offset_of!(SwVertex, normal) == std::mem::offset_of!(Vertex, normal));
+    assert!(std::mem::offset_of!(SwVertex, uv) == std::mem::offset_of!(Vertex, uv));
+};
+
+/// The water at one point: height, unit normal, velocity.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SwSample {
+    /// Height (y).
+    pub height: f32,
+    /// Unit normal, x y z.
+    pub normal: [f32; 3],
+    /// Velocity, x y z.
+    pub velocity: [f32; 3],
+}
+
+/// Kinetic and spring potential energy (a diagnostic).
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default)]
+pub struct SwEnergy {
+    /// Sum of ½ m |v|² over free nodes.
+    pub kinetic: f64,
+    /// Sum of ½ c (L − L0)² over all springs.
+    pub potential: f64,
+    /// Kinetic plus potential.
+    pub total: f64,
+}
+
+/// The library's version, a static NUL-terminated string such as `"0.1.0"`.
+#[no_mangle]
+pub extern "C" fn sw_version() -> *const c_char {
+    concat!(env!("CARGO_PKG_VERSION"), "\0").as_ptr().cast()
+}
+
+/// The seed's defaults on a 128 × 128 grid.
+#[no_mangle]
+pub extern "C" fn sw_params_default() -> SwParams {
+    let p = Params::default();
+    SwParams {
+        cols: p.cols as u32,
+        rows: p.rows as u32,
+        spacing: p.spacing,
+        mass: p.mass,
+        stiffness: p.stiffness,
+        viscosity: p.viscosity,
+        dt: p.dt,
+        rest_ratio: p.rest_ratio,
+        time_scale: p.time_scale,
+        acceleration_x: p.acceleration[0],
+        acceleration_y: p.acceleration[1],
+        acceleration_z: p.acceleration[2],
+        boundary: boundary_code(p.boundary),
+    }
+}
+
+/// The default LOD parameters.
+#[no_mangle]
+pub extern "C" fn sw_lod_params_default() -> SwLodParams {
+    let p = LodParams::default();
+    SwLodParams {
+        patch_cells: p.patch_cells.min(u32::MAX as usize) as u32,
+        levels: p.levels,
+        first_range: p.first_range,
+        hysteresis: p.hysteresis,
+    }
+}
+
+/// The default bottom depth and index of refraction, with the eye at the origin.
+#[no_mangle]
+pub extern "C" fn sw_refraction_default() -> SwRefraction {
+    let p = RefractionParams::default();
+    SwRefraction {
+        eye_x: 0.0,
+        eye_y: 0.0,
+        eye_z: 0.0,
+        depth: p.depth,
+        ior: p.ior,
+    }
+}
+
+/// The widest SIMD level this CPU has (what a new surface runs, unless the environment
+/// variable `SPRINGWATER_SIMD` says otherwise).
+#[no_mangle]
+pub extern "C" fn sw_simd_level_detect() -> SwSimdLevel {
+    simd_code(SimdLevel::detect())
+}
+
+/// A static NUL-terminated name for a SIMD level (`"scalar"`, `"sse2"`, `"avx2"`,
+/// `"avx512"`), or `"unknown"`.
+#[no_mangle]
+pub extern "C" fn sw_simd_level_name(level: SwSimdLevel) -> *const c_char {
+    let name: &'static std::ffi::CStr = match simd_level(level) {
+        Ok(SimdLevel::Scalar) => c"scalar",
+        Ok(SimdLevel::Sse2) => c"sse2",
+        Ok(SimdLevel::Avx2) => c"avx2",
+        Ok(SimdLevel::Avx512) => c"avx512",
+        _ => c"unknown",
+    };
+    name.as_ptr()
+}
+
+/// Creates a flat surface at rest from `params` (validated: the message names the field
+/// that is wrong) and writes its handle to `out`.
+///
+/// # Safety
+///
+/// `params` and `out` are NULL or valid pointers.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_create(
+    params: *const SwParams,
+    out: *mut *mut SwSurface,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
+        let params = unsafe { params.as_ref() }.ok_or_else(|| Failure::null("params"))?;
+        let out = out_ref(out, "out")?;
+        let surface = Surface::new(rust_params(params)?)?;
+        *out = handle::insert(Water::new(surface));
+        Ok(())
+    })
+}
+
+/// Destroys a surface and frees everything it owns. NULL, and a handle already
+/// destroyed, are no-ops.
+#[no_mangle]
+pub extern "C" fn sw_surface_destroy(surface: *mut SwSurface) {
+    let _ = std::panic::catch_unwind(|| handle::remove(surface));
+}
+
+/// Writes the surface's parameters to `out`.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_params(
+    surface: *const SwSurface,
+    out: *mut SwParams,
+) -> SwStatus {
+    guard(|| {
+        let out = out_ref(out, "out")?;
+        handle::with(surface, |w| {
+            let p = w.surface.params();
+            *out = SwParams {
+                cols: p.cols as u32,
+                rows: p.rows as u32,
+                spacing: p.spacing,
+                mass: p.mass,
+                stiffness: p.stiffness,
+                viscosity: p.viscosity,
+                dt: p.dt,
+                rest_ratio: p.rest_ratio,
+                time_scale: p.time_scale,
+                acceleration_x: p.acceleration[0],
+                acceleration_y: p.acceleration[1],
+                acceleration_z: p.acceleration[2],
+                boundary: boundary_code(p.boundary),
+            };
+            Ok(())
+        })
+    })
+}
+
+/// Writes the number of nodes (`cols × rows`) to `out`: the length, in elements, of every
+/// per-node buffer.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_node_count(
+    surface: *const SwSurface,
+    out: *mut usize,
+) -> SwStatus {
+    guard(|| {
+        let out = out_ref(out, "out")?;
+        handle::with(surface, |w| {
+            *out = w.surface.len();
+            Ok(())
+        })
+    })
+}
+
+/// Advances the water by one frame of the caller's clock: `frame_time` seconds (finite,
+/// at least 0), cut into equal substeps no longer than the timestep. Writes the number
+/// of substeps taken to `substeps` (optional, may be NULL). A failing substep stops the
+/// frame there, earlier substeps stay applied.
+///
+/// # Safety
+///
+/// `substeps` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_advance(
+    surface: *mut SwSurface,
+    frame_time: f32,
+    substeps: *mut u32,
+) -> SwStatus {
+    guard(|| {
+        let substeps = optional(substeps, "substeps")?;
+        handle::with(surface, |w| {
+            let taken = w.surface.advance(frame_time)?;
+            if let Some(out) = substeps {
+                *out = taken as u32;
+            }
+            Ok(())
+        })
+    })
+}
+
+/// Advances `steps` steps of the model's timestep, several per pass over memory (bitwise
+/// the same as one at a time). Stops at a failing step; the steps before it stay applied.
+#[no_mangle]
+pub extern "C" fn sw_surface_step(surface: *mut SwSurface, steps: u32) -> SwStatus {
+    guard(|| handle::with(surface, |w| Ok(w.surface.step_n(steps as u64)?)))
+}
+
+/// Drops water at world `(x, z)`: adds `height · exp(−d²/radius²)` to the height of every
+/// free node, `d` its rest distance from the point. `radius` > 0; a drop steeper than one
+/// height per radius may fold the surface.
+#[no_mangle]
+pub extern "C" fn sw_surface_drop(
+    surface: *mut SwSurface,
+    x: f32,
+    z: f32,
+    height: f32,
+    radius: f32,
+) -> SwStatus {
+    guard(|| handle::with(surface, |w| Ok(w.surface.drop_at(x, z, height, radius)?)))
+}
+
+/// Adds the force `(fx, fy, fz)` at world `(x, z)` for the next step, spread onto the
+/// four nodes around the point with the weights `sw_surface_height_at` reads with: what
+/// a floating body feels and what it pushes back agree.
+#[no_mangle]
+pub extern "C" fn sw_surface_add_force_at(
+    surface: *mut SwSurface,
+    x: f32,
+    z: f32,
+    fx: f32,
+    fy: f32,
+    fz: f32,
+) -> SwStatus {
+    guard(|| {
+        handle::with(surface, |w| {
+            Ok(w.surface.add_force_at(x, z, [fx, fy, fz])?)
+        })
+    })
+}
+
+/// The water's height at world `(x, z)` (inside the rest footprint
+/// `[0, (cols−1)·spacing] × [0, (rows−1)·spacing]`), interpolated between nodes.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_height_at(
+    surface: *const SwSurface,
+    x: f32,
+    z: f32,
+    out: *mut f32,
+) -> SwStatus {
+    guard(|| {
+        let out = out_ref(out, "out")?;
+        handle::with(surface, |w| {
+            *out = w.surface.height_at(x, z)?;
+            Ok(())
+        })
+    })
+}
+
+/// The water's unit normal at world `(x, z)`, written to `out[0..3]`.
+///
+/// # Safety
+///
+/// `out` is NULL or points to 3 writable floats.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_normal_at(
+    surface: *const SwSurface,
+    x: f32,
+    z: f32,
+    out: *mut f32,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: the caller gives 3 floats at `out`.
+        let out = unsafe { out_slice(out, 3, "out") }?;
+        handle::with(surface, |w| {
+            out.copy_from_slice(&w.surface.normal_at(x, z)?.to_array());
+            Ok(())
+        })
+    })
+}
+
+/// The water's velocity at world `(x, z)`, written to `out[0..3]`.
+///
+/// # Safety
+///
+/// `out` is NULL or points to 3 writable floats.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_velocity_at(
+    surface: *const SwSurface,
+    x: f32,
+    z: f32,
+    out: *mut f32,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: the caller gives 3 floats at `out`.
+        let out = unsafe { out_slice(out, 3, "out") }?;
+        handle::with(surface, |w| {
+            out.copy_from_slice(&w.surface.velocity_at(x, z)?.to_array());
+            Ok(())
+        })
+    })
+}
+
+/// Samples the water at `count` points (`xz[2k]`, `xz[2k+1]` is point `k`), writing
+/// height, normal and velocity to `out[k]`; `out_len` (in elements) must be at least
+/// `count`. If any point is outside the footprint, nothing is written.
+///
+/// # Safety
+///
+/// `xz` points to `2 · count` floats and `out` to `out_len` writable `SwSample`s (either
+/// may be NULL when `count` is 0).
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_sample(
+    surface: *const SwSurface,
+    xz: *const f32,
+    count: usize,
+    out: *mut SwSample,
+    out_len: usize,
+) -> SwStatus {
+    guard(|| {
+        let floats = count
+            .checked_mul(2)
+            .ok_or_else(|| Failure::invalid("count is too large"))?;
+        // SAFETY: the caller gives `2·count` floats at `xz`.
+        let xz = unsafe { in_slice(xz, floats, "xz") }?;
+        need(out_len, count, "out")?;
+        // SAFETY: the caller gives `out_len ≥ count` samples at `out`.
+        let out = unsafe { out_slice(out, count, "out") }?;
+        handle::with(surface, |w| {
+            let q = &mut w.queries;
+            q.points.clear();
+            q.points.extend(xz.chunks_exact(2).map(|p| [p[0], p[1]]));
+            w.surface.heights_at(&q.points, &mut q.heights)?;
+            w.surface.normals_at(&q.points, &mut q.normals)?;
+            w.surface.velocities_at(&q.points, &mut q.velocities)?;
+            for (k, o) in out.iter_mut().enumerate() {
+                *o = SwSample {
+                    height: q.heights[k],
+                    normal: q.normals[k].to_array(),
+                    velocity: q.velocities[k].to_array(),
+                };
+            }
+            Ok(())
+        })
+    })
+}
+
+/// Writes every node's position, interleaved `x, y, z`, row-major (node `(col, row)` at
+/// `3·(row·cols + col)`). `len` is in floats and must be at least `3 · nodes`.
+///
+/// # Safety
+///
+/// `xyz` is NULL or points to `len` writable floats.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_write_positions(
+    surface: *const SwSurface,
+    xyz: *mut f32,
+    len: usize,
+) -> SwStatus {
+    guard(|| {
+        handle::with(surface, |w| {
+            // SAFETY: the caller gives `len` floats at `xyz`.
+            let out = unsafe { out_triples(xyz, len, w.surface.len(), "xyz") }?;
+            Ok(w.surface.mesh_view().write_positions(out)?)
+        })
+    })
+}
+
+/// Computes every node's unit normal and writes them interleaved `x, y, z`, row-major.
+/// `len` is in floats and must be at least `3 · nodes`.
+///
+/// # Safety
+///
+/// `xyz` is NULL or points to `len` writable floats.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_write_normals(
+    surface: *mut SwSurface,
+    xyz: *mut f32,
+    len: usize,
+) -> SwStatus {
+    guard(|| {
+        handle::with(surface, |w| {
+            // SAFETY: the caller gives `len` floats at `xyz`.
+            let out = unsafe { out_triples(xyz, len, w.surface.len(), "xyz") }?;
+            compute_normals(&w.surface.mesh_view(), &mut w.normals);
+            let Normals { x, y, z } = &w.normals;
+            for (o, ((x, y), z)) in out.iter_mut().zip(x.iter().zip(y).zip(z)) {
+                *o = [*x, *y, *z];
+            }
+            Ok(())
+        })
+    })
+}
+
+/// Computes every node's bottom texture coordinate seen through the surface from the eye
+/// (Snell refraction onto the bottom plane; the texture spans the grid's rest footprint)
+/// and writes them interleaved `u, v`, row-major. `len` is in floats and must be at least
+/// `2 · nodes`.
+///
+/// # Safety
+///
+/// `refraction` is NULL or valid; `uv` is NULL or points to `len` writable floats.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_write_refraction_uvs(
+    surface: *mut SwSurface,
+    refraction: *const SwRefraction,
+    uv: *mut f32,
+    len: usize,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
+        let (eye, params) = refraction_params(unsafe { refraction.as_ref() })?;
+        handle::with(surface, |w| {
+            let n = w.surface.len();
+            need(len, n * 2, "uv")?;
+            // SAFETY: the caller gives `len ≥ 2n` floats at `uv`.
+            let out = unsafe { out_slice(uv.cast::<[f32; 2]>(), n, "uv") }?;
+            let view = w.surface.mesh_view();
+            compute_normals(&view, &mut w.normals);
+            refract(&view, &w.normals, eye, &params, &mut w.uv)?;
+            for (o, (u, v)) in out.iter_mut().zip(w.uv.u.iter().zip(&w.uv.v)) {
+                *o = [*u, *v];
+            }
+            Ok(())
+        })
+    })
+}
+
+/// Computes normals and refraction coordinates and writes one packed `SwVertex` per node
+/// (position, normal, uv), row-major, in one pass: the vertex buffer a renderer uploads.
+/// `len` is in vertices and must be at least the node count.
+///
+/// # Safety
+///
+/// `refraction` is NULL or valid; `vertices` is NULL or points to `len` writable vertices.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_write_vertices(
+    surface: *mut SwSurface,
+    refraction: *const SwRefraction,
+    vertices: *mut SwVertex,
+    len: usize,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
+        let (eye, params) = refraction_params(unsafe { refraction.as_ref() })?;
+        handle::with(surface, |w| {
+            let n = w.surface.len();
+            need(len, n, "vertices")?;
+            // SAFETY: the caller gives `len ≥ n` vertices; `SwVertex` has `Vertex`'s layout
+            // (checked at compile time above).
+            let out = unsafe { out_slice(vertices.cast::<Vertex>(), n, "vertices") }?;
+            let view = w.surface.mesh_view();
+            normals_and_refraction(&view, eye, &params, &mut w.normals, &mut w.uv)?;
+            let buffers = VertexBuffers {
+                vertices: Some(out),
+                ..Default::default()
+            };
+            Ok(interleave(&view, &w.normals, &w.uv, buffers)?)
+        })
+    })
+}
+
+/// Replaces the LOD parameters (the next `sw_surface_update_lod` rebuilds the index
+/// buffer with them).
+///
+/// # Safety
+///
+/// `params` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_set_lod_params(
+    surface: *mut SwSurface,
+    params: *const SwLodParams,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
+        let p = unsafe { params.as_ref() }.ok_or_else(|| Failure::null("params"))?;
+        let lod = LodMesh::new(LodParams {
+            patch_cells: p.patch_cells as usize,
+            levels: p.levels,
+            first_range: p.first_range,
+            hysteresis: p.hysteresis,
+        })?;
+        handle::with(surface, |w| {
+            w.lod = lod;
+            Ok(())
+        })
+    })
+}
+
+/// Updates the view-dependent LOD index buffer for an eye at `(eye_x, eye_y, eye_z)` in
+/// the water's local space: patches get coarser with distance, neighbours differ by at
+/// most one level and are stitched (no cracks). Writes 1 to `changed` (optional) if the
+/// index buffer was rebuilt (upload it again), 0 if the previous one still holds.
+///
+/// # Safety
+///
+/// `changed` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_update_lod(
+    surface: *mut SwSurface,
+    eye_x: f32,
+    eye_y: f32,
+    eye_z: f32,
+    changed: *mut SwBool,
+) -> SwStatus {
+    guard(|| {
+        let eye = finite_eye(eye_x, eye_y, eye_z)?;
+        let changed = optional(changed, "changed")?;
+        handle::with(surface, |w| {
+            let rebuilt = w.lod.update(&w.surface.mesh_view(), eye);
+            if let Some(out) = changed {
+                *out = rebuilt as SwBool;
+            }
+            Ok(())
+        })
+    })
+}
+
+/// Copies the LOD index buffer (triangles as 3 node indices each, counter-clockwise seen
+/// from +y) to `indices` and writes its length, in indices, to `count`. With `indices`
+/// NULL only `count` is written (ask the size first, Box2D style); a `len` smaller than
+/// the buffer is `SW_ERROR_BUFFER_TOO_SMALL`, with `count` still written. Before the first
+/// `sw_surface_update_lod` the buffer is empty.
+///
+/// # Safety
+///
+/// `indices` is NULL or points to `len` writable `uint32_t`; `count` is NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_lod_indices(
+    surface: *const SwSurface,
+    indices: *mut u32,
+    len: usize,
+    count: *mut usize,
+) -> SwStatus {
+    guard(|| {
+        let count = out_ref(count, "count")?;
+        handle::with(surface, |w| {
+            let src = w.lod.indices();
+            *count = src.len();
+            if indices.is_null() {
+                return Ok(());
+            }
+            need(len, src.len(), "indices")?;
+            // SAFETY: the caller gives `len ≥ src.len()` indices.
+            let out = unsafe { out_slice(indices, src.len(), "indices") }?;
+            out.copy_from_slice(src);
+            Ok(())
+        })
+    })
+}
+
+/// Writes a snapshot of the whole state (a versioned binary format with a checksum) to
+/// `buf` and its size in bytes to `size`. With `buf` NULL only `size` is written; a `len`
+/// smaller than the snapshot is `SW_ERROR_BUFFER_TOO_SMALL`, with `size` still written.
+///
+/// # Safety
+///
+/// `buf` is NULL or points to `len` writable bytes; `size` is NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_save(
+    surface: *const SwSurface,
+    buf: *mut u8,
+    len: usize,
+    size: *mut usize,
+) -> SwStatus {
+    guard(|| {
+        let size = out_ref(size, "size")?;
+        handle::with(surface, |w| {
+            let bytes = w.surface.to_bytes();
+            *size = bytes.len();
+            if buf.is_null() {
+                return Ok(());
+            }
+            need(len, bytes.len(), "buf")?;
+            // SAFETY: the caller gives `len ≥ bytes.len()` bytes at `buf`.
+            let out = unsafe { out_slice(buf, bytes.len(), "buf") }?;
+            out.copy_from_slice(&bytes);
+            Ok(())
+        })
+    })
+}
+
+/// Replaces the surface's state with a snapshot (`len` bytes at `buf`), keeping its job
+/// system, SIMD level and LOD parameters. A damaged snapshot is refused and nothing
+/// changes.
+///
+/// # Safety
+///
+/// `buf` is NULL or points to `len` readable bytes.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_restore(
+    surface: *mut SwSurface,
+    buf: *const u8,
+    len: usize,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: the caller gives `len` bytes at `buf`.
+        let bytes = unsafe { in_slice(buf, len, "buf") }?;
+        handle::with(surface, |w| Ok(w.surface.restore(bytes)?))
+    })
+}
+
+/// Creates a surface from a snapshot (`len` bytes at `buf`) and writes its handle to
+/// `out`.
+///
+/// # Safety
+///
+/// `buf` is NULL or points to `len` readable bytes; `out` is NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_load(
+    buf: *const u8,
+    len: usize,
+    out: *mut *mut SwSurface,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: the caller gives `len` bytes at `buf`.
+        let bytes = unsafe { in_slice(buf, len, "buf") }?;
+        let out = out_ref(out, "out")?;
+        let surface = Surface::from_bytes(bytes)?;
+        *out = handle::insert(Water::new(surface));
+        Ok(())
+    })
+}
+
+/// Writes the kinetic and spring potential energy to `out`.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_energy(
+    surface: *const SwSurface,
+    out: *mut SwEnergy,
+) -> SwStatus {
+    guard(|| {
+        let out = out_ref(out, "out")?;
+        handle::with(surface, |w| {
+            let e = w.surface.energy();
+            *out = SwEnergy {
+                kinetic: e.kinetic,
+                potential: e.potential,
+                total: e.total(),
+            };
+            Ok(())
+        })
+    })
+}
+
+/// Writes the SIMD level the surface runs to `out`.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_simd_level(
+    surface: *const SwSurface,
+    out: *mut SwSimdLevel,
+) -> SwStatus {
+    guard(|| {
+        let out = out_ref(out, "out")?;
+        handle::with(surface, |w| {
+            *out = simd_code(w.surface.simd_level());
+            Ok(())
+        })
+    })
+}
+
+/// Runs the surface at `level`, clamped to what the CPU has, and writes the level it will
+/// run to `ran` (optional). Results do not change by a bit; only the speed does.
+///
+/// # Safety
+///
+/// `ran` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_set_simd_level(
+    surface: *mut SwSurface,
+    level: SwSimdLevel,
+    ran: *mut SwSimdLevel,
+) -> SwStatus {
+    guard(|| {
+        let level = simd_level(level)?;
+        let ran = optional(ran, "ran")?;
+        handle::with(surface, |w| {
+            let level = w.surface.set_simd_level(level);
+            if let Some(out) = ran {
+                *out = simd_code(level);
+            }
+            Ok(())
+        })
+    })
+}
+
+impl Water {
+    fn new(surface: Surface) -> Self {
+        Self {
+            surface,
+            lod: LodMesh::new(LodParams::default()).expect("the default LOD parameters are valid"),
+            normals: Normals::new(),
+            uv: Refraction::default(),
+            queries: Default::default(),
+        }
+    }
+}
+
+fn rust_params(p: &SwParams) -> Outcome<Params> {
+    let boundary = match p.boundary {
+        SW_BOUNDARY_PINNED => Boundary::Pinned,
+        SW_BOUNDARY_FREE => Boundary::Free,
+        other => {
+            return Err(Failure::invalid(format!(
+                "boundary = {other} is invalid: use SW_BOUNDARY_PINNED (0) or SW_BOUNDARY_FREE (1)"
+            )))
+        }
+    };
+    Ok(Params {
+        cols: p.cols as usize,
+        rows: p.rows as usize,
+        spacing: p.spacing,
+        mass: p.mass,
+        stiffness: p.stiffness,
+        viscosity: p.viscosity,
+        dt: p.dt,
+        rest_ratio: p.rest_ratio,
+        time_scale: p.time_scale,
+        acceleration: [p.acceleration_x, p.acceleration_y, p.acceleration_z],
+        boundary,
+    })
+}
+
+fn boundary_code(b: Boundary) -> SwBoundary {
+    match b {
+        Boundary::Free => SW_BOUNDARY_FREE,
+        _ => SW_BOUNDARY_PINNED,
+    }
+}
+
+fn simd_code(level: SimdLevel) -> SwSimdLevel {
+    match level {
+        SimdLevel::Scalar => SW_SIMD_SCALAR,
+        SimdLevel::Sse2 => SW_SIMD_SSE2,
+        SimdLevel::Avx2 => SW_SIMD_AVX2,
+        _ => SW_SIMD_AVX512,
+    }
+}
+
+fn simd_level(code: SwSimdLevel) -> Outcome<SimdLevel> {
+    match code {
+        SW_SIMD_SCALAR => Ok(SimdLevel::Scalar),
+        SW_SIMD_SSE2 => Ok(SimdLevel::Sse2),
+        SW_SIMD_AVX2 => Ok(SimdLevel::Avx2),
+        SW_SIMD_AVX512 => Ok(SimdLevel::Avx512),
+        other => Err(Failure::invalid(format!(
+            "SIMD level {other} is unknown: use SW_SIMD_SCALAR (0), SW_SIMD_SSE2 (1), \
+             SW_SIMD_AVX2 (2) or SW_SIMD_AVX512 (3)"
+        ))),
+    }
+}
+
+fn finite_eye(x: f32, y: f32, z: f32) -> Outcome<glam::Vec3> {
+    let eye = glam::Vec3::new(x, y, z);
+    if eye.is_finite() {
+        Ok(eye)
+    } else {
+        Err(Failure::invalid(format!(
+            "eye ({x}, {y}, {z}) is invalid: every coordinate must be finite"
+        )))
+    }
+}
+
+fn refraction_params(r: Option<&SwRefraction>) -> Outcome<(glam::Vec3, RefractionParams)> {
+    let r = r.ok_or_else(|| Failure::null("refraction"))?;
+    let eye = finite_eye(r.eye_x, r.eye_y, r.eye_z)?;
+    let params = RefractionParams {
+        depth: r.depth,
+        ior: r.ior,
+    };
+    params.validate()?;
+    Ok((eye, params))
+}
+
+/// Fails unless a buffer of `len` holds `needed`.
+fn need(len: usize, needed: usize, what: &str) -> Outcome {
+    if len >= needed {
+        Ok(())
+    } else {
+        Err(Failure::new(
+            SW_ERROR_BUFFER_TOO_SMALL,
+            format!("{what} holds {len}, the call needs {needed}"),
+        ))
+    }
+}
+
+/// An out-pointer the call must write.
+fn out_ref<'a, T>(ptr: *mut T, what: &str) -> Outcome<&'a mut T> {
+    aligned(ptr, what)?;
+    // SAFETY: non-NULL and aligned (checked); the caller gives a valid pointer.
+    unsafe { ptr.as_mut() }.ok_or_else(|| Failure::null(what))
+}
+
+/// An optional out-pointer: NULL means "not wanted".
+fn optional<'a, T>(ptr: *mut T, what: &str) -> Outcome<Option<&'a mut T>> {
+    aligned(ptr, what)?;
+    // SAFETY: aligned (checked); the caller gives a valid pointer or NULL.
+    Ok(unsafe { ptr.as_mut() })
+}
+
+fn aligned<T>(ptr: *const T, what: &str) -> Outcome {
+    if ptr.is_null() || ptr.align_offset(std::mem::align_of::<T>()) == 0 {
+        Ok(())
+    } else {
+        Err(Failure::invalid(format!(
+            "{what} ({ptr:p}) is not aligned to {} bytes",
+            std::mem::align_of::<T>()
+        )))
+    }
+}
+
+/// `len` elements at `ptr`, read only. NULL is allowed for `len` 0.
+///
+/// # Safety
+///
+/// `ptr` is NULL or points to `len` readable elements.
+unsafe fn in_slice<'a, T>(ptr: *const T, len: usize, what: &str) -> Outcome<&'a [T]> {
+    if len == 0 {
+        return Ok(&[]);
+    }
+    if ptr.is_null() {
+        return Err(Failure::null(what));
+    }
+    aligned(ptr, what)?;
+    too_long::<T>(len, what)?;
+    // SAFETY: non-NULL, aligned, not too long for a slice; the caller gives `len` elements.
+    Ok(unsafe { std::slice::from_raw_parts(ptr, len) })
+}
+
+/// `len` writable elements at `ptr`. NULL is allowed for `len` 0.
+///
+/// # Safety
+///
+/// `ptr` is NULL or points to `len` writable elements.
+unsafe fn out_slice<'a, T>(ptr: *mut T, len: usize, what: &str) -> Outcome<&'a mut [T]> {
+    if len == 0 {
+        return Ok(&mut []);
+    }
+    if ptr.is_null() {
+        return Err(Failure::null(what));
+    }
+    aligned(ptr, what)?;
+    too_long::<T>(len, what)?;
+    // SAFETY: non-NULL, aligned, not too long for a slice; the caller gives `len` elements.
+    Ok(unsafe { std::slice::from_raw_parts_mut(ptr, len) })
+}
+
+/// `n` writable `[x, y, z]` triples at `ptr`, whose buffer holds `len` floats.
+///
+/// # Safety
+///
+/// `ptr` is NULL or points to `len` writable floats.
+unsafe fn out_triples<'a>(
+    ptr: *mut f32,
+    len: usize,
+    n: usize,
+    what: &str,
+) -> Outcome<&'a mut [[f32; 3]]> {
+    need(len, n * 3, what)?;
+    // SAFETY: the caller gives `len ≥ 3n` floats; `[f32; 3]` has the alignment of `f32`.
+    unsafe { out_slice(ptr.cast::<[f32; 3]>(), n, what) }
+}
+
+fn too_long<T>(len: usize, what: &str) -> Outcome {
+    match len.checked_mul(std::mem::size_of::<T>().max(1)) {
+        Some(bytes) if bytes <= isize::MAX as usize => Ok(()),
+        _ => Err(Failure::invalid(format!(
+            "{what}: length {len} is too large"
+        ))),
+    }
+}
