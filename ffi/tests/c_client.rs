@@ -1,0 +1,322 @@
+//! C clients of `include/springwater.h`, compiled with the system C compiler against the
+//! static and dynamic libraries this crate builds:
+//!
+//! * `tests/c/client.c`: a frame loop over the whole API, a job system on the host's own
+//!   threads, and every kind of bad input; its printed values must equal what the Rust
+//!   API computes for the same frames. It runs plainly, under AddressSanitizer, and under
+//!   Valgrind's memcheck where those are installed.
+//! * the README's C example, linked against the dynamic library;
+//! * the header compiled as C++.
+//!
+//! Needs `cc` (and `c++`) on the PATH: the test fails without them, unless
+//! `SPRINGWATER_SKIP_C=1` says to skip.
+
+use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
+use springwater::refraction::{refract, Refraction, RefractionParams};
+use springwater::{Params, Surface};
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// The static and dynamic libraries, built by a nested `cargo build --release` into
+/// their own target directory (`target/ffi-c/`; cargo holds the test's own target
+/// directory while the tests run, and does not build a library's `staticlib` and
+/// `cdylib` for its tests). Cargo keeps them up to date with the sources.
+fn lib_dir() -> PathBuf {
+    static BUILT: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    BUILT
+        .get_or_init(|| {
+            let root = crate_dir().parent().unwrap();
+            let target = root.join("target").join("ffi-c");
+            let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+            let out = Command::new(cargo)
+                .current_dir(root)
+                .args(["build", "--release", "--quiet", "-p", "springwater-ffi"])
+                .arg("--target-dir")
+                .arg(&target)
+                .output()
+                .expect("cargo runs");
+            assert_ok(&out, "building springwater-ffi");
+            target.join("release")
+        })
+        .clone()
+}
+
+fn crate_dir() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A scratch directory for the compiled clients.
+fn out_dir() -> PathBuf {
+    let dir = lib_dir().join("c-clients");
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// What a program linked against the static library needs besides it.
+const NATIVE_LIBS: &[&str] = &[
+    "-lgcc_s",
+    "-lutil",
+    "-lrt",
+    "-lpthread",
+    "-lm",
+    "-ldl",
+    "-lc",
+];
+
+fn skip() -> bool {
+    let skip = std::env::var_os("SPRINGWATER_SKIP_C").is_some();
+    if skip {
+        eprintln!("skipped: SPRINGWATER_SKIP_C is set");
+    }
+    skip
+}
+
+fn have(tool: &str) -> bool {
+    Command::new(tool)
+        .arg("--version")
+        .output()
+        .is_ok_and(|o| o.status.success())
+}
+
+/// Compiles `source` into `exe` with the static library and `extra` flags.
+fn compile_static(source: &Path, exe: &Path, extra: &[&str]) {
+    let lib = lib_dir().join("libspringwater_ffi.a");
+    assert!(lib.exists(), "{} was not built", lib.display());
+    let out = Command::new("cc")
+        .args([
+            "-std=c11",
+            "-O1",
+            "-g",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-pedantic",
+        ])
+        .args(extra)
+        .arg("-I")
+        .arg(crate_dir().join("include"))
+        .arg(source)
+        .arg(&lib)
+        .args(NATIVE_LIBS)
+        .arg("-o")
+        .arg(exe)
+        .output()
+        .expect("cc runs (install a C compiler or set SPRINGWATER_SKIP_C=1)");
+    assert_ok(&out, "compiling");
+}
+
+fn assert_ok(out: &Output, what: &str) {
+    assert!(
+        out.status.success(),
+        "{what} failed ({}):\n{}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// `key value` lines of the client's output.
+fn values(out: &Output) -> HashMap<String, String> {
+    String::from_utf8_lossy(&out.stdout)
+        .lines()
+        .filter_map(|l| l.split_once(' '))
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .collect()
+}
+
+fn fnv(values: impl Iterator<Item = f32>) -> u64 {
+    values.fold(0xcbf2_9ce4_8422_2325u64, |h, v| {
+        v.to_bits()
+            .to_le_bytes()
+            .iter()
+            .fold(h, |h, &b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3))
+    })
+}
+
+/// What the C client prints, computed through the Rust API for the same frames.
+fn expected() -> HashMap<&'static str, String> {
+    let mut s = Surface::new(Params::with_size(48, 40)).unwrap();
+    s.drop_at(20.0, 15.0, 1.0, 3.0).unwrap();
+    for frame in 0..30 {
+        if frame == 10 {
+            s.add_force_at(10.5, 12.25, [0.0, -2.0, 0.0]).unwrap();
+        }
+        s.advance(1.0 / 60.0).unwrap();
+    }
+    let view = s.mesh_view();
+    let n = s.len();
+    let [x, y, z] = s.positions();
+    let positions = fnv((0..n).flat_map(|i| [x[i], y[i], z[i]]));
+    let mut normals = Normals::new();
+    compute_normals(&view, &mut normals);
+    let normal_bits = fnv((0..n).flat_map(|i| [normals.x[i], normals.y[i], normals.z[i]]));
+    let mut uv = Refraction::default();
+    let eye = glam::Vec3::new(24.0, 30.0, -20.0);
+    refract(&view, &normals, eye, &RefractionParams::default(), &mut uv).unwrap();
+    let uvs = fnv((0..n).flat_map(|i| [uv.u[i], uv.v[i]]));
+    let height = s.height_at(20.5, 15.25).unwrap();
+    let normal = s.normal_at(20.5, 15.25).unwrap();
+    let velocity = s.velocity_at(20.5, 15.25).unwrap();
+    let mut lod = LodMesh::new(LodParams {
+        patch_cells: 8,
+        levels: 3,
+        first_range: 12.0,
+        ..Default::default()
+    })
+    .unwrap();
+    lod.update(&view, glam::Vec3::new(0.0, 10.0, 0.0));
+    HashMap::from([
+        ("positions", format!("{positions:016x}")),
+        ("normals", format!("{normal_bits:016x}")),
+        ("uvs", format!("{uvs:016x}")),
+        ("height", format!("{:08x}", height.to_bits())),
+        (
+            "normal",
+            format!(
+                "{:08x} {:08x} {:08x}",
+                normal.x.to_bits(),
+                normal.y.to_bits(),
+                normal.z.to_bits()
+            ),
+        ),
+        ("velocity", format!("{:08x}", velocity.y.to_bits())),
+        ("lod_indices", lod.indices().len().to_string()),
+        ("snapshot_bytes", s.to_bytes().len().to_string()),
+        ("simd", s.simd_level().name().to_string()),
+        ("checks", "passed".to_string()),
+        ("version", env!("CARGO_PKG_VERSION").to_string()),
+    ])
+}
+
+/// Checks the client's values against the Rust API's, except the keys in `ignore`.
+fn check_client_output(out: &Output, how: &str, ignore: &[&str]) {
+    assert_ok(out, how);
+    let got = values(out);
+    for (key, want) in expected() {
+        if ignore.contains(&key) {
+            continue;
+        }
+        assert_eq!(
+            got.get(key),
+            Some(&want),
+            "{how}: the C client's `{key}` differs from the Rust API's"
+        );
+    }
+}
+
+#[test]
+fn the_c_client_runs_its_frame_loop_and_refuses_every_bad_input() {
+    if skip() {
+        return;
+    }
+    let exe = out_dir().join("client");
+    compile_static(&crate_dir().join("tests/c/client.c"), &exe, &[]);
+    let out = Command::new(&exe).output().unwrap();
+    check_client_output(&out, "the C client", &[]);
+}
+
+#[test]
+fn the_c_client_is_clean_under_address_sanitizer() {
+    if skip() {
+        return;
+    }
+    let exe = out_dir().join("client-asan");
+    compile_static(
+        &crate_dir().join("tests/c/client.c"),
+        &exe,
+        &["-fsanitize=address,undefined", "-fno-omit-frame-pointer"],
+    );
+    let out = Command::new(&exe)
+        .env(
+            "ASAN_OPTIONS",
+            "detect_leaks=1:abort_on_error=0:exitcode=97",
+        )
+        .env("UBSAN_OPTIONS", "halt_on_error=1:exitcode=98")
+        .output()
+        .unwrap();
+    check_client_output(&out, "the C client under AddressSanitizer", &[]);
+}
+
+#[test]
+fn the_c_client_is_clean_under_valgrind() {
+    if skip() {
+        return;
+    }
+    if !have("valgrind") {
+        eprintln!("skipped: valgrind is not installed");
+        return;
+    }
+    let exe = out_dir().join("client-valgrind");
+    compile_static(&crate_dir().join("tests/c/client.c"), &exe, &[]);
+    let out = Command::new("valgrind")
+        .args([
+            "--quiet",
+            "--error-exitcode=99",
+            "--leak-check=full",
+            "--errors-for-leak-kinds=definite",
+        ])
+        .arg(&exe)
+        .output()
+        .unwrap();
+    // Valgrind's CPU has no AVX-512: the level that ran may differ, the bits may not.
+    check_client_output(&out, "the C client under valgrind", &["simd"]);
+}
+
+/// The README's C example, extracted from the README, linked against the dynamic library.
+#[test]
+fn the_readme_c_example_builds_against_the_dynamic_library_and_runs() {
+    if skip() {
+        return;
+    }
+    let readme = std::fs::read_to_string(crate_dir().join("../README.md")).unwrap();
+    let start = readme.find("```c\n").expect("the README has a C example") + "```c\n".len();
+    let end = start + readme[start..].find("```").unwrap();
+    let source = out_dir().join("readme_example.c");
+    std::fs::write(&source, &readme[start..end]).unwrap();
+    let exe = out_dir().join("readme_example");
+    let dir = lib_dir();
+    let out = Command::new("cc")
+        .args(["-std=c11", "-Wall", "-Wextra", "-Werror", "-pedantic"])
+        .arg("-I")
+        .arg(crate_dir().join("include"))
+        .arg(&source)
+        .arg("-L")
+        .arg(&dir)
+        .arg(format!("-Wl,-rpath,{}", dir.display()))
+        .args(["-lspringwater_ffi", "-o"])
+        .arg(&exe)
+        .output()
+        .expect("cc runs");
+    assert_ok(&out, "compiling the README's C example");
+    let run = Command::new(&exe).output().unwrap();
+    assert_ok(&run, "the README's C example");
+    assert!(!run.stdout.is_empty());
+}
+
+#[test]
+fn the_header_compiles_as_cpp() {
+    if skip() {
+        return;
+    }
+    let source = out_dir().join("header.cpp");
+    std::fs::write(
+        &source,
+        "#include \"springwater.h\"\nint main() { SwParams p = sw_params_default(); return p.cols == 128 ? 0 : 1; }\n",
+    )
+    .unwrap();
+    let out = Command::new("c++")
+        .args([
+            "-std=c++11",
+            "-Wall",
+            "-Wextra",
+            "-Werror",
+            "-fsyntax-only",
+            "-I",
+        ])
+        .arg(crate_dir().join("include"))
+        .arg(&source)
+        .output()
+        .expect("c++ runs");
+    assert_ok(&out, "compiling the header as C++");
+}
