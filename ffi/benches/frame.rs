@@ -1,7 +1,8 @@
 //! One game frame through the C ABI against the same frame through the Rust API, in one
 //! group so the ratio comes from one run: `ffi_frame/{rust,c_abi}/{n}x{n}`.
 //!
-//! The frame: advance by 1/60 s, write the packed vertex buffer (normals, refraction and
+//! The frame: advance by 1/60 s (with a new drop every 120 frames, so the water never
+//! settles into subnormal values that slow the step down), write the packed vertex buffer (normals, refraction and
 //! interleave in one call), update the LOD from the eye and copy the index buffer when it
 //! changed, sample the water under four floating objects. The C ABI side calls the
 //! exported `extern "C"` functions (handle lookup, lock, argument checks, panic guard);
@@ -30,12 +31,15 @@ struct RustFrame {
     heights: Vec<f32>,
     up: Vec<glam::Vec3>,
     velocity: Vec<glam::Vec3>,
+    frames: u64,
 }
 
 impl RustFrame {
     fn new(n: usize) -> Self {
         let mut surface = Surface::new(Params::with_size(n, n)).unwrap();
-        surface.drop_at(n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0).unwrap();
+        surface
+            .drop_at(n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0)
+            .unwrap();
         Self {
             vertices: vec![Vertex::default(); surface.len()],
             surface,
@@ -47,10 +51,16 @@ impl RustFrame {
             heights: Vec::new(),
             up: Vec::new(),
             velocity: Vec::new(),
+            frames: 0,
         }
     }
 
     fn frame(&mut self) {
+        self.frames += 1;
+        if self.frames % 120 == 0 {
+            let c = self.surface.params().cols as f32 / 2.0;
+            self.surface.drop_at(c, c, 1.0, 4.0).unwrap();
+        }
         self.surface.advance(1.0 / 60.0).unwrap();
         let view = self.surface.mesh_view();
         let eye = glam::Vec3::from(EYE);
@@ -79,6 +89,8 @@ struct CFrame {
     indices: Vec<u32>,
     xz: Vec<f32>,
     samples: Vec<SwSample>,
+    frames: u64,
+    centre: f32,
 }
 
 impl CFrame {
@@ -91,27 +103,45 @@ impl CFrame {
         unsafe {
             assert_eq!(sw_surface_create(&params, &mut surface), SW_OK);
         }
-        assert_eq!(sw_surface_drop(surface, n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0), SW_OK);
+        assert_eq!(
+            sw_surface_drop(surface, n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0),
+            SW_OK
+        );
         Self {
             surface,
             vertices: vec![SwVertex::default(); n * n],
             indices: Vec::new(),
             xz: FLOATERS.iter().flatten().copied().collect(),
             samples: vec![SwSample::default(); FLOATERS.len()],
+            frames: 0,
+            centre: n as f32 / 2.0,
         }
     }
 
     fn frame(&mut self) {
         let s = self.surface;
+        self.frames += 1;
+        if self.frames % 120 == 0 {
+            assert_eq!(
+                sw_surface_drop(s, self.centre, self.centre, 1.0, 4.0),
+                SW_OK
+            );
+        }
         let mut view = sw_refraction_default();
         [view.eye_x, view.eye_y, view.eye_z] = EYE;
         // SAFETY: every pointer is to a live buffer of the length passed.
         unsafe {
-            assert_eq!(sw_surface_advance(s, 1.0 / 60.0, std::ptr::null_mut()), SW_OK);
+            assert_eq!(
+                sw_surface_advance(s, 1.0 / 60.0, std::ptr::null_mut()),
+                SW_OK
+            );
             let (ptr, len) = (self.vertices.as_mut_ptr(), self.vertices.len());
             assert_eq!(sw_surface_write_vertices(s, &view, ptr, len), SW_OK);
             let mut changed = 0;
-            assert_eq!(sw_surface_update_lod(s, EYE[0], EYE[1], EYE[2], &mut changed), SW_OK);
+            assert_eq!(
+                sw_surface_update_lod(s, EYE[0], EYE[1], EYE[2], &mut changed),
+                SW_OK
+            );
             if changed != 0 {
                 let mut count = 0;
                 sw_surface_lod_indices(s, std::ptr::null_mut(), 0, &mut count);
@@ -143,7 +173,9 @@ fn frame(c: &mut Criterion) {
         let mut rust = RustFrame::new(n);
         g.bench_function(BenchmarkId::new("rust", &size), |b| b.iter(|| rust.frame()));
         let mut c_abi = CFrame::new(n);
-        g.bench_function(BenchmarkId::new("c_abi", &size), |b| b.iter(|| c_abi.frame()));
+        g.bench_function(BenchmarkId::new("c_abi", &size), |b| {
+            b.iter(|| c_abi.frame())
+        });
     }
     g.finish();
 }

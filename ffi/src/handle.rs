@@ -97,3 +97,56 @@ pub(crate) fn with<T>(
     };
     f(&mut water)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::status::{guard, SW_OK};
+    use springwater::Params;
+
+    fn water() -> Water {
+        let surface = Surface::new(Params::with_size(8, 8)).unwrap();
+        Water {
+            surface,
+            lod: LodMesh::new(Default::default()).unwrap(),
+            normals: Normals::new(),
+            uv: Refraction::default(),
+            queries: Queries::default(),
+        }
+    }
+
+    #[test]
+    fn a_surface_that_panicked_refuses_every_later_call_until_destroyed() {
+        let h = insert(water());
+        assert_eq!(guard(|| with(h, |_| Ok(()))), SW_OK);
+        assert_eq!(guard(|| with(h, |_| panic!("inside"))), SW_ERROR_INTERNAL);
+        assert_eq!(guard(|| with(h, |_| Ok(()))), SW_ERROR_INTERNAL);
+        assert!(remove(h));
+        assert_eq!(guard(|| with(h, |_| Ok(()))), SW_ERROR_INVALID_HANDLE);
+        assert!(!remove(h));
+    }
+
+    #[test]
+    fn an_overlapping_call_on_one_surface_is_busy_and_others_are_not() {
+        let (a, b) = (insert(water()), insert(water()));
+        let inner = guard(|| {
+            with(a, |_| {
+                assert_eq!(guard(|| with(a, |_| Ok(()))), SW_ERROR_BUSY);
+                assert_eq!(guard(|| with(b, |_| Ok(()))), SW_OK);
+                Ok(())
+            })
+        });
+        assert_eq!(inner, SW_OK);
+        assert!(remove(a) && remove(b));
+    }
+
+    #[test]
+    fn handles_are_never_reused() {
+        let a = insert(water());
+        assert!(remove(a));
+        let b = insert(water());
+        assert_ne!(a, b);
+        assert_eq!(guard(|| with(a, |_| Ok(()))), SW_ERROR_INVALID_HANDLE);
+        assert!(remove(b));
+    }
+}

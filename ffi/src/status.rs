@@ -157,3 +157,50 @@ pub extern "C" fn sw_status_name(status: SwStatus) -> *const std::ffi::c_char {
     };
     name.as_ptr()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn last_error() -> String {
+        let mut buf = [0 as std::ffi::c_char; 256];
+        // SAFETY: a local buffer of the length passed.
+        unsafe { sw_last_error(buf.as_mut_ptr(), buf.len()) };
+        // SAFETY: sw_last_error NUL-terminates within the buffer.
+        unsafe { std::ffi::CStr::from_ptr(buf.as_ptr()) }
+            .to_string_lossy()
+            .into_owned()
+    }
+
+    #[test]
+    fn a_panic_becomes_an_internal_error_with_its_message() {
+        let status = guard(|| panic!("boom {}", 42));
+        assert_eq!(status, SW_ERROR_INTERNAL);
+        assert_eq!(last_error(), "internal error in springwater: boom 42");
+    }
+
+    #[test]
+    fn errors_leave_their_message_and_success_keeps_the_last_one() {
+        assert_eq!(guard(|| Err(Failure::null("xyz"))), SW_ERROR_NULL_POINTER);
+        assert_eq!(guard(|| Ok(())), SW_OK);
+        assert_eq!(last_error(), "xyz is NULL");
+        // A NUL inside a message ends it.
+        assert_eq!(
+            guard(|| Err(Failure::invalid("a\0b"))),
+            SW_ERROR_INVALID_ARGUMENT
+        );
+        assert_eq!(last_error(), "a");
+    }
+
+    #[test]
+    fn every_status_has_a_name() {
+        for status in 0..=10 {
+            // SAFETY: sw_status_name returns a static C string.
+            let name = unsafe { std::ffi::CStr::from_ptr(sw_status_name(-status)) };
+            assert!(name.to_str().unwrap().starts_with("SW_"), "{status}");
+        }
+        // SAFETY: as above.
+        let unknown = unsafe { std::ffi::CStr::from_ptr(sw_status_name(5)) };
+        assert_eq!(unknown.to_str().unwrap(), "unknown status");
+    }
+}
