@@ -57,7 +57,7 @@ impl RustFrame {
 
     fn frame(&mut self) {
         self.frames += 1;
-        if self.frames % 120 == 0 {
+        if self.frames.is_multiple_of(120) {
             let c = self.surface.params().cols as f32 / 2.0;
             self.surface.drop_at(c, c, 1.0, 4.0).unwrap();
         }
@@ -121,7 +121,7 @@ impl CFrame {
     fn frame(&mut self) {
         let s = self.surface;
         self.frames += 1;
-        if self.frames % 120 == 0 {
+        if self.frames.is_multiple_of(120) {
             assert_eq!(
                 sw_surface_drop(s, self.centre, self.centre, 1.0, 4.0),
                 SW_OK
