@@ -103,7 +103,6 @@ fn batch<T>(
 /// full-resolution simulation (never from the LOD mesh), and forces pushed in at a world
 /// point with the same weights. Batched forms take `[x, z]` pairs and fill a caller-owned
 /// `Vec` (cleared first, capacity kept).
-/// `(x, z)`, sampled from the full-resolution simulation (never from the LOD mesh).
 ///
 /// ## Method
 ///
