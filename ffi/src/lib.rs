@@ -136,7 +136,7 @@ pub struct SwRefraction {
 /// One node's packed vertex: 8 floats, 32 bytes (position at byte 0, normal at 12, the
 /// refracted bottom texture coordinate at 24). The layout of the library's `Vertex`.
 #[repr(C)]
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SwVertex {
     /// Position in the water's local space (y up).
     pub position: [f32; 3],
@@ -155,7 +155,7 @@ const _: () = {
 
 /// The water at one point: height, unit normal, velocity.
 #[repr(C)]
-#[derive(Debug, Clone, Copy, Default)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SwSample {
     /// Height (y).
     pub height: f32,

@@ -12,10 +12,10 @@
 use arbitrary::Arbitrary;
 use glam::Vec3;
 use libfuzzer_sys::fuzz_target;
-use springwater::Grid;
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
-use springwater::MeshView;
 use springwater::refraction::{refract, Refraction, RefractionParams};
+use springwater::Grid;
+use springwater::MeshView;
 use std::collections::HashSet;
 
 #[derive(Debug, Arbitrary)]

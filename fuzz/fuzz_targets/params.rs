@@ -97,7 +97,13 @@ fn exercise(s: &mut Surface, input: &Input) {
         family: springwater::Family::ALL[node % 4],
         origin: node / 4,
     };
-    let _ = s.set_spring(id, springwater::Spring { rest: v, stiffness: input.spacing });
+    let _ = s.set_spring(
+        id,
+        springwater::Spring {
+            rest: v,
+            stiffness: input.spacing,
+        },
+    );
     let _ = s.advance(input.dt);
     let mut params = *s.params();
     let _ = params.set_ripple_speed(v);
