@@ -1,0 +1,134 @@
+//! What the plugin costs per frame around the step itself, headless.
+//!
+//! `cargo run --release -p springwater-bevy --example frame_cost [frames]`
+//!
+//! Runs a rained-on pool of 128² and of 512² nodes in a MinimalPlugins app with a fixed
+//! 1/60 s clock and times the plugin's three sets with marker systems between them:
+//! SyncInputs (surface creation, messages, buoyancy), Step (springwater's `advance_with`),
+//! Writeback (normals + refraction, LOD, mesh write in place). Means over the frames after
+//! a warm-up; one run, so noisy on a shared machine.
+
+use std::time::{Duration, Instant};
+
+use bevy::asset::AssetPlugin;
+use bevy::mesh::MeshPlugin;
+use bevy::prelude::*;
+use bevy::time::TimeUpdateStrategy;
+use bevy::transform::TransformPlugin;
+use springwater::buffers::{interleave, VertexBuffers};
+use springwater::disturb::Rain;
+use springwater::mesh::Normals;
+use springwater::refraction::{normals_and_refraction, Refraction};
+use springwater_bevy::prelude::*;
+
+#[derive(Resource, Default)]
+struct Marks {
+    last: Option<Instant>,
+    sums: [Duration; 3],
+    on: bool,
+}
+
+fn mark<const PHASE: usize>(mut marks: ResMut<Marks>) {
+    let now = Instant::now();
+    if PHASE > 0 && marks.on {
+        if let Some(last) = marks.last {
+            marks.sums[PHASE - 1] += now - last;
+        }
+    }
+    marks.last = Some(now);
+}
+
+fn measure(size: usize, frames: u32) -> ([Duration; 3], [Duration; 2]) {
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        AssetPlugin::default(),
+        MeshPlugin,
+        TransformPlugin,
+        SpringwaterPlugin::default(),
+    ))
+    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f32(
+        1.0 / 60.0,
+    )))
+    .init_resource::<Marks>()
+    .add_systems(
+        PostUpdate,
+        (
+            mark::<0>.before(WaterSystems::SyncInputs),
+            mark::<1>
+                .after(WaterSystems::SyncInputs)
+                .before(WaterSystems::Step),
+            mark::<2>
+                .after(WaterSystems::Step)
+                .before(WaterSystems::Writeback),
+            mark::<3>.after(WaterSystems::Writeback),
+        ),
+    );
+    let half = (size / 2) as f32;
+    app.world_mut().spawn((
+        Water::with_size(size, size),
+        WaterDisturbance::new(Rain::new(0.05 * (size * size) as f32 / 4096.0, 7)),
+    ));
+    app.world_mut().spawn((
+        WaterViewer,
+        Transform::from_xyz(half, half * 0.5, -half * 0.3),
+    ));
+    let settings = BuoyancySettings::default();
+    app.world_mut().spawn((
+        Buoyant::sphere(2.0, 0.5, &settings),
+        Transform::from_xyz(half, 1.0, half),
+    ));
+    for _ in 0..30 {
+        app.update();
+    }
+    app.world_mut().resource_mut::<Marks>().on = true;
+    for _ in 0..frames {
+        app.update();
+    }
+    let sets = app.world().resource::<Marks>().sums.map(|d| d / frames);
+    // springwater's own render-side stage inside Writeback (normals + refraction), timed
+    // alone on the final state, to tell the plugin's glue (LOD check, mesh write) from it.
+    let mut waters = app.world_mut().query::<(&Water, &WaterSurface)>();
+    let (water, ws) = waters.single(app.world()).expect("one water");
+    let (mut normals, mut uv) = (Normals::new(), Refraction::default());
+    let eye = [half, half * 0.5, -half * 0.3];
+    let start = Instant::now();
+    for _ in 0..frames {
+        normals_and_refraction(
+            &ws.surface().mesh_view(),
+            eye.into(),
+            &water.refraction,
+            &mut normals,
+            &mut uv,
+        )
+        .expect("refraction");
+    }
+    let stages = start.elapsed() / frames;
+    let view = ws.surface().mesh_view();
+    let n = view.grid().len();
+    let (mut p, mut nr, mut t) = (vec![[0.0; 3]; n], vec![[0.0; 3]; n], vec![[0.0; 2]; n]);
+    let start = Instant::now();
+    for _ in 0..frames {
+        let out = VertexBuffers {
+            positions: Some(&mut p),
+            normals: Some(&mut nr),
+            uvs: Some(&mut t),
+            vertices: None,
+        };
+        interleave(&view, &normals, &uv, out).expect("interleave");
+    }
+    let interleaving = start.elapsed() / frames;
+    (sets, [stages, interleaving])
+}
+
+fn main() {
+    let frames: u32 = std::env::args()
+        .nth(1)
+        .and_then(|a| a.parse().ok())
+        .unwrap_or(200);
+    println!("size   sync-inputs        step  write-back | alone: normals+refraction  interleave   mean per frame, {frames} frames");
+    for size in [128, 512] {
+        let ([sync, step, write], [stages, inter]) = measure(size, frames);
+        println!("{size:>3}²  {sync:>11.1?} {step:>11.1?} {write:>11.1?}  {stages:>21.1?} {inter:>11.1?}");
+    }
+}

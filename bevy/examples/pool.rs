@@ -1,0 +1,220 @@
+//! A pool in the rain: a tiled bottom seen through the water (refracted `UV_0`), a ball
+//! floating on it, an orbit camera.
+//!
+//! `cargo run --release -p springwater-bevy --example pool --features example`
+//!
+//! Drag with the left mouse button to orbit, scroll to zoom, arrows or WASD push the
+//! ball, space drops a splash under the ball, R toggles the rain.
+
+use bevy::asset::RenderAssetUsages;
+use bevy::image::{ImageAddressMode, ImageSampler, ImageSamplerDescriptor};
+use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
+use bevy::prelude::*;
+use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
+use springwater::disturb::{Disturbance, Rain};
+use springwater_bevy::prelude::*;
+
+const COLS: usize = 129;
+const ROWS: usize = 97;
+
+fn main() {
+    App::new()
+        .add_plugins((DefaultPlugins, SpringwaterPlugin::default()))
+        .insert_resource(ClearColor(Color::srgb(0.55, 0.7, 0.85)))
+        .add_systems(Startup, setup)
+        .add_systems(Update, (orbit_camera, push_ball, toggle_rain))
+        .run();
+}
+
+/// Pool tiles with grout lines, RGBA8: 16 × 12 tiles over the pool's bottom.
+fn tiles() -> Image {
+    let (w, h, tile) = (512u32, 384u32, 32u32);
+    let mut data = Vec::with_capacity((w * h * 4) as usize);
+    for y in 0..h {
+        for x in 0..w {
+            let (tx, ty) = (x % tile, y % tile);
+            let grout = tx < 2 || ty < 2;
+            let shade = if ((x / tile) + (y / tile)) % 2 == 0 {
+                235
+            } else {
+                215
+            };
+            let px = if grout {
+                [70, 90, 110, 255]
+            } else {
+                [shade - 60, shade - 10, shade, 255]
+            };
+            data.extend_from_slice(&px);
+        }
+    }
+    let mut image = Image::new(
+        Extent3d {
+            width: w,
+            height: h,
+            depth_or_array_layers: 1,
+        },
+        TextureDimension::D2,
+        data,
+        TextureFormat::Rgba8UnormSrgb,
+        RenderAssetUsages::RENDER_WORLD,
+    );
+    image.sampler = ImageSampler::Descriptor(ImageSamplerDescriptor {
+        address_mode_u: ImageAddressMode::Repeat,
+        address_mode_v: ImageAddressMode::Repeat,
+        ..ImageSamplerDescriptor::linear()
+    });
+    image
+}
+
+#[derive(Component)]
+struct Ball;
+
+/// Orbit state of the camera: around `focus`, at `distance`, `yaw` and `pitch` radians.
+#[derive(Component)]
+struct Orbit {
+    focus: Vec3,
+    distance: f32,
+    yaw: f32,
+    pitch: f32,
+}
+
+/// Rain that can be switched off.
+struct Toggled(Rain, bool);
+
+impl Disturbance for Toggled {
+    fn apply(&mut self, surface: &mut springwater::Surface, dt: f32) -> springwater::Result<()> {
+        if self.1 {
+            self.0.apply(surface, dt)
+        } else {
+            Ok(())
+        }
+    }
+}
+
+fn setup(
+    mut commands: Commands,
+    mut meshes: ResMut<Assets<Mesh>>,
+    mut materials: ResMut<Assets<StandardMaterial>>,
+    mut images: ResMut<Assets<Image>>,
+    buoyancy: Res<BuoyancySettings>,
+) {
+    let bottom = images.add(tiles());
+    let (w, d) = ((COLS - 1) as f32, (ROWS - 1) as f32);
+    // The water: its mesh and `UV_0` come from the plugin; the material samples the
+    // bottom's tiles at the refracted coordinates, tinted like water.
+    commands.spawn((
+        Water::with_size(COLS, ROWS).with_depth(6.0),
+        WaterDisturbance::new(Toggled(Rain::new(0.15, 7), true)),
+        MeshMaterial3d(materials.add(StandardMaterial {
+            base_color: Color::srgb(0.75, 0.9, 1.0),
+            base_color_texture: Some(bottom),
+            perceptual_roughness: 0.08,
+            reflectance: 0.6,
+            double_sided: true,
+            cull_mode: None,
+            ..default()
+        })),
+        Transform::from_xyz(-w / 2.0, 0.0, -d / 2.0),
+    ));
+    // The ball: half as dense as the water.
+    commands.spawn((
+        Ball,
+        Buoyant::sphere(2.5, 0.5, &buoyancy),
+        Mesh3d(meshes.add(Sphere::new(2.5).mesh().uv(32, 18))),
+        MeshMaterial3d(materials.add(StandardMaterial {
+            base_color: Color::srgb(0.95, 0.35, 0.2),
+            perceptual_roughness: 0.4,
+            ..default()
+        })),
+        Transform::from_xyz(-10.0, 4.0, 5.0),
+    ));
+    commands.spawn((
+        DirectionalLight {
+            illuminance: 12_000.0,
+            ..default()
+        },
+        Transform::from_xyz(30.0, 80.0, 40.0).looking_at(Vec3::ZERO, Vec3::Y),
+    ));
+    commands.spawn((
+        Camera3d::default(),
+        Transform::default(),
+        Orbit {
+            focus: Vec3::ZERO,
+            distance: 120.0,
+            yaw: 0.6,
+            pitch: 0.65,
+        },
+    ));
+}
+
+fn orbit_camera(
+    buttons: Res<ButtonInput<MouseButton>>,
+    motion: Res<AccumulatedMouseMotion>,
+    scroll: Res<AccumulatedMouseScroll>,
+    mut cameras: Query<(&mut Orbit, &mut Transform), With<Camera3d>>,
+) {
+    for (mut orbit, mut transform) in &mut cameras {
+        if buttons.pressed(MouseButton::Left) {
+            orbit.yaw -= motion.delta.x * 0.005;
+            orbit.pitch = (orbit.pitch + motion.delta.y * 0.005).clamp(0.05, 1.5);
+        }
+        orbit.distance = (orbit.distance * (1.0 - scroll.delta.y * 0.1)).clamp(10.0, 400.0);
+        let offset = Vec3::new(
+            orbit.yaw.sin() * orbit.pitch.cos(),
+            orbit.pitch.sin(),
+            orbit.yaw.cos() * orbit.pitch.cos(),
+        ) * orbit.distance;
+        *transform =
+            Transform::from_translation(orbit.focus + offset).looking_at(orbit.focus, Vec3::Y);
+    }
+}
+
+fn push_ball(
+    keys: Res<ButtonInput<KeyCode>>,
+    cameras: Query<&Transform, With<Camera3d>>,
+    mut balls: Query<(&mut Buoyant, &Transform), With<Ball>>,
+    mut drops: MessageWriter<WaterDrop>,
+) {
+    let Ok(camera) = cameras.single() else {
+        return;
+    };
+    // Push relative to where the camera looks, in the water's plane.
+    let forward = (camera.forward().as_vec3() * Vec3::new(1.0, 0.0, 1.0)).normalize_or_zero();
+    let right = forward.cross(Vec3::Y);
+    let mut dir = Vec3::ZERO;
+    for (keys_for, v) in [
+        ([KeyCode::ArrowUp, KeyCode::KeyW], forward),
+        ([KeyCode::ArrowDown, KeyCode::KeyS], -forward),
+        ([KeyCode::ArrowRight, KeyCode::KeyD], right),
+        ([KeyCode::ArrowLeft, KeyCode::KeyA], -right),
+    ] {
+        if keys.any_pressed(keys_for) {
+            dir += v;
+        }
+    }
+    for (mut ball, transform) in &mut balls {
+        let push = dir * ball.mass * 12.0;
+        ball.force += push;
+        if keys.just_pressed(KeyCode::Space) {
+            drops.write(WaterDrop {
+                water: None,
+                point: transform.translation,
+                height: -2.0,
+                radius: 4.0,
+            });
+        }
+    }
+}
+
+fn toggle_rain(
+    keys: Res<ButtonInput<KeyCode>>,
+    mut off: Local<bool>,
+    mut rain: Query<&mut WaterDisturbance>,
+) {
+    if keys.just_pressed(KeyCode::KeyR) {
+        *off = !*off;
+        for mut d in &mut rain {
+            d.0 = Box::new(Toggled(Rain::new(0.15, 7), !*off));
+        }
+    }
+}

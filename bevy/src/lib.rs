@@ -1,0 +1,198 @@
+//! # springwater-bevy
+//!
+//! A [Bevy](https://bevy.org) plugin for [`springwater`]: a water surface simulated on the
+//! CPU as a mass-spring lattice, drawn as a [`Mesh3d`](bevy::mesh::Mesh3d) whose
+//! positions, normals and refracted bottom coordinates (`UV_0`) are rewritten in place
+//! every frame, with a view-dependent LOD index buffer, point queries, drops and forces
+//! from game systems, and two-way buoyancy.
+//!
+//! The plugin is a thin layer: the physics, LOD, refraction, interleaving and queries are
+//! springwater's own, called once per frame.
+//!
+//! ```no_run
+//! use bevy::prelude::*;
+//! use springwater_bevy::prelude::*;
+//!
+//! fn main() {
+//!     App::new()
+//!         .add_plugins((DefaultPlugins, SpringwaterPlugin::default()))
+//!         .add_systems(Startup, |mut commands: Commands| {
+//!             // A 128 × 128 pool of spacing 1 from the origin; add a material to see it:
+//!             // MeshMaterial3d(materials.add(StandardMaterial { base_color_texture: Some(tiles), .. }))
+//!             commands.spawn(Water::with_size(129, 129).with_depth(4.0));
+//!         })
+//!         .add_systems(Update, |mut drops: MessageWriter<WaterDrop>| {
+//!             drops.write(WaterDrop { water: None, point: Vec3::new(64.0, 0.0, 64.0), height: -1.0, radius: 3.0 });
+//!         })
+//!         .run();
+//! }
+//! ```
+//!
+//! (`DefaultPlugins` needs Bevy's default features; this crate itself depends on Bevy with
+//! `default-features = false` and only the ECS, assets, meshes, camera types, transforms,
+//! time and task pools.)
+//!
+//! ## What runs when
+//!
+//! [`SpringwaterPlugin`] adds its systems to one schedule (`PostUpdate` by default, before
+//! transform propagation; or a fixed-timestep schedule with
+//! [`SpringwaterPlugin::in_fixed_schedule`]), in three chained sets, [`WaterSystems`]:
+//!
+//! 1. [`WaterSystems::SyncInputs`]: creates the [`springwater::Surface`] and the mesh of
+//!    every new [`Water`], restarts surfaces whose `Params` changed, applies [`WaterDrop`]
+//!    and [`WaterForce`] messages, floats [`Buoyant`] bodies and pushes their reactions.
+//! 2. [`WaterSystems::Step`]: [`springwater::Surface::advance`] (or `advance_with` a
+//!    [`WaterDisturbance`]) by the schedule's `Time` delta, on Bevy's compute task pool
+//!    ([`TaskPoolJobs`]).
+//! 3. [`WaterSystems::Writeback`]: normals and refraction from the eye (a [`WaterViewer`],
+//!    else the active camera), the LOD, and the mesh attributes written in place.
+//!
+//! Game systems that read the water ([`WaterQuery`]) see the state of the last frame's
+//! step; drops and forces land before the next one. The eye and the water's
+//! `GlobalTransform` are read before this frame's transform propagation (one frame late
+//! if they moved).
+//!
+//! Errors (refused parameters, a step that would go non-finite) never panic: they are
+//! logged and sent as [`WaterError`] messages.
+
+#![warn(missing_docs)]
+
+mod buoyancy;
+mod jobs;
+mod mesh;
+mod query;
+mod step;
+mod water;
+
+use bevy::app::{App, FixedPostUpdate, Plugin, PostUpdate};
+use bevy::ecs::intern::Interned;
+use bevy::ecs::prelude::*;
+use bevy::ecs::schedule::ScheduleLabel;
+use bevy::transform::TransformSystems;
+
+pub use buoyancy::{BuoyancySettings, Buoyant};
+pub use jobs::TaskPoolJobs;
+pub use query::{WaterQuery, WaterQueryError, WaterQueryMut, WaterSample};
+pub use water::{
+    Water, WaterDisturbance, WaterDrop, WaterError, WaterForce, WaterSurface, WaterViewer,
+};
+
+/// Re-exported so that a game needs no direct dependency on the library.
+pub use springwater;
+
+/// Everything a game usually names.
+pub mod prelude {
+    pub use crate::{
+        BuoyancySettings, Buoyant, SpringwaterPlugin, Water, WaterDisturbance, WaterDrop,
+        WaterError, WaterForce, WaterQuery, WaterQueryMut, WaterSample, WaterSurface, WaterSystems,
+        WaterViewer,
+    };
+}
+
+/// The plugin's system sets, run in this order in the plugin's schedule.
+#[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum WaterSystems {
+    /// New surfaces, parameter changes, drops and forces, buoyancy.
+    SyncInputs,
+    /// Advancing every surface by the frame's seconds.
+    Step,
+    /// Normals, refraction, LOD and the mesh write.
+    Writeback,
+}
+
+/// Settings the plugin's systems read.
+#[derive(Resource, Debug, Clone, Copy)]
+pub(crate) struct SpringwaterSettings {
+    pub task_pool: bool,
+}
+
+/// Adds water simulation to an app. See the [crate docs](crate).
+///
+/// ```
+/// use bevy::app::FixedUpdate;
+/// use springwater_bevy::SpringwaterPlugin;
+///
+/// let default = SpringwaterPlugin::default();                  // PostUpdate, task pool
+/// let fixed = SpringwaterPlugin::default().in_fixed_schedule(); // FixedPostUpdate
+/// let custom = SpringwaterPlugin::default().in_schedule(FixedUpdate).with_task_pool(false);
+/// ```
+#[derive(Debug, Clone)]
+pub struct SpringwaterPlugin {
+    schedule: Interned<dyn ScheduleLabel>,
+    task_pool: bool,
+}
+
+impl Default for SpringwaterPlugin {
+    /// `PostUpdate`, before transform propagation, stepping on Bevy's compute task pool.
+    fn default() -> Self {
+        Self {
+            schedule: PostUpdate.intern(),
+            task_pool: true,
+        }
+    }
+}
+
+impl SpringwaterPlugin {
+    /// Runs the plugin's systems in `schedule` instead of `PostUpdate`. In a fixed-timestep
+    /// schedule, `Time` is the fixed clock and each run steps by the fixed timestep.
+    pub fn in_schedule(mut self, schedule: impl ScheduleLabel) -> Self {
+        self.schedule = schedule.intern();
+        self
+    }
+
+    /// Runs in `FixedPostUpdate`: the water steps by `Time<Fixed>`'s timestep, as often as
+    /// the fixed clock asks (a deterministic clock, independent of the frame rate).
+    pub fn in_fixed_schedule(self) -> Self {
+        self.in_schedule(FixedPostUpdate)
+    }
+
+    /// Whether surfaces step on Bevy's `ComputeTaskPool` ([`TaskPoolJobs`], the default)
+    /// or, when false, on rayon's global pool. The results are the same bits either way.
+    pub fn with_task_pool(mut self, on: bool) -> Self {
+        self.task_pool = on;
+        self
+    }
+}
+
+impl Plugin for SpringwaterPlugin {
+    fn build(&self, app: &mut App) {
+        app.insert_resource(SpringwaterSettings {
+            task_pool: self.task_pool,
+        })
+        .init_resource::<BuoyancySettings>()
+        .add_message::<WaterDrop>()
+        .add_message::<WaterForce>()
+        .add_message::<WaterError>();
+
+        let schedule = self.schedule;
+        app.configure_sets(
+            schedule,
+            (
+                WaterSystems::SyncInputs,
+                WaterSystems::Step,
+                WaterSystems::Writeback,
+            )
+                .chain(),
+        );
+        if schedule == PostUpdate.intern() {
+            app.configure_sets(
+                schedule,
+                WaterSystems::Writeback.before(TransformSystems::Propagate),
+            );
+        }
+        app.add_systems(
+            schedule,
+            (
+                (
+                    step::create_surfaces,
+                    step::apply_messages,
+                    buoyancy::float_bodies,
+                )
+                    .chain()
+                    .in_set(WaterSystems::SyncInputs),
+                step::step_surfaces.in_set(WaterSystems::Step),
+                mesh::write_meshes.in_set(WaterSystems::Writeback),
+            ),
+        );
+    }
+}

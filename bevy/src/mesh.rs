@@ -1,0 +1,184 @@
+//! The water's [`Mesh`]: positions, normals and refracted bottom coordinates written in
+//! place every frame, indices replaced only when the LOD changes.
+
+use bevy::asset::{Assets, RenderAssetUsages};
+use bevy::camera::primitives::Aabb;
+use bevy::camera::Camera;
+use bevy::ecs::prelude::*;
+use bevy::math::Vec3;
+use bevy::mesh::{
+    Indices, Mesh, Mesh3d, MeshVertexAttribute, PrimitiveTopology, VertexAttributeValues,
+};
+use bevy::transform::components::GlobalTransform;
+use springwater::buffers::{interleave, VertexBuffers};
+use springwater::refraction::normals_and_refraction;
+
+use crate::step::report;
+use crate::water::{Space, Water, WaterError, WaterSurface, WaterViewer};
+
+/// The eye a water is seen from when there is neither a [`WaterViewer`] nor a camera:
+/// above the middle of the pool, as high as the pool is wide.
+fn default_eye(ws: &WaterSurface) -> Vec3 {
+    let [w, d] = ws.surface.mesh_view().extent();
+    Vec3::new(w * 0.5, w.max(d), d * 0.5)
+}
+
+/// The bounding box the plugin gives a water entity: the rest footprint, one cell wider on
+/// every side (the lattice moves sideways a little), `bounds_height` above and below the
+/// rest surface, and down to the bottom.
+pub(crate) fn bounds(water: &Water) -> Aabb {
+    let p = &water.params;
+    let h = p.spacing;
+    let (w, d) = (
+        (p.cols.max(1) - 1) as f32 * h,
+        (p.rows.max(1) - 1) as f32 * h,
+    );
+    let up = water.bounds_height.max(0.0);
+    let down = up.max(water.refraction.depth);
+    Aabb::from_min_max(Vec3::new(-h, -down, -h), Vec3::new(w + h, up, d + h))
+}
+
+/// A new mesh for a surface: every attribute at its final length, the first LOD.
+pub(crate) fn new_mesh(ws: &WaterSurface) -> Mesh {
+    let n = ws.surface.len();
+    let mut mesh = Mesh::new(
+        PrimitiveTopology::TriangleList,
+        // Both worlds: the main world keeps the data so that it can be written in place
+        // every frame after the render world has extracted it.
+        RenderAssetUsages::MAIN_WORLD | RenderAssetUsages::RENDER_WORLD,
+    );
+    mesh.insert_attribute(Mesh::ATTRIBUTE_POSITION, vec![[0.0f32; 3]; n]);
+    mesh.insert_attribute(Mesh::ATTRIBUTE_NORMAL, vec![[0.0f32, 1.0, 0.0]; n]);
+    mesh.insert_attribute(Mesh::ATTRIBUTE_UV_0, vec![[0.0f32; 2]; n]);
+    let mut lod = springwater::mesh::LodMesh::new(*ws.lod.params())
+        .expect("parameters already validated by the surface's own LodMesh");
+    lod.update(&ws.surface.mesh_view(), default_eye(ws).to_array().into());
+    mesh.insert_indices(Indices::U32(lod.indices().to_vec()));
+    mesh
+}
+
+/// The eye in world space: the first [`WaterViewer`], else the active camera of lowest
+/// order.
+fn world_eye(
+    viewers: &Query<&GlobalTransform, With<WaterViewer>>,
+    cameras: &Query<(&Camera, &GlobalTransform)>,
+) -> Option<Vec3> {
+    if let Some(v) = viewers.iter().next() {
+        return Some(v.translation());
+    }
+    cameras
+        .iter()
+        .filter(|(c, _)| c.is_active)
+        .min_by_key(|(c, _)| c.order)
+        .map(|(_, t)| t.translation())
+}
+
+/// Takes an attribute's vector out of the mesh (leaving an empty one), so that several
+/// attributes can be filled in one pass and put back without reallocating.
+fn take<T>(
+    mesh: &mut Mesh,
+    attribute: MeshVertexAttribute,
+    get: fn(&mut VertexAttributeValues) -> Option<&mut Vec<T>>,
+) -> Result<Vec<T>, String> {
+    match mesh.try_attribute_mut_option(attribute) {
+        Ok(Some(values)) => Ok(get(values).map(std::mem::take).unwrap_or_default()),
+        Ok(None) => Ok(Vec::new()),
+        Err(e) => Err(e.to_string()),
+    }
+}
+
+fn f32x3(v: &mut VertexAttributeValues) -> Option<&mut Vec<[f32; 3]>> {
+    match v {
+        VertexAttributeValues::Float32x3(v) => Some(v),
+        _ => None,
+    }
+}
+
+fn f32x2(v: &mut VertexAttributeValues) -> Option<&mut Vec<[f32; 2]>> {
+    match v {
+        VertexAttributeValues::Float32x2(v) => Some(v),
+        _ => None,
+    }
+}
+
+/// Writes one water's mesh: positions, normals and UVs in place (the vectors keep their
+/// allocations), the indices only when `indices` is given.
+fn write_mesh(mesh: &mut Mesh, ws: &WaterSurface, indices: Option<&[u32]>) -> Result<(), String> {
+    let view = ws.surface.mesh_view();
+    let n = view.grid().len();
+    let mut positions = take(mesh, Mesh::ATTRIBUTE_POSITION, f32x3)?;
+    let mut normals = take(mesh, Mesh::ATTRIBUTE_NORMAL, f32x3)?;
+    let mut uvs = take(mesh, Mesh::ATTRIBUTE_UV_0, f32x2)?;
+    // Same length every frame: no reallocation (only when the grid size changes).
+    positions.resize(n, [0.0; 3]);
+    normals.resize(n, [0.0; 3]);
+    uvs.resize(n, [0.0; 2]);
+    let written = interleave(
+        &view,
+        &ws.normals,
+        &ws.uv,
+        VertexBuffers {
+            positions: Some(&mut positions),
+            normals: Some(&mut normals),
+            uvs: Some(&mut uvs),
+            vertices: None,
+        },
+    );
+    // Put the vectors back even if interleaving failed (then they hold last frame's data).
+    let put = mesh
+        .try_insert_attribute(Mesh::ATTRIBUTE_POSITION, positions)
+        .and_then(|()| mesh.try_insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals))
+        .and_then(|()| mesh.try_insert_attribute(Mesh::ATTRIBUTE_UV_0, uvs));
+    written.map_err(|e| e.to_string())?;
+    put.map_err(|e| e.to_string())?;
+    if let Some(indices) = indices {
+        match mesh.try_indices_mut() {
+            Ok(Indices::U32(v)) => {
+                v.clear();
+                v.extend_from_slice(indices);
+            }
+            _ => mesh
+                .try_insert_indices(Indices::U32(indices.to_vec()))
+                .map_err(|e| e.to_string())?,
+        }
+    }
+    Ok(())
+}
+
+/// Normals, refraction, LOD and the mesh write of every water, from the eye in each
+/// water's local space.
+pub(crate) fn write_meshes(
+    mut meshes: ResMut<Assets<Mesh>>,
+    viewers: Query<&GlobalTransform, With<WaterViewer>>,
+    cameras: Query<(&Camera, &GlobalTransform)>,
+    mut waters: Query<(Entity, &Water, &mut WaterSurface, &Mesh3d, &GlobalTransform)>,
+    mut errors: MessageWriter<WaterError>,
+) {
+    let eye = world_eye(&viewers, &cameras);
+    for (entity, water, mut ws, mesh3d, global) in &mut waters {
+        let ws = &mut *ws;
+        let local_eye = match eye {
+            Some(e) => Space::new(global).local_point(e),
+            None => default_eye(ws),
+        };
+        let view = ws.surface.mesh_view();
+        if let Err(e) = normals_and_refraction(
+            &view,
+            local_eye.to_array().into(),
+            &water.refraction,
+            &mut ws.normals,
+            &mut ws.uv,
+        ) {
+            report(&mut errors, entity, "refraction failed", &e);
+            continue;
+        }
+        let lod_changed = ws.lod.update(&view, local_eye.to_array().into());
+        let Some(mut mesh) = meshes.get_mut(&mesh3d.0) else {
+            continue;
+        };
+        let indices = lod_changed.then(|| ws.lod.indices());
+        if let Err(e) = write_mesh(&mut mesh, ws, indices) {
+            report(&mut errors, entity, "mesh write failed", &e);
+        }
+    }
+}

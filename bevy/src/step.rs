@@ -1,0 +1,171 @@
+//! Creating surfaces for new [`Water`] entities, applying drops and forces, stepping.
+
+use std::sync::Arc;
+
+use bevy::asset::Assets;
+use bevy::ecs::prelude::*;
+use bevy::log::{error, info};
+use bevy::mesh::{Mesh, Mesh3d};
+use bevy::time::Time;
+use bevy::transform::components::GlobalTransform;
+
+use crate::jobs::TaskPoolJobs;
+use crate::mesh::{bounds, new_mesh};
+use crate::water::{
+    Space, Water, WaterDisturbance, WaterDrop, WaterError, WaterForce, WaterSurface,
+};
+use crate::SpringwaterSettings;
+
+/// Set on a [`Water`] whose parameters were refused, so that the error is reported once
+/// per change of the component rather than every frame.
+#[derive(Component)]
+pub(crate) struct WaterFailed;
+
+pub(crate) fn report(
+    errors: &mut MessageWriter<WaterError>,
+    water: Entity,
+    what: &str,
+    e: &dyn std::fmt::Display,
+) {
+    error!("springwater: {what} on {water}: {e}");
+    errors.write(WaterError {
+        water,
+        message: format!("{what}: {e}"),
+    });
+}
+
+fn make_surface(
+    water: &Water,
+    settings: &SpringwaterSettings,
+) -> springwater::Result<WaterSurface> {
+    let mut surface = WaterSurface::new(water)?;
+    if settings.task_pool {
+        surface.surface.set_job_system(Some(Arc::new(TaskPoolJobs)));
+    }
+    Ok(surface)
+}
+
+/// Creates the surface and mesh of every new water; restarts a surface whose `Params`
+/// changed and rebuilds the LOD of one whose `LodParams` changed.
+pub(crate) fn create_surfaces(
+    mut commands: Commands,
+    settings: Res<SpringwaterSettings>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    new: Query<(Entity, Ref<Water>, Has<WaterFailed>), Without<WaterSurface>>,
+    mut changed: Query<(Entity, &Water, &mut WaterSurface), Changed<Water>>,
+    mut errors: MessageWriter<WaterError>,
+) {
+    for (entity, water, failed) in &new {
+        if failed && !water.is_changed() {
+            continue;
+        }
+        match make_surface(&water, &settings) {
+            Ok(surface) => {
+                let handle = meshes.add(new_mesh(&surface));
+                commands.entity(entity).remove::<WaterFailed>().try_insert((
+                    Mesh3d(handle),
+                    bounds(&water),
+                    bevy::camera::visibility::NoAutoAabb,
+                    surface,
+                ));
+            }
+            Err(e) => {
+                report(&mut errors, entity, "water parameters refused", &e);
+                commands.entity(entity).try_insert(WaterFailed);
+            }
+        }
+    }
+    for (entity, water, mut surface) in &mut changed {
+        if *surface.surface.params() != water.params {
+            match make_surface(water, &settings) {
+                Ok(fresh) => {
+                    info!("springwater: parameters of {entity} changed, the surface starts over");
+                    *surface = fresh;
+                    commands.entity(entity).try_insert(bounds(water));
+                }
+                Err(e) => report(&mut errors, entity, "new water parameters refused", &e),
+            }
+        } else if *surface.lod.params() != water.lod {
+            match springwater::mesh::LodMesh::new(water.lod) {
+                Ok(lod) => surface.lod = lod,
+                Err(e) => report(&mut errors, entity, "LOD parameters refused", &e),
+            }
+        }
+    }
+}
+
+/// Applies [`WaterDrop`] and [`WaterForce`] messages.
+pub(crate) fn apply_messages(
+    mut drops: MessageReader<WaterDrop>,
+    mut forces: MessageReader<WaterForce>,
+    mut waters: Query<(Entity, &mut WaterSurface, &GlobalTransform)>,
+    mut errors: MessageWriter<WaterError>,
+) {
+    if drops.is_empty() && forces.is_empty() {
+        return;
+    }
+    let drops: Vec<WaterDrop> = drops.read().copied().collect();
+    let forces: Vec<WaterForce> = forces.read().copied().collect();
+    for (entity, mut ws, global) in &mut waters {
+        let space = Space::new(global);
+        let surface = &mut ws.surface;
+        for d in &drops {
+            let p = space.local_point(d.point);
+            let hit = match d.water {
+                Some(target) => target == entity,
+                None => surface.contains(p.x, p.z),
+            };
+            if hit {
+                if let Err(e) = surface.drop_at(p.x, p.z, d.height, d.radius) {
+                    report(&mut errors, entity, "drop refused", &e);
+                }
+            }
+        }
+        for f in &forces {
+            let p = space.local_point(f.point);
+            let hit = match f.water {
+                Some(target) => target == entity,
+                None => surface.contains(p.x, p.z),
+            };
+            if hit {
+                let v = space.local_vector(f.force);
+                if let Err(e) = surface.add_force_at(p.x, p.z, v.to_array()) {
+                    report(&mut errors, entity, "force refused", &e);
+                }
+            }
+        }
+    }
+}
+
+/// Advances every water by the schedule's `Time` delta (the frame's seconds in
+/// `PostUpdate`, the fixed timestep in a fixed schedule).
+pub(crate) fn step_surfaces(
+    time: Res<Time>,
+    mut waters: Query<(
+        Entity,
+        &Water,
+        &mut WaterSurface,
+        Option<&mut WaterDisturbance>,
+    )>,
+    mut errors: MessageWriter<WaterError>,
+) {
+    let seconds = time.delta_secs();
+    for (entity, water, mut ws, disturbance) in &mut waters {
+        if water.paused {
+            ws.substeps = 0;
+            continue;
+        }
+        let result = match disturbance {
+            Some(mut d) => ws.surface.advance_with(seconds, &mut *d.0),
+            None => ws.surface.advance(seconds),
+        };
+        match result {
+            Ok(n) => ws.substeps = n,
+            Err(e) => {
+                ws.substeps = 0;
+                ws.surface.clear_forces();
+                report(&mut errors, entity, "step failed", &e);
+            }
+        }
+    }
+}

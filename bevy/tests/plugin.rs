@@ -1,0 +1,368 @@
+//! Headless tests of the plugin: MinimalPlugins, assets, meshes, transforms and a manual
+//! clock of 1/60 s per update.
+
+use std::sync::Arc;
+use std::time::Duration;
+
+use bevy::asset::AssetPlugin;
+use bevy::mesh::{Indices, Mesh, Mesh3d, MeshPlugin, VertexAttributeValues};
+use bevy::prelude::*;
+use bevy::tasks::{ComputeTaskPool, TaskPoolBuilder};
+use bevy::time::TimeUpdateStrategy;
+use bevy::transform::TransformPlugin;
+use springwater::{Params, Surface};
+use springwater_bevy::prelude::*;
+use springwater_bevy::TaskPoolJobs;
+
+fn app(plugin: SpringwaterPlugin) -> App {
+    let mut app = App::new();
+    app.add_plugins((
+        MinimalPlugins,
+        AssetPlugin::default(),
+        MeshPlugin,
+        TransformPlugin,
+        plugin,
+    ))
+    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f32(
+        1.0 / 60.0,
+    )));
+    app
+}
+
+fn run(app: &mut App, frames: usize) {
+    for _ in 0..frames {
+        app.update();
+    }
+}
+
+fn mesh_of(app: &App, water: Entity) -> Mesh {
+    let handle = &app
+        .world()
+        .get::<Mesh3d>(water)
+        .expect("water has a mesh")
+        .0;
+    app.world()
+        .resource::<Assets<Mesh>>()
+        .get(handle)
+        .expect("mesh asset exists")
+        .clone()
+}
+
+fn positions(mesh: &Mesh) -> &Vec<[f32; 3]> {
+    match mesh.attribute(Mesh::ATTRIBUTE_POSITION) {
+        Some(VertexAttributeValues::Float32x3(v)) => v,
+        other => panic!("positions: {other:?}"),
+    }
+}
+
+fn position_ptr(app: &App, water: Entity) -> *const [f32; 3] {
+    let handle = &app.world().get::<Mesh3d>(water).unwrap().0;
+    match app
+        .world()
+        .resource::<Assets<Mesh>>()
+        .get(handle)
+        .unwrap()
+        .attribute(Mesh::ATTRIBUTE_POSITION)
+    {
+        Some(VertexAttributeValues::Float32x3(v)) => v.as_ptr(),
+        _ => panic!("no positions"),
+    }
+}
+
+fn indices(mesh: &Mesh) -> Vec<u32> {
+    match mesh.indices() {
+        Some(Indices::U32(v)) => v.clone(),
+        other => panic!("indices: {other:?}"),
+    }
+}
+
+fn drop(app: &mut App, x: f32, z: f32) {
+    app.world_mut().write_message(WaterDrop {
+        water: None,
+        point: Vec3::new(x, 0.0, z),
+        height: -1.0,
+        radius: 3.0,
+    });
+}
+
+#[test]
+fn mesh_follows_ripples_in_place() {
+    let mut app = app(SpringwaterPlugin::default());
+    let water = app.world_mut().spawn(Water::with_size(65, 65)).id();
+    run(&mut app, 2);
+    let n = 65 * 65;
+    let ptr = position_ptr(&app, water);
+    let rest = mesh_of(&app, water);
+    assert_eq!(positions(&rest).len(), n);
+    assert!(positions(&rest).iter().all(|p| p[1] == 0.0));
+
+    drop(&mut app, 32.0, 32.0);
+    run(&mut app, 1);
+    let first = mesh_of(&app, water);
+    let far = 32 * 65 + 52; // 20 cells east of the drop
+    assert!(positions(&first)[32 * 65 + 32][1] < -0.5);
+    assert!(
+        positions(&first)[far][1].abs() < 1e-9,
+        "only the drop's far tail"
+    );
+
+    run(&mut app, 60);
+    let later = mesh_of(&app, water);
+    assert_ne!(positions(&first), positions(&later));
+    assert!(
+        positions(&later)[far][1].abs() > 1e-3,
+        "the ripple reached 20 cells away"
+    );
+    // The mesh holds the surface's own positions, bit for bit.
+    let ws = app.world().get::<WaterSurface>(water).unwrap();
+    let [x, y, z] = ws.surface().positions();
+    for (i, p) in positions(&later).iter().enumerate() {
+        assert_eq!(p.map(f32::to_bits), [x[i], y[i], z[i]].map(f32::to_bits));
+    }
+    // Written in place: the same allocation as before the drop.
+    assert_eq!(position_ptr(&app, water), ptr);
+    // Normals and refracted bottom coordinates are written too.
+    let uv = match later.attribute(Mesh::ATTRIBUTE_UV_0) {
+        Some(VertexAttributeValues::Float32x2(v)) => v.clone(),
+        _ => panic!("no uvs"),
+    };
+    assert_eq!(uv.len(), n);
+    assert!(uv.iter().all(|t| t[0].is_finite() && t[1].is_finite()));
+}
+
+#[test]
+fn indices_are_valid_and_change_only_with_the_lod() {
+    let mut app = app(SpringwaterPlugin::default());
+    let water = app.world_mut().spawn(Water::with_size(129, 129)).id();
+    let viewer = app
+        .world_mut()
+        .spawn((WaterViewer, Transform::from_xyz(10.0, 10.0, 10.0)))
+        .id();
+    run(&mut app, 3);
+    let n = 129 * 129;
+    let near = indices(&mesh_of(&app, water));
+    assert!(!near.is_empty() && near.len().is_multiple_of(3));
+    assert!(near.iter().all(|&i| (i as usize) < n));
+
+    drop(&mut app, 64.0, 64.0);
+    run(&mut app, 20);
+    assert_eq!(indices(&mesh_of(&app, water)), near, "same eye, same LOD");
+
+    app.world_mut()
+        .get_mut::<Transform>(viewer)
+        .unwrap()
+        .translation = Vec3::new(120.0, 10.0, 120.0);
+    run(&mut app, 3);
+    let moved = indices(&mesh_of(&app, water));
+    assert_ne!(moved, near, "the eye moved across the pool");
+    assert!(moved.iter().all(|&i| (i as usize) < n));
+    let lod = app
+        .world()
+        .get::<WaterSurface>(water)
+        .unwrap()
+        .lod()
+        .indices()
+        .to_vec();
+    assert_eq!(moved, lod);
+}
+
+#[test]
+fn a_buoyant_ball_floats_and_settles() {
+    let mut app = app(SpringwaterPlugin::default());
+    app.world_mut().spawn(Water::with_size(65, 65));
+    let settings = BuoyancySettings::default();
+    let ball = app
+        .world_mut()
+        .spawn((
+            Buoyant::sphere(1.0, 0.5, &settings),
+            Transform::from_xyz(32.0, 3.0, 32.0),
+        ))
+        .id();
+    run(&mut app, 900); // 15 s
+    let y = app.world().get::<Transform>(ball).unwrap().translation.y;
+    let body = *app.world().get::<Buoyant>(ball).unwrap();
+    let mut waters = app.world_mut().query::<&WaterSurface>();
+    let ws = waters.single(app.world()).unwrap();
+    let surface = ws.surface().height_at(32.0, 32.0).unwrap();
+    // Half the water's density: the centre sits at the surface.
+    assert!((y - surface).abs() < 0.15, "centre {y}, water {surface}");
+    assert!(body.velocity.length() < 0.2, "velocity {}", body.velocity);
+    // Two-way: the ball dents the water around it.
+    assert!(surface < 0.0, "water under the ball at {surface}");
+}
+
+fn scripted_mesh() -> Vec<u32> {
+    let mut app = app(SpringwaterPlugin::default());
+    let water = app.world_mut().spawn(Water::with_size(97, 65)).id();
+    let settings = BuoyancySettings::default();
+    app.world_mut().spawn((
+        Buoyant {
+            velocity: Vec3::new(3.0, 0.0, 1.0),
+            ..Buoyant::sphere(1.5, 0.6, &settings)
+        },
+        Transform::from_xyz(30.0, 0.5, 30.0),
+    ));
+    run(&mut app, 2);
+    for frame in 0..90 {
+        if frame % 15 == 0 {
+            drop(&mut app, 20.0 + frame as f32 * 0.5, 40.0);
+        }
+        run(&mut app, 1);
+    }
+    positions(&mesh_of(&app, water))
+        .iter()
+        .flatten()
+        .map(|v| v.to_bits())
+        .collect()
+}
+
+#[test]
+fn same_inputs_same_mesh_bits() {
+    assert_eq!(scripted_mesh(), scripted_mesh());
+}
+
+#[test]
+fn despawning_a_water_frees_its_mesh() {
+    let mut app = app(SpringwaterPlugin::default());
+    let water = app.world_mut().spawn(Water::with_size(33, 33)).id();
+    run(&mut app, 2);
+    let id = app.world().get::<Mesh3d>(water).unwrap().0.id();
+    assert!(app.world().resource::<Assets<Mesh>>().get(id).is_some());
+    app.world_mut().despawn(water);
+    run(&mut app, 3);
+    assert!(app.world().resource::<Assets<Mesh>>().get(id).is_none());
+}
+
+#[test]
+fn bad_parameters_are_reported_not_panicked() {
+    let mut app = app(SpringwaterPlugin::default());
+    let mut params = Params::with_size(33, 33);
+    params.dt = 10.0;
+    let water = app.world_mut().spawn(Water::new(params)).id();
+    run(&mut app, 3);
+    assert!(app.world().get::<WaterSurface>(water).is_none());
+    let errors = app.world().resource::<Messages<WaterError>>();
+    let mut cursor = errors.get_cursor();
+    let all: Vec<_> = cursor.read(errors).collect();
+    assert_eq!(all.len(), 1, "reported once: {all:?}");
+    assert_eq!(all[0].water, water);
+}
+
+#[test]
+fn fixed_schedule_steps_by_the_fixed_clock() {
+    let mut app = app(SpringwaterPlugin::default().in_fixed_schedule());
+    let water = app.world_mut().spawn(Water::with_size(33, 33)).id();
+    run(&mut app, 60);
+    let steps = app
+        .world()
+        .get::<WaterSurface>(water)
+        .unwrap()
+        .surface()
+        .steps();
+    // 1 s of 64 Hz fixed steps (Bevy's default), each 24/64 model time: one step of dt.
+    assert!((55..=66).contains(&steps), "{steps} steps");
+}
+
+#[test]
+fn queries_read_the_water_at_world_points() {
+    let mut app = app(SpringwaterPlugin::default());
+    let water = app
+        .world_mut()
+        .spawn((
+            Water::with_size(33, 33),
+            Transform::from_xyz(100.0, 5.0, -50.0),
+        ))
+        .id();
+    run(&mut app, 2);
+    app.world_mut().write_message(WaterDrop {
+        water: Some(water),
+        point: Vec3::new(116.0, 5.0, -34.0),
+        height: 1.0,
+        radius: 3.0,
+    });
+    run(&mut app, 1);
+    let ws = app.world().get::<WaterSurface>(water).unwrap();
+    let local = ws.surface().height_at(16.0, 16.0).unwrap();
+    let mut state: bevy::ecs::system::SystemState<WaterQuery> =
+        bevy::ecs::system::SystemState::new(app.world_mut());
+    let q = state.get(app.world()).unwrap();
+    assert_eq!(q.height_at(Vec3::new(116.0, 0.0, -34.0)), Some(local + 5.0));
+    assert_eq!(q.height_at(Vec3::new(0.0, 0.0, 0.0)), None);
+    let mut heights = Vec::new();
+    q.heights_at(
+        water,
+        &[Vec3::new(116.0, 0.0, -34.0), Vec3::new(101.0, 0.0, -49.0)],
+        &mut heights,
+    )
+    .unwrap();
+    assert_eq!(heights[0], local + 5.0);
+    assert!(q.normal_at(Vec3::new(117.0, 0.0, -34.0)).unwrap().y > 0.5);
+}
+
+#[test]
+fn task_pool_stepping_matches_a_plain_surface_bit_for_bit() {
+    ComputeTaskPool::get_or_init(|| TaskPoolBuilder::new().num_threads(3).build());
+    let mut plain = Surface::new(Params::with_size(256, 200)).unwrap();
+    let mut pooled = Surface::new(Params::with_size(256, 200)).unwrap();
+    pooled.set_job_system(Some(Arc::new(TaskPoolJobs)));
+    for s in [&mut plain, &mut pooled] {
+        s.drop_at(100.0, 80.0, -1.5, 3.0).unwrap();
+        s.drop_at(30.0, 150.0, 1.0, 2.0).unwrap();
+    }
+    for frame in 0..40 {
+        for s in [&mut plain, &mut pooled] {
+            s.add_force_at(50.0 + frame as f32, 60.0, [0.0, -0.7, 0.0])
+                .unwrap();
+            s.advance(1.0 / 60.0).unwrap();
+        }
+    }
+    assert_eq!(plain.steps(), 40);
+    for (a, b) in plain.positions().iter().zip(pooled.positions()) {
+        assert!(a
+            .iter()
+            .zip(b.iter())
+            .all(|(x, y)| x.to_bits() == y.to_bits()));
+    }
+    for (a, b) in plain.velocities().iter().zip(pooled.velocities()) {
+        assert!(a
+            .iter()
+            .zip(b.iter())
+            .all(|(x, y)| x.to_bits() == y.to_bits()));
+    }
+}
+
+#[test]
+fn submerged_volume_of_the_sphere() {
+    let ball = Buoyant::sphere(2.0, 0.5, &BuoyancySettings::default());
+    let full = 4.0 / 3.0 * std::f32::consts::PI * 8.0;
+    assert_eq!(ball.submerged_volume(-1.0), 0.0);
+    assert!((ball.submerged_volume(2.0) - full / 2.0).abs() < 1e-4);
+    assert!((ball.submerged_volume(9.0) - full).abs() < 1e-4);
+    assert!((ball.mass - full / 2.0).abs() < 1e-4);
+}
+
+/// Largest |height| of the water after a ball crossed it with `coupling`.
+fn wake(coupling: f32) -> f32 {
+    let mut app = app(SpringwaterPlugin::default());
+    let water = app.world_mut().spawn(Water::with_size(97, 65)).id();
+    app.world_mut().spawn((
+        Buoyant {
+            coupling,
+            velocity: Vec3::new(6.0, 0.0, 0.0),
+            drag: 0.0,
+            ..Buoyant::sphere(1.5, 0.5, &BuoyancySettings::default())
+        },
+        Transform::from_xyz(20.0, 0.0, 32.0),
+    ));
+    run(&mut app, 240);
+    let ws = app.world().get::<WaterSurface>(water).unwrap();
+    ws.surface().positions()[1]
+        .iter()
+        .fold(0.0f32, |m, y| m.max(y.abs()))
+}
+
+#[test]
+fn a_moving_ball_leaves_a_wake_only_when_coupled() {
+    assert_eq!(wake(0.0), 0.0, "one-way: the water stays flat");
+    assert!(wake(0.05) > 0.02, "two-way: the ball disturbs the water");
+}
