@@ -296,3 +296,56 @@ fn an_overflowing_step_leaves_the_state_bitwise_unchanged() {
         "a refused step keeps the pending forces"
     );
 }
+
+/// `drop_at` only evaluates the Gaussian near its centre; everywhere it must still give
+/// `y + height · exp(−d²/radius²)` to the bit (including the sign of zero heights), for
+/// drops inside, at the edge of and outside the grid, of any size, at any spacing.
+#[test]
+fn a_drop_is_the_gaussian_formula_on_every_node_to_the_bit() {
+    let mut rng = common::Rng(0x2545_f491);
+    for case in 0..300 {
+        let cols = 2 + (rng.next().abs() * 60.0) as usize;
+        let rows = 2 + (rng.next().abs() * 60.0) as usize;
+        let mut p = Params::with_size(cols, rows);
+        p.spacing = [1.0, 0.5, 0.25, 3.0][case % 4];
+        p.mass *= p.spacing;
+        p.dt *= p.spacing.sqrt().min(1.0);
+        let mut s = Surface::new(p).unwrap();
+        let h = p.spacing;
+        let (w, l) = ((cols - 1) as f32 * h, (rows - 1) as f32 * h);
+        // A surface that has moved, with some heights exactly −0.
+        s.drop_at(w / 3.0, l / 2.0, 0.3 * h, 2.0 * h).unwrap();
+        s.step_n(3).unwrap();
+        let mut state = s.snapshot();
+        for (i, y) in state.positions[1].iter_mut().enumerate() {
+            if i % 7 == 0 && !state.pinned[i] {
+                *y = -0.0;
+            }
+        }
+        let mut s = Surface::from_snapshot(state).unwrap();
+        let x = (rng.next() * 1.6 + 0.5) * w;
+        let z = (rng.next() * 1.6 + 0.5) * l;
+        let height = rng.next() * 2.0 * h;
+        let radius = h * [0.01, 0.5, 1.0, 3.0, 40.0, 1e6][case % 6] * (1.0 + rng.next().abs());
+        let before: Vec<f32> = s.positions()[1].to_vec();
+        s.drop_at(x, z, height, radius).unwrap();
+        let g = s.grid();
+        let inv_r2 = 1.0 / (radius * radius);
+        for (i, &y0) in before.iter().enumerate() {
+            let want = if s.is_pinned(i).unwrap() {
+                y0
+            } else {
+                let (c, r) = g.coords(i);
+                let d2 = (c as f32 * h - x).powi(2) + (r as f32 * h - z).powi(2);
+                let wgt = if d2 == 0.0 { 1.0 } else { (-d2 * inv_r2).exp() };
+                y0 + height * wgt
+            };
+            let got = s.positions()[1][i];
+            assert_eq!(
+                got.to_bits(),
+                want.to_bits(),
+                "case {case}: node {i} of {cols}x{rows}, drop ({x}, {z}, {height}, {radius})"
+            );
+        }
+    }
+}

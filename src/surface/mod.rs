@@ -521,18 +521,47 @@ impl Surface {
             let w = if d2 == 0.0 { 1.0 } else { (-d2 * inv_r2).exp() };
             y[i] + height * w
         };
-        // Check first, then write: a drop that would overflow a height changes nothing.
+        // Past `CUT` radii the weight `exp(−d²/r²)` is below e⁻¹²⁰, which is 0 in f32, so
+        // only the nodes of the square around the centre need the exponential; the rest
+        // get `y + height · 0`, which leaves y as it is except that it turns a −0 into +0
+        // when `height ≥ 0` (kept, so the result is the formula's to the bit).
+        const CUT: f32 = 10.954_452; // sqrt(120)
+        let span = |centre: f32, n: usize| {
+            let reach = CUT * radius / h;
+            let lo = ((centre / h - reach).floor().max(0.0) as usize).min(n);
+            let hi = ((centre / h + reach).ceil().clamp(0.0, n as f32) as usize + 1).min(n);
+            lo..hi
+        };
+        let (cols, rows) = (span(x, grid.cols), span(z, grid.rows));
+        let near = |i: usize| {
+            let (c, r) = grid.coords(i);
+            cols.contains(&c) && rows.contains(&r)
+        };
+        let box_nodes = || {
+            rows.clone()
+                .flat_map(|r| cols.clone().map(move |c| r * grid.cols + c))
+        };
+        // Check first, then write: a drop that would overflow a height changes nothing
+        // (outside the square the heights do not change, and the state is finite).
         let pinned = &self.state.pinned;
-        if (0..grid.len()).any(|i| !pinned[i] && !lift(&self.state.pos[1], i).is_finite()) {
+        if box_nodes().any(|i| !pinned[i] && !lift(&self.state.pos[1], i).is_finite()) {
             return Err(Error::InvalidParam {
                 name: "drop height",
                 value: height as f64,
                 expected: "small enough that every node's height stays finite",
             });
         }
-        for i in 0..grid.len() {
+        for i in box_nodes() {
             if !self.state.pinned[i] {
                 self.state.pos[1][i] = lift(&self.state.pos[1], i);
+            }
+        }
+        if height >= 0.0 {
+            let y = &mut self.state.pos[1];
+            for i in 0..grid.len() {
+                if y[i] == 0.0 && !pinned[i] && !near(i) {
+                    y[i] += 0.0;
+                }
             }
         }
         Ok(())
