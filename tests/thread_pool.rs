@@ -5,7 +5,6 @@
 mod common;
 
 use common::state_bits;
-use springwater::disturb::{Rain, Wake};
 use springwater::{Params, Surface};
 use std::sync::Arc;
 
@@ -18,25 +17,8 @@ fn pool(threads: usize) -> Arc<rayon::ThreadPool> {
     )
 }
 
-/// Drops, forces, single steps, multi-step passes and frames with disturbances, on a grid
-/// tall enough for several bands.
 fn run(pool: Option<Arc<rayon::ThreadPool>>) -> Surface {
-    let mut s = Surface::new(Params::with_size(97, 140)).unwrap();
-    s.set_thread_pool(pool);
-    s.drop_at(30.0, 40.0, 1.5, 3.0).unwrap();
-    s.drop_at(70.0, 110.0, -1.0, 2.5).unwrap();
-    s.add_force_at(48.5, 70.25, [0.3, 2.0, -0.1]).unwrap();
-    for _ in 0..10 {
-        s.step().unwrap();
-    }
-    s.step_n(37).unwrap();
-    let mut rain = Rain::new(0.8, 5);
-    let mut wake = Wake::circle(&s, 30.0);
-    for _ in 0..20 {
-        s.advance_with(1.0 / 30.0, &mut (&mut rain, &mut wake))
-            .unwrap();
-    }
-    s
+    common::every_stepping_path(|s| s.set_thread_pool(pool))
 }
 
 #[test]

@@ -186,22 +186,7 @@ pub extern "C" fn sw_version() -> *const c_char {
 /// The seed's defaults on a 128 × 128 grid.
 #[no_mangle]
 pub extern "C" fn sw_params_default() -> SwParams {
-    let p = Params::default();
-    SwParams {
-        cols: p.cols as u32,
-        rows: p.rows as u32,
-        spacing: p.spacing,
-        mass: p.mass,
-        stiffness: p.stiffness,
-        viscosity: p.viscosity,
-        dt: p.dt,
-        rest_ratio: p.rest_ratio,
-        time_scale: p.time_scale,
-        acceleration_x: p.acceleration[0],
-        acceleration_y: p.acceleration[1],
-        acceleration_z: p.acceleration[2],
-        boundary: boundary_code(p.boundary),
-    }
+    c_params(&Params::default())
 }
 
 /// The default LOD parameters.
@@ -288,28 +273,7 @@ pub unsafe extern "C" fn sw_surface_params(
     surface: *const SwSurface,
     out: *mut SwParams,
 ) -> SwStatus {
-    guard(|| {
-        let out = out_ref(out, "out")?;
-        handle::with(surface, |w| {
-            let p = w.surface.params();
-            *out = SwParams {
-                cols: p.cols as u32,
-                rows: p.rows as u32,
-                spacing: p.spacing,
-                mass: p.mass,
-                stiffness: p.stiffness,
-                viscosity: p.viscosity,
-                dt: p.dt,
-                rest_ratio: p.rest_ratio,
-                time_scale: p.time_scale,
-                acceleration_x: p.acceleration[0],
-                acceleration_y: p.acceleration[1],
-                acceleration_z: p.acceleration[2],
-                boundary: boundary_code(p.boundary),
-            };
-            Ok(())
-        })
-    })
+    read_into(surface, out, |w| Ok(c_params(w.surface.params())))
 }
 
 /// Writes the number of nodes (`cols × rows`) to `out`: the length, in elements, of every
@@ -323,13 +287,7 @@ pub unsafe extern "C" fn sw_surface_node_count(
     surface: *const SwSurface,
     out: *mut usize,
 ) -> SwStatus {
-    guard(|| {
-        let out = out_ref(out, "out")?;
-        handle::with(surface, |w| {
-            *out = w.surface.len();
-            Ok(())
-        })
-    })
+    read_into(surface, out, |w| Ok(w.surface.len()))
 }
 
 /// Advances the water by one frame of the caller's clock: `frame_time` seconds (finite,
@@ -411,13 +369,7 @@ pub unsafe extern "C" fn sw_surface_height_at(
     z: f32,
     out: *mut f32,
 ) -> SwStatus {
-    guard(|| {
-        let out = out_ref(out, "out")?;
-        handle::with(surface, |w| {
-            *out = w.surface.height_at(x, z)?;
-            Ok(())
-        })
-    })
+    read_into(surface, out, |w| Ok(w.surface.height_at(x, z)?))
 }
 
 /// The water's unit normal at world `(x, z)`, written to `out[0..3]`.
@@ -795,16 +747,12 @@ pub unsafe extern "C" fn sw_surface_energy(
     surface: *const SwSurface,
     out: *mut SwEnergy,
 ) -> SwStatus {
-    guard(|| {
-        let out = out_ref(out, "out")?;
-        handle::with(surface, |w| {
-            let e = w.surface.energy();
-            *out = SwEnergy {
-                kinetic: e.kinetic,
-                potential: e.potential,
-                total: e.total(),
-            };
-            Ok(())
+    read_into(surface, out, |w| {
+        let e = w.surface.energy();
+        Ok(SwEnergy {
+            kinetic: e.kinetic,
+            potential: e.potential,
+            total: e.total(),
         })
     })
 }
@@ -819,13 +767,7 @@ pub unsafe extern "C" fn sw_surface_simd_level(
     surface: *const SwSurface,
     out: *mut SwSimdLevel,
 ) -> SwStatus {
-    guard(|| {
-        let out = out_ref(out, "out")?;
-        handle::with(surface, |w| {
-            *out = simd_code(w.surface.simd_level());
-            Ok(())
-        })
-    })
+    read_into(surface, out, |w| Ok(simd_code(w.surface.simd_level())))
 }
 
 /// Runs the surface at `level`, clamped to what the CPU has, and writes the level it will
@@ -862,6 +804,38 @@ impl Water {
             uv: Refraction::default(),
             queries: Default::default(),
         }
+    }
+}
+
+/// The body of every call that reads one value of a surface into `out`: the guard, the
+/// out-pointer check, the handle lookup.
+fn read_into<T>(
+    surface: *const SwSurface,
+    out: *mut T,
+    read: impl FnOnce(&mut Water) -> Outcome<T>,
+) -> SwStatus {
+    guard(|| {
+        let out = out_ref(out, "out")?;
+        *out = handle::with(surface, read)?;
+        Ok(())
+    })
+}
+
+fn c_params(p: &Params) -> SwParams {
+    SwParams {
+        cols: p.cols as u32,
+        rows: p.rows as u32,
+        spacing: p.spacing,
+        mass: p.mass,
+        stiffness: p.stiffness,
+        viscosity: p.viscosity,
+        dt: p.dt,
+        rest_ratio: p.rest_ratio,
+        time_scale: p.time_scale,
+        acceleration_x: p.acceleration[0],
+        acceleration_y: p.acceleration[1],
+        acceleration_z: p.acceleration[2],
+        boundary: boundary_code(p.boundary),
     }
 }
 

@@ -1,7 +1,8 @@
 //! Helpers shared by the integration tests.
 #![allow(dead_code)]
 
-use springwater::Surface;
+use springwater::disturb::{Rain, Wake};
+use springwater::{Params, Surface};
 
 /// Every position and velocity bit of a surface, in a fixed order.
 pub fn state_bits(s: &Surface) -> Vec<u32> {
@@ -50,4 +51,26 @@ impl Rng {
         self.0 ^= self.0 << 5;
         self.0 as f32 / 4_294_967_296.0 - 0.5
     }
+}
+
+/// A 97 × 140 surface (tall enough for several bands), configured by `setup` (a host's
+/// pool or job system), driven through drops, a force at a point, single steps,
+/// multi-step passes and frames with rain and a wake: every stepping path.
+pub fn every_stepping_path(setup: impl FnOnce(&mut Surface)) -> Surface {
+    let mut s = Surface::new(Params::with_size(97, 140)).unwrap();
+    setup(&mut s);
+    s.drop_at(30.0, 40.0, 1.5, 3.0).unwrap();
+    s.drop_at(70.0, 110.0, -1.0, 2.5).unwrap();
+    s.add_force_at(48.5, 70.25, [0.3, 2.0, -0.1]).unwrap();
+    for _ in 0..10 {
+        s.step().unwrap();
+    }
+    s.step_n(37).unwrap();
+    let mut rain = Rain::new(0.8, 5);
+    let mut wake = Wake::circle(&s, 30.0);
+    for _ in 0..20 {
+        s.advance_with(1.0 / 30.0, &mut (&mut rain, &mut wake))
+            .unwrap();
+    }
+    s
 }

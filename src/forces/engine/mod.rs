@@ -189,14 +189,13 @@ impl Kernel for Pass<'_> {
 
     #[inline(always)]
     fn run<V: Vector>(self) -> PassEnd {
-        let Pass {
-            state,
-            springs,
-            ws,
-            cfg,
-            levels,
-            runner,
-        } = self;
-        schedule::pass_with::<V>(state, springs, ws, cfg, levels, runner)
+        schedule::pass_with::<V>(
+            self.state,
+            self.springs,
+            self.ws,
+            self.cfg,
+            self.levels,
+            self.runner,
+        )
     }
 }
