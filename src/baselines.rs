@@ -8,7 +8,7 @@
 //!   throughput is the memory-bandwidth ceiling for a step that keeps forces in cache.
 
 use crate::grid::Grid;
-use crate::params::{Boundary, Params};
+use crate::params::Params;
 use crate::simd::Floats;
 use glam::Vec3;
 
@@ -65,7 +65,7 @@ impl NaiveSurface {
                     force: Vec3::ZERO,
                     mass: params.mass,
                     viscosity: params.viscosity,
-                    pinned: params.boundary == Boundary::Pinned && grid.is_border(i),
+                    pinned: params.boundary.pins_border() && grid.is_border(i),
                 }
             })
             .collect();

@@ -76,6 +76,23 @@ pub enum Error {
         node: usize,
     },
 
+    /// A floating body's forces or motion would have become non-finite (bodies far too
+    /// large, dense or fast for `f32`). The step was not applied.
+    #[error(
+        "step {step} would make floater {floater} non-finite; the step was not applied. \
+         Check the floater's size, mass and speed and the buoyancy's gravity and density"
+    )]
+    FloaterNonFinite {
+        /// Steps taken before the refused one.
+        step: u64,
+        /// The body's [`FloaterId`](crate::FloaterId) number.
+        floater: u64,
+    },
+
+    /// No floater of this surface has this id (never added, or removed).
+    #[error("floater {0} does not exist on this surface")]
+    NoSuchFloater(u64),
+
     /// A node index or grid coordinate is outside the grid.
     #[error("{what} {index} is out of range (the grid has {len})")]
     OutOfRange {

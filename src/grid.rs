@@ -113,7 +113,12 @@ impl Grid {
 
     /// True for nodes on the outer ring.
     pub fn is_border(&self, index: usize) -> bool {
+        self.edge_distance(index) == 0
+    }
+
+    /// Cells from node `index` to the nearest edge of the grid (0 on the outer ring).
+    pub fn edge_distance(&self, index: usize) -> usize {
         let (c, r) = self.coords(index);
-        c == 0 || r == 0 || c + 1 == self.cols || r + 1 == self.rows
+        c.min(r).min(self.cols - 1 - c).min(self.rows - 1 - r)
     }
 }

@@ -88,11 +88,13 @@
 #![deny(unsafe_op_in_unsafe_fn)]
 #![warn(clippy::undocumented_unsafe_blocks)]
 
+mod absorb;
 #[cfg_attr(not(feature = "internals"), allow(dead_code))]
 mod baselines;
 pub mod buffers;
 pub mod disturb;
 mod error;
+pub mod floater;
 mod forces;
 mod grid;
 mod jobs;
@@ -109,6 +111,7 @@ mod surface;
 mod view;
 
 pub use error::{Error, IoError, Result};
+pub use floater::{Buoyancy, Floater, FloaterId, Shape};
 pub use grid::{Family, Grid, SpringId};
 pub use jobs::JobSystem;
 pub use params::{Boundary, Params, MAX_NODES};

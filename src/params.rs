@@ -12,6 +12,35 @@ pub enum Boundary {
     /// No node is pinned: the sheet floats freely (pin nodes by hand with
     /// [`Surface::set_pinned`](crate::Surface::set_pinned)).
     Free,
+    /// Open water: waves leave the patch instead of coming back. The outer ring is pinned
+    /// and the `width` rings inside it damp outgoing waves with a quadratic viscosity
+    /// profile; the frame lies inside the grid, so the undamped water is the
+    /// `(cols − 2·width) × (rows − 2·width)` middle. It reflects below 10⁻³ of a ring
+    /// wave's energy at the default width ([`Boundary::ABSORBING_WIDTH`]). The
+    /// frame's damping is fitted to the timestep, so it never makes a valid timestep
+    /// invalid; the grid must be at least `2·width + 2` nodes across. How it works and how
+    /// it was chosen: see the crate's `absorb` module source and `docs/open-water.md`.
+    Absorbing {
+        /// Rings of damping inside the pinned outer ring (≥ 1).
+        width: usize,
+    },
+}
+
+impl Boundary {
+    /// The default width of an absorbing frame: 32 rings.
+    pub const ABSORBING_WIDTH: usize = 32;
+
+    /// An absorbing boundary with the default frame width.
+    pub const fn absorbing() -> Self {
+        Self::Absorbing {
+            width: Self::ABSORBING_WIDTH,
+        }
+    }
+
+    /// True when the outer ring of nodes is pinned (pinned and absorbing boundaries).
+    pub fn pins_border(&self) -> bool {
+        !matches!(self, Self::Free)
+    }
 }
 
 /// Model parameters. Plain data with the seed's defaults; [`Params::validate`] checks it.
@@ -240,6 +269,16 @@ impl Params {
             });
         }
         positive("time_scale", self.time_scale)?;
+        if let Boundary::Absorbing { width } = self.boundary {
+            let across = self.cols.min(self.rows);
+            if width == 0 || across < width.saturating_mul(2).saturating_add(2) {
+                return Err(Error::InvalidParam {
+                    name: "absorbing width",
+                    value: width as f64,
+                    expected: "at least 1, and at most (min(cols, rows) − 2) / 2 so that some water is left undamped",
+                });
+            }
+        }
         for a in self.acceleration {
             if !a.is_finite() {
                 return Err(Error::InvalidParam {
@@ -260,10 +299,24 @@ pub const MAX_EXTENT: f64 = 1e15;
 /// `sqrt(m / (3c))` without viscosity, else the positive root of
 /// `(12c/m) Δt² + 2(γ/m) Δt = 4` (see the [`Params`] docs).
 pub(crate) fn critical_dt(min_mass: f32, max_stiffness: f32, max_viscosity: f32) -> f32 {
-    if max_viscosity == 0.0 {
+    critical_dt_with(min_mass, max_stiffness, max_viscosity, 0.0)
+}
+
+/// [`critical_dt`] with `extra` stiffness (force per length) on every node besides its
+/// springs' (floating bodies' waterlines): `ω²max = (12c + extra)/m`.
+pub(crate) fn critical_dt_with(
+    min_mass: f32,
+    max_stiffness: f32,
+    max_viscosity: f32,
+    extra: f32,
+) -> f32 {
+    if max_viscosity == 0.0 && extra == 0.0 {
         return (min_mass / (3.0 * max_stiffness)).sqrt();
     }
-    let a = 12.0 * max_stiffness as f64 / min_mass as f64;
+    let a = (12.0 * max_stiffness as f64 + extra as f64) / min_mass as f64;
+    if max_viscosity == 0.0 {
+        return (4.0 / a).sqrt() as f32;
+    }
     let b = max_viscosity as f64 / min_mass as f64;
     // (sqrt(b² + 4a) − b) / a, written without cancellation as 4 / (sqrt(b² + 4a) + b).
     (4.0 / ((b * b + 4.0 * a).sqrt() + b)) as f32

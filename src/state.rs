@@ -10,6 +10,7 @@
 //! the back ones, and only swaps them when every new value is finite. That is what makes a
 //! step transactional (see [`Surface::step`](crate::Surface::step)).
 
+use crate::absorb::Frame;
 use crate::grid::Grid;
 use crate::params::{Boundary, Params};
 use crate::simd::{round_up, Floats, MAX_LANES};
@@ -69,8 +70,14 @@ impl State {
         mass[..n].fill(params.mass);
         let mut viscosity = Floats::zeros(len);
         viscosity[..n].fill(params.viscosity);
+        if let Boundary::Absorbing { width } = params.boundary {
+            let frame = Frame::new(params, width);
+            for (i, g) in viscosity[..n].iter_mut().enumerate() {
+                *g += frame.viscosity(grid.edge_distance(i));
+            }
+        }
         let pinned: Vec<bool> = (0..n)
-            .map(|i| params.boundary == Boundary::Pinned && grid.is_border(i))
+            .map(|i| params.boundary.pins_border() && grid.is_border(i))
             .collect();
         let mut state = Self {
             grid,

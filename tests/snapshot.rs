@@ -172,6 +172,17 @@ fn wrong_magic_and_version_are_refused() {
     assert!(m.contains("version 0"), "{m}");
 }
 
+/// The bytes of a version 3 snapshot without bodies or frame, in the layout of `version`
+/// (1 or 2: the header ends at offset 112).
+fn downgrade(v3: &[u8], version: u32) -> Vec<u8> {
+    let mut b = [&v3[..112], &v3[136..]].concat();
+    b[8..12].copy_from_slice(&version.to_le_bytes());
+    let len = b.len() as u64;
+    b[16..24].copy_from_slice(&len.to_le_bytes());
+    fix_crc(&mut b);
+    b
+}
+
 /// A version 1 snapshot (no time scale: the field was reserved and 0) still loads, with
 /// the default time scale; a version 1 snapshot with that field set is refused.
 #[test]
@@ -183,8 +194,15 @@ fn version_1_snapshots_load_with_the_default_time_scale() {
     .unwrap();
     s.drop_at(2.0, 2.0, 0.5, 1.0).unwrap();
     s.step().unwrap();
-    let v2 = s.to_bytes();
-    assert_eq!(Surface::from_bytes(&v2).unwrap().params().time_scale, 50.0);
+    let v2 = downgrade(&s.to_bytes(), 2);
+    let loaded = Surface::from_bytes(&v2).unwrap();
+    assert_eq!(loaded.params().time_scale, 50.0);
+    assert_eq!(loaded.positions(), s.positions());
+    assert_eq!(
+        downgrade(&loaded.to_bytes(), 2),
+        v2,
+        "read as version 2, written as 3"
+    );
     let mut v1 = v2.clone();
     v1[8..12].copy_from_slice(&1u32.to_le_bytes());
     v1[108..112].copy_from_slice(&0u32.to_le_bytes());
@@ -211,9 +229,17 @@ fn lying_lengths_are_refused_without_allocating() {
     let mut b = bytes.clone();
     b[24..32].copy_from_slice(&(1u64 << 13).to_le_bytes());
     b[32..40].copy_from_slice(&(1u64 << 13).to_le_bytes());
-    b[16..24].copy_from_slice(&(116u64 + 77 * (1 << 26)).to_le_bytes());
+    b[16..24].copy_from_slice(&(140u64 + 77 * (1 << 26)).to_le_bytes());
     assert!(message(&b).contains("truncated"));
     assert!(Surface::load(&b[..]).is_err());
+    // A floater count the bytes do not hold.
+    let mut b = bytes.clone();
+    b[116..120].copy_from_slice(&1u32.to_le_bytes());
+    assert!(
+        message(&b).contains("inconsistent lengths"),
+        "{}",
+        message(&b)
+    );
     // cols × rows overflowing u64.
     let mut b = bytes.clone();
     b[24..32].copy_from_slice(&u64::MAX.to_le_bytes());
@@ -307,7 +333,7 @@ fn unknown_codes_in_the_header_are_refused() {
     fix_crc(&mut b);
     assert!(message(&b).contains("flags"));
     let mut b = bytes;
-    let pinned_at = 112 + 11 * 4 * 16;
+    let pinned_at = 136 + 11 * 4 * 16;
     b[pinned_at] = 2;
     fix_crc(&mut b);
     assert!(message(&b).contains("pinned flag"));
@@ -319,7 +345,7 @@ fn free_boundary_and_snapshot_of_fresh_surface() {
     p.boundary = Boundary::Free;
     let s = Surface::new(p).unwrap();
     let bytes = s.to_bytes();
-    assert_eq!(bytes.len(), 116 + 77 * 4);
+    assert_eq!(bytes.len(), 140 + 77 * 4);
     assert_eq!(Surface::from_bytes(&bytes).unwrap().to_bytes(), bytes);
 }
 

@@ -3,6 +3,7 @@
 //! and snapshots ([`snapshot`]).
 
 mod disturbance;
+mod floaters;
 pub(crate) mod query;
 pub(crate) mod snapshot;
 
@@ -86,6 +87,8 @@ pub struct Surface {
     time: f64,
     /// The host's threads the engine steps on; `None`: rayon's global pool.
     pub(crate) host: Option<Host>,
+    /// Floating bodies and their world.
+    pub(crate) floaters: floaters::Floaters,
 }
 
 impl Surface {
@@ -130,7 +133,10 @@ impl Surface {
 
     fn build(params: Params) -> Self {
         let (state, springs) = (State::new(&params), Springs::new(&params));
-        let bounds = [params.mass, params.stiffness, params.viscosity];
+        let max_viscosity = state.viscosity[..state.len()]
+            .iter()
+            .fold(params.viscosity, |a, &b| a.max(b));
+        let bounds = [params.mass, params.stiffness, max_viscosity];
         Self::from_parts(params, state, springs, bounds, (0, 0.0))
     }
 
@@ -158,6 +164,7 @@ impl Surface {
             time: progress.1,
             params,
             host: None,
+            floaters: Default::default(),
         }
     }
 
@@ -204,8 +211,21 @@ impl Surface {
 
     /// The largest safe timestep for the current tables: `sqrt(min m / (3 max c))`, a little
     /// less with viscosity (see [`Params`]).
+    ///
+    /// While bodies float ([`Surface::add_floater`]) their waterlines stiffen the nodes
+    /// under them, and the limit includes that (see [`crate::floater`]).
     pub fn critical_dt(&self) -> f32 {
-        params::critical_dt(self.min_mass, self.max_stiffness, self.max_viscosity)
+        self.limit(self.min_mass, self.max_stiffness, self.max_viscosity)
+    }
+
+    /// The critical timestep for these bounds and the surface's bodies.
+    fn limit(&self, min_mass: f32, max_stiffness: f32, max_viscosity: f32) -> f32 {
+        params::critical_dt_with(
+            min_mass,
+            max_stiffness,
+            max_viscosity,
+            self.floater_stiffness(),
+        )
     }
 
     /// Positions `[x, y, z]`, one value per node, row-major.
@@ -282,8 +302,16 @@ impl Surface {
     }
 
     fn step_dt(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
+        if !self.floaters.bodies.is_empty() {
+            return self.floating_step(dt, |s| s.water_step(dt, stepper));
+        }
+        self.water_step(dt, stepper)
+    }
+
+    /// One step of the water alone.
+    fn water_step(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
         match stepper {
-            Stepper::Engine => self.engine_steps(1, dt),
+            Stepper::Engine => self.engine_steps_here_or_host(1, dt),
             Stepper::Reference => {
                 let cfg = self.config(dt);
                 match forces::scalar::step(&mut self.state, &self.springs, &mut self.reference, cfg)
@@ -362,6 +390,18 @@ impl Surface {
     /// `n` engine steps on the host's threads if they are set (see
     /// [`Surface::set_thread_pool`], [`Surface::set_job_system`]), else where the caller is.
     fn engine_steps(&mut self, n: u64, dt: f32) -> Result<()> {
+        if !self.floaters.bodies.is_empty() {
+            // Bodies read the water between steps: one step at a time.
+            for _ in 0..n {
+                self.step_dt(dt, Stepper::Engine)?;
+            }
+            return Ok(());
+        }
+        self.engine_steps_here_or_host(n, dt)
+    }
+
+    /// `n` steps of the water alone on the host's threads or the caller's.
+    fn engine_steps_here_or_host(&mut self, n: u64, dt: f32) -> Result<()> {
         match self.host.clone() {
             #[cfg(feature = "parallel")]
             Some(Host::Pool(pool)) if pool.current_thread_index().is_none() => {
@@ -378,7 +418,7 @@ impl Surface {
     fn engine_steps_on(&mut self, n: u64, dt: f32, runner: Runner<'_>) -> Result<()> {
         if self.simd == SimdLevel::Scalar {
             for _ in 0..n {
-                self.step_dt(dt, Stepper::Reference)?;
+                self.water_step(dt, Stepper::Reference)?;
             }
             return Ok(());
         }
@@ -692,7 +732,7 @@ impl Surface {
         let min_mass = self.min_mass.min(mass);
         params::check_dt(
             self.params.dt,
-            params::critical_dt(min_mass, self.max_stiffness, self.max_viscosity),
+            self.limit(min_mass, self.max_stiffness, self.max_viscosity),
         )?;
         self.min_mass = min_mass;
         self.state.mass[node] = mass;
@@ -711,7 +751,7 @@ impl Surface {
         let max_viscosity = self.max_viscosity.max(viscosity);
         params::check_dt(
             self.params.dt,
-            params::critical_dt(self.min_mass, self.max_stiffness, max_viscosity),
+            self.limit(self.min_mass, self.max_stiffness, max_viscosity),
         )?;
         self.max_viscosity = max_viscosity;
         self.state.viscosity[node] = viscosity;
@@ -778,7 +818,7 @@ impl Surface {
         let max_stiffness = self.max_stiffness.max(coef);
         params::check_dt(
             self.params.dt,
-            params::critical_dt(self.min_mass, max_stiffness, self.max_viscosity),
+            self.limit(self.min_mass, max_stiffness, self.max_viscosity),
         )?;
         self.max_stiffness = max_stiffness;
         self.springs.set(id, rest, coef);

@@ -170,6 +170,18 @@ impl Surface {
     /// # Ok::<(), springwater::Error>(())
     /// ```
     pub fn add_force_at(&mut self, x: f32, z: f32, force: [f32; 3]) -> Result<()> {
+        self.add_force_at_logged(x, z, force, None)
+    }
+
+    /// [`Surface::add_force_at`], recording each touched node's force before the change in
+    /// `log` (so that a caller can undo it exactly).
+    pub(crate) fn add_force_at_logged(
+        &mut self,
+        x: f32,
+        z: f32,
+        force: [f32; 3],
+        log: Option<&mut Vec<(usize, [f32; 3])>>,
+    ) -> Result<()> {
         for f in force {
             crate::params::finite("force", f)?;
         }
@@ -183,6 +195,9 @@ impl Surface {
         for f in sums.iter().flatten() {
             crate::params::finite("accumulated force", *f)?;
         }
+        if let Some(log) = log {
+            log.extend(corners.map(|i| (i, [ext[0][i], ext[1][i], ext[2][i]])));
+        }
         for (k, sum) in sums.iter().enumerate() {
             for (c, &f) in sum.iter().enumerate() {
                 self.state.ext[c][corners[k]] = f;
@@ -190,6 +205,25 @@ impl Surface {
         }
         self.state.ext_pending = true;
         Ok(())
+    }
+
+    /// The water under `(x, z)` for a floating body's column, or `None` outside the
+    /// footprint: height, velocity, and the least `mass × rate − viscosity` over the four
+    /// nodes the point blends (the damping room `rate` leaves them).
+    pub(crate) fn water_under(&self, x: f32, z: f32, rate: f32) -> Option<(f32, Vec3, f32)> {
+        let view = self.mesh_view();
+        let sample = Sample::at(&view, x, z).ok()?;
+        let cols = view.cols();
+        let room = sample
+            .corners(cols)
+            .map(|i| self.state.mass[i] * rate - self.state.viscosity[i])
+            .into_iter()
+            .fold(f32::INFINITY, f32::min);
+        Some((
+            sample.blend(cols, view.y()),
+            sample.blend3(cols, self.velocities()),
+            room,
+        ))
     }
 
     /// Unit normal of the water at world `(x, z)`: node normals blended bilinearly and

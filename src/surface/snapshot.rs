@@ -3,6 +3,7 @@
 
 use super::Surface;
 use crate::error::{Error, Result};
+use crate::floater::{Buoyancy, Floater, FloaterId, Shape};
 use crate::grid::Grid;
 use crate::params::{self, Boundary, Params, MAX_NODES};
 use crate::simd::Floats;
@@ -12,11 +13,14 @@ use std::io::{Read, Write};
 
 /// The first eight bytes of every snapshot.
 pub(crate) const MAGIC: [u8; 8] = *b"SPRWATER";
-/// The format version this build writes. It reads this one and version 1 (which had no
-/// `time_scale`: such snapshots get the default).
-pub(crate) const VERSION: u32 = 2;
+/// The format version this build writes. It reads versions 1 to 3 (see [`Snapshot`]).
+pub(crate) const VERSION: u32 = 3;
+/// Bytes before the per-node arrays in versions 1 and 2.
+const HEADER_V2: usize = 112;
 /// Bytes before the per-node arrays.
-const HEADER: usize = 112;
+const HEADER: usize = 136;
+/// Bytes per floating body.
+const PER_FLOATER: usize = 80;
 /// Bytes per node: 11 `f32` arrays, 1 `u8`, 8 `f32` spring arrays.
 const PER_NODE: usize = 11 * 4 + 1 + 8 * 4;
 /// Trailing checksum.
@@ -36,38 +40,45 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// [`Surface::snapshot`] and back with [`Surface::from_snapshot`]; with the `serde` feature
 /// it implements `Serialize` and `Deserialize`. Both paths run the same validation.
 ///
-/// # Format (version 2)
+/// # Format (version 3)
 ///
-/// Little-endian throughout; `n = cols × rows`. Per-node arrays hold exactly `n` values
-/// (no SIMD padding); spring tables are indexed by origin node, with `0.0` for springs
-/// that do not exist (E from the last column, S from the last row, …).
+/// Little-endian throughout; `n = cols × rows`, `f` floating bodies. Per-node arrays hold
+/// exactly `n` values (no SIMD padding); spring tables are indexed by origin node, with
+/// `0.0` for springs that do not exist (E from the last column, S from the last row, …).
 ///
 /// | offset | size | field |
 /// |---|---|---|
 /// | 0 | 8 | magic `b"SPRWATER"` |
-/// | 8 | 4 | format version `u32` (2; version 1 is read too) |
+/// | 8 | 4 | format version `u32` (3; versions 1 and 2 are read too) |
 /// | 12 | 4 | flags `u32`: bit 0 = external forces pending; other bits 0 |
 /// | 16 | 8 | total length in bytes `u64`, checksum included |
 /// | 24 | 8, 8 | `cols`, `rows` as `u64` |
 /// | 40 | 6 × 4 | `spacing`, `mass`, `stiffness`, `viscosity`, `dt`, `rest_ratio` (`f32`) |
-/// | 64 | 4 | boundary `u32`: 0 = pinned, 1 = free |
+/// | 64 | 4 | boundary `u32`: 0 = pinned, 1 = free, 2 = absorbing |
 /// | 68 | 3 × 4 | uniform acceleration x, y, z (`f32`) |
 /// | 80 | 8 | steps taken `u64` |
 /// | 88 | 8 | model time `f64` |
 /// | 96 | 3 × 4 | `min_mass`, `max_stiffness`, `max_viscosity` (`f32`): the bounds behind `critical_dt` |
 /// | 108 | 4 | `time_scale` (`f32`, model time per second); reserved and 0 in version 1, read as the default |
-/// | 112 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z |
+/// | 112 | 4 | absorbing frame width `u32` (0 unless the boundary is absorbing) |
+/// | 116 | 4 | floating bodies `f` (`u32`) |
+/// | 120 | 8 | the id the next added body gets (`u64`) |
+/// | 128 | 2 × 4 | buoyancy: gravity, water density (`f32`) |
+/// | 136 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z |
 /// | | 2 × 4n | mass, viscosity per node |
 /// | | n | pinned per node, `u8` 0 or 1 |
 /// | | 8 × 4n | rest length then coefficient, for families E, S, SE, SW |
+/// | | 80 f | per body: id `u64`, shape `u32` (0 = sphere, 1 = box), size (radius, 0, 0 or half extents), mass, drag, position, velocity, push, water force (`f32`) |
 /// | end − 4 | 4 | CRC-32 (IEEE) of every byte before it |
 ///
-/// The total is `116 + 77 n` bytes. Loading refuses, with [`Error::Snapshot`] and a message
+/// The total is `140 + 77 n + 80 f` bytes. Versions 1 and 2 end the header at offset 112
+/// (no bodies, no absorbing boundary; version 1 has no `time_scale` either: such
+/// snapshots get the default). Loading refuses, with [`Error::Snapshot`] and a message
 /// that says what is wrong: a wrong magic or version, a total length that disagrees with
 /// `cols × rows` or with the bytes present, a checksum mismatch, parameters that
 /// [`Params::validate`] refuses, non-finite values, masses or coefficients out of range,
-/// pinned nodes that move, springs outside the grid, and bounds that do not cover the
-/// tables. Lengths are checked against the bytes actually present before anything is
+/// pinned nodes that move, springs outside the grid, bounds that do not cover the
+/// tables, and bodies that [`Floater::validate`] refuses or whose ids are not increasing. Lengths are checked against the bytes actually present before anything is
 /// allocated, so a lying length field costs nothing. A refused snapshot changes nothing.
 ///
 /// # As plain data
@@ -77,6 +88,7 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// feature it can be serialised in any format serde supports.
 #[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub struct Snapshot {
     /// The parameters the surface was built with (acceleration as currently set).
     pub params: Params,
@@ -108,11 +120,22 @@ pub struct Snapshot {
     pub rest: [Vec<f32>; 4],
     /// Coefficients per family (E, S, SE, SW), indexed by origin node.
     pub coef: [Vec<f32>; 4],
+    /// Floating bodies with their ids, ids increasing.
+    pub floaters: Vec<(FloaterId, Floater)>,
+    /// The id the next added body gets (above every id in `floaters`).
+    pub next_floater_id: u64,
+    /// Gravity and water density for the bodies.
+    pub buoyancy: Buoyancy,
 }
 
-/// Snapshot size in bytes for `nodes` nodes, or `None` on overflow.
-fn encoded_len(nodes: usize) -> Option<usize> {
-    nodes.checked_mul(PER_NODE)?.checked_add(HEADER + CRC)
+/// Snapshot size in bytes for `nodes` nodes and `floaters` bodies in a format version's
+/// layout, or `None` on overflow.
+fn encoded_len(version: u32, nodes: usize, floaters: usize) -> Option<usize> {
+    let header = if version < 3 { HEADER_V2 } else { HEADER };
+    nodes
+        .checked_mul(PER_NODE)?
+        .checked_add(floaters.checked_mul(PER_FLOATER)?)?
+        .checked_add(header + CRC)
 }
 
 fn bad(msg: impl Into<String>) -> Error {
@@ -144,7 +167,11 @@ impl Snapshot {
             .chain(&self.coef);
         let mut lengths = arrays.map(Vec::len).chain([self.pinned.len()]);
         match n {
-            Some(n) if lengths.all(|len| len == n) => Ok(self.encode()),
+            Some(n)
+                if lengths.all(|len| len == n) && u32::try_from(self.floaters.len()).is_ok() =>
+            {
+                Ok(self.encode())
+            }
             _ => Err(bad(format!(
                 "cannot encode: the arrays do not all hold one value per node of a {}x{} grid",
                 self.params.cols, self.params.rows
@@ -155,7 +182,8 @@ impl Snapshot {
     /// [`Snapshot::to_bytes`] for a snapshot whose arrays are known to be consistent.
     pub(crate) fn encode(&self) -> Vec<u8> {
         let n = self.mass.len();
-        let total = encoded_len(n).expect("a snapshot of an allocated surface fits in memory");
+        let total = encoded_len(VERSION, n, self.floaters.len())
+            .expect("a snapshot of an allocated surface fits in memory");
         let mut b = Vec::with_capacity(total);
         let p = &self.params;
         b.extend_from_slice(&MAGIC);
@@ -179,9 +207,10 @@ impl Snapshot {
         ] {
             b.extend_from_slice(&v.to_le_bytes());
         }
-        let boundary: u32 = match p.boundary {
-            Boundary::Pinned => 0,
-            Boundary::Free => 1,
+        let (boundary, width): (u32, usize) = match p.boundary {
+            Boundary::Pinned => (0, 0),
+            Boundary::Free => (1, 0),
+            Boundary::Absorbing { width } => (2, width),
         };
         b.extend_from_slice(&boundary.to_le_bytes());
         for v in p.acceleration {
@@ -193,6 +222,12 @@ impl Snapshot {
         b.extend_from_slice(&self.max_stiffness.to_le_bytes());
         b.extend_from_slice(&self.max_viscosity.to_le_bytes());
         b.extend_from_slice(&p.time_scale.to_le_bytes());
+        // Validation bounds the width by the grid, so it fits.
+        b.extend_from_slice(&(width as u32).to_le_bytes());
+        b.extend_from_slice(&(self.floaters.len() as u32).to_le_bytes());
+        b.extend_from_slice(&self.next_floater_id.to_le_bytes());
+        b.extend_from_slice(&self.buoyancy.gravity.to_le_bytes());
+        b.extend_from_slice(&self.buoyancy.density.to_le_bytes());
         debug_assert_eq!(b.len(), HEADER);
         let arrays = self
             .positions
@@ -207,6 +242,20 @@ impl Snapshot {
             for a in [&self.rest[f], &self.coef[f]] {
                 a.iter().for_each(|v| b.extend_from_slice(&v.to_le_bytes()));
             }
+        }
+        for (id, body) in &self.floaters {
+            b.extend_from_slice(&id.0.to_le_bytes());
+            let (shape, size): (u32, [f32; 3]) = match body.shape {
+                Shape::Sphere { radius } => (0, [radius, 0.0, 0.0]),
+                Shape::Box { half_extents } => (1, half_extents.to_array()),
+            };
+            b.extend_from_slice(&shape.to_le_bytes());
+            let vectors = [body.position, body.velocity, body.push, body.water_force];
+            let floats = size
+                .into_iter()
+                .chain([body.mass, body.drag])
+                .chain(vectors.iter().flat_map(|v| v.to_array()));
+            floats.for_each(|v| b.extend_from_slice(&v.to_le_bytes()));
         }
         let crc = crc32fast::hash(&b);
         b.extend_from_slice(&crc.to_le_bytes());
@@ -244,15 +293,7 @@ impl Snapshot {
         let cols = r.u64() as usize;
         let rows = r.u64() as usize;
         let [spacing, mass, stiffness, viscosity, dt, rest_ratio] = [(); 6].map(|_| r.f32());
-        let boundary = match r.u32() {
-            0 => Boundary::Pinned,
-            1 => Boundary::Free,
-            other => {
-                return Err(bad(format!(
-                    "unknown boundary code {other} (0 = pinned, 1 = free)"
-                )))
-            }
-        };
+        let boundary_code = r.u32();
         let acceleration = [(); 3].map(|_| r.f32());
         let params = Params {
             cols,
@@ -263,7 +304,7 @@ impl Snapshot {
             viscosity,
             dt,
             rest_ratio,
-            boundary,
+            boundary: Boundary::Pinned,
             acceleration,
             time_scale: Params::default().time_scale,
         };
@@ -273,6 +314,32 @@ impl Snapshot {
         let max_stiffness = r.f32();
         let max_viscosity = r.f32();
         let time_scale = r.f32();
+        let (width, floater_count, next_floater_id, buoyancy) = if version < 3 {
+            (0, 0, 0, Buoyancy::default())
+        } else {
+            let (width, count, next) = (r.u32(), r.u32(), r.u64());
+            let gravity = r.f32();
+            let density = r.f32();
+            (width, count, next, Buoyancy { gravity, density })
+        };
+        let boundary = match (boundary_code, width) {
+            (0, 0) => Boundary::Pinned,
+            (1, 0) => Boundary::Free,
+            (2, width) if version >= 3 => Boundary::Absorbing {
+                width: width as usize,
+            },
+            (0 | 1, width) => {
+                return Err(bad(format!(
+                    "a frame width of {width} is stored for a boundary without one"
+                )))
+            }
+            (other, _) => {
+                return Err(bad(format!(
+                    "unknown boundary code {other} (0 = pinned, 1 = free, 2 = absorbing from version 3)"
+                )))
+            }
+        };
+        let params = Params { boundary, ..params };
         if flags & !FLAG_FORCES_PENDING != 0 {
             return Err(bad(format!(
                 "unknown flags {flags:#x}: written by an incompatible writer"
@@ -308,6 +375,44 @@ impl Snapshot {
             rest[f] = r.f32s(n);
             coef[f] = r.f32s(n);
         }
+        let mut floaters = Vec::with_capacity(floater_count as usize);
+        for _ in 0..floater_count {
+            let id = FloaterId(r.u64());
+            let shape = r.u32();
+            let [a, b, c, mass, drag] = [(); 5].map(|_| r.f32());
+            let mut vector = || glam::Vec3::from_array([(); 3].map(|_| r.f32()));
+            let (position, velocity, push, water_force) = (vector(), vector(), vector(), vector());
+            let shape = match (shape, b.to_bits(), c.to_bits()) {
+                (0, 0, 0) => Shape::Sphere { radius: a },
+                (1, ..) => Shape::Box {
+                    half_extents: glam::Vec3::new(a, b, c),
+                },
+                (0, ..) => {
+                    return Err(bad(format!(
+                        "floater {}: a sphere with size fields other than (radius, 0, 0)",
+                        id.0
+                    )))
+                }
+                (other, ..) => {
+                    return Err(bad(format!(
+                        "floater {}: unknown shape code {other} (0 = sphere, 1 = box)",
+                        id.0
+                    )))
+                }
+            };
+            floaters.push((
+                id,
+                Floater {
+                    shape,
+                    mass,
+                    drag,
+                    position,
+                    velocity,
+                    push,
+                    water_force,
+                },
+            ));
+        }
         debug_assert_eq!(r.at, body.len());
         Ok(Self {
             params,
@@ -325,6 +430,9 @@ impl Snapshot {
             pinned,
             rest,
             coef,
+            floaters,
+            next_floater_id,
+            buoyancy,
         })
     }
 
@@ -433,7 +541,28 @@ impl Snapshot {
                 }
             }
         }
-        let critical = params::critical_dt(self.min_mass, self.max_stiffness, self.max_viscosity);
+        self.buoyancy
+            .validate()
+            .map_err(|e| bad(format!("buoyancy: {e}")))?;
+        let mut previous = None;
+        for (id, body) in &self.floaters {
+            body.validate()
+                .map_err(|e| bad(format!("floater {}: {e}", id.0)))?;
+            if previous.is_some_and(|p| p >= id.0) || id.0 >= self.next_floater_id {
+                return Err(bad(format!(
+                    "floater {}: ids must increase and stay below the next id {}",
+                    id.0, self.next_floater_id
+                )));
+            }
+            previous = Some(id.0);
+        }
+        let extra = if self.floaters.is_empty() {
+            0.0
+        } else {
+            self.buoyancy.node_stiffness(p.spacing)
+        };
+        let critical =
+            params::critical_dt_with(self.min_mass, self.max_stiffness, self.max_viscosity, extra);
         params::check_dt(p.dt, critical).map_err(|e| bad(e.to_string()))
     }
 }
@@ -450,9 +579,9 @@ fn check_header(bytes: &[u8]) -> Result<usize> {
     if bytes.len() < 8 || bytes[..8] != MAGIC {
         return Err(bad("not a springwater snapshot (wrong magic bytes)"));
     }
-    if bytes.len() < HEADER {
+    if bytes.len() < 12 {
         return Err(bad(format!(
-            "truncated: {} bytes, the header alone has {HEADER}",
+            "truncated: {} bytes, the header alone has {HEADER_V2}",
             bytes.len()
         )));
     }
@@ -463,18 +592,30 @@ fn check_header(bytes: &[u8]) -> Result<usize> {
             "format version {version}, this build of springwater reads versions 1 to {VERSION}"
         )));
     }
+    let header = if version < 3 { HEADER_V2 } else { HEADER };
+    if bytes.len() < header {
+        return Err(bad(format!(
+            "truncated: {} bytes, the header alone has {header}",
+            bytes.len()
+        )));
+    }
     let _flags = r.u32();
     let total = r.u64();
     let (cols, rows) = (r.u64(), r.u64());
+    let floaters = if version < 3 {
+        0
+    } else {
+        Cursor { bytes, at: 116 }.u32() as usize
+    };
     let nodes = cols.checked_mul(rows).filter(|&n| n <= MAX_NODES as u64);
-    let Some(expected) = nodes.and_then(|n| encoded_len(n as usize)) else {
+    let Some(expected) = nodes.and_then(|n| encoded_len(version, n as usize, floaters)) else {
         return Err(bad(format!(
             "grid {cols}x{rows} is larger than any surface (at most {MAX_NODES} nodes)"
         )));
     };
     if total != expected as u64 {
         return Err(bad(format!(
-            "inconsistent lengths: the header says {total} bytes, a {cols}x{rows} grid needs {expected}"
+            "inconsistent lengths: the header says {total} bytes, a {cols}x{rows} grid with {floaters} floaters needs {expected}"
         )));
     }
     Ok(expected)
@@ -535,6 +676,9 @@ impl Surface {
             pinned: s.pinned.clone(),
             rest: cut4(&self.springs.rest),
             coef: cut4(&self.springs.coef),
+            floaters: self.floaters.bodies.clone(),
+            next_floater_id: self.floaters.next_id,
+            buoyancy: self.floaters.buoyancy,
         }
     }
 
@@ -568,7 +712,11 @@ impl Surface {
         // from the tables, so recomputed rather than stored.
         springs.refresh(Grid::new(p.cols, p.rows));
         let bounds = [snap.min_mass, snap.max_stiffness, snap.max_viscosity];
-        Surface::from_parts(p, state, springs, bounds, (snap.steps, snap.time)).with_env_simd()
+        let mut surface = Surface::from_parts(p, state, springs, bounds, (snap.steps, snap.time));
+        surface.floaters.bodies = snap.floaters;
+        surface.floaters.next_id = snap.next_floater_id;
+        surface.floaters.buoyancy = snap.buoyancy;
+        surface.with_env_simd()
     }
 
     /// The snapshot in the binary format of the [`Snapshot`] docs.

@@ -1,0 +1,140 @@
+//! The ring test of an edge condition: a bump dropped on calm water spreads as a ring;
+//! whatever the edge sends back into the middle is measured against a reference run on a
+//! grid padded so far that nothing comes back within the time window. Shared by
+//! `tests/absorbing.rs` and `examples/ring_test.rs` (which plots it).
+//!
+//! Energies are the linear vertical energy of the lattice,
+//! `E = ½ m Σ vy² + ½ Σ_springs c (1 − r) (y_i − y_j)²`, summed over nodes (and springs
+//! with both ends) inside a region.
+
+#![allow(dead_code)]
+
+use springwater::{Boundary, Params, Surface};
+
+/// Steps in the time window (the ring crosses about 0.65 cells per step).
+pub const WINDOW: usize = 400;
+/// Steps between samples.
+pub const SAMPLE: usize = 4;
+/// Height of the bump (small: the test is about the linear waves).
+pub const HEIGHT: f32 = 0.05;
+
+/// Where the bump is dropped.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Source {
+    Centre,
+    /// Near a corner of the undamped middle.
+    Corner,
+}
+
+/// The seed's lattice without viscosity on an `n × n` grid.
+pub fn params(n: usize, boundary: Boundary) -> Params {
+    Params {
+        viscosity: 0.0,
+        boundary,
+        ..Params::with_size(n, n)
+    }
+}
+
+/// Width of the boundary's damping frame (0 for walls and free edges).
+pub fn frame(boundary: Boundary) -> usize {
+    match boundary {
+        Boundary::Absorbing { width } => width,
+        _ => 0,
+    }
+}
+
+/// Where the bump goes on an `n × n` grid whose edge has a frame of `w` cells.
+pub fn source(n: usize, w: usize, at: Source) -> (f32, f32) {
+    match at {
+        Source::Centre => ((n / 2) as f32, (n / 2) as f32),
+        Source::Corner => {
+            let s = (1.5 * w as f32 + 4.0).max(16.0).round();
+            (s, s)
+        }
+    }
+}
+
+/// `y` and `vy` of the `n × n` window at `(off, off)` of `s`, in `f64`.
+pub fn window(s: &Surface, n: usize, off: usize) -> (Vec<f64>, Vec<f64>) {
+    let cols = s.params().cols;
+    let (y, vy) = (s.positions()[1], s.velocities()[1]);
+    let at = |r: usize, c: usize| (r + off) * cols + c + off;
+    let pick = |a: &[f32]| {
+        (0..n * n)
+            .map(|i| a[at(i / n, i % n)] as f64)
+            .collect::<Vec<_>>()
+    };
+    (pick(y), pick(vy))
+}
+
+/// Linear vertical energy of an `n × n` field over nodes `d` cells or more from its edge.
+pub fn energy(p: &Params, n: usize, y: &[f64], vy: &[f64], d: usize) -> f64 {
+    let inside = |c: isize, r: isize| {
+        let n = n as isize;
+        let d = d as isize;
+        c >= d && r >= d && c < n - d && r < n - d
+    };
+    let (m, k) = (p.mass as f64, (p.stiffness * (1.0 - p.rest_ratio)) as f64);
+    let mut e = 0.0;
+    for r in 0..n as isize {
+        for c in 0..n as isize {
+            if !inside(c, r) {
+                continue;
+            }
+            let i = (r * n as isize + c) as usize;
+            e += 0.5 * m * vy[i] * vy[i];
+            for (dc, dr) in [(1, 0), (0, 1), (1, 1), (-1, 1)] {
+                let (cj, rj) = (c + dc, r + dr);
+                if inside(cj, rj) {
+                    let dy = y[i] - y[(rj * n as isize + cj) as usize];
+                    e += 0.5 * k * dy * dy;
+                }
+            }
+        }
+    }
+    e
+}
+
+/// The reference: the same bump on an `n`-grid padded by enough cells on every side that
+/// nothing reflected reaches the window in time. Returns the bump's energy and the window's
+/// samples.
+pub fn reference(n: usize, w: usize, at: Source, radius: f32) -> (f64, Vec<(Vec<f64>, Vec<f64>)>) {
+    let (sx, sz) = source(n, w, at);
+    // The fastest linear waves cross 0.8 cells per step at most.
+    let reach = 0.8 * WINDOW as f64 - sx as f64 - w.max(1) as f64;
+    let pad = (reach / 2.0).max(0.0).ceil() as usize + 12;
+    let big = n + 2 * pad;
+    let p = params(big, Boundary::Pinned);
+    let mut s = Surface::new(p).unwrap();
+    s.drop_at(sx + pad as f32, sz + pad as f32, HEIGHT, radius)
+        .unwrap();
+    let (y0, v0) = window(&s, big, 0);
+    let e0 = energy(&p, big, &y0, &v0, 0);
+    let mut samples = vec![window(&s, n, pad)];
+    for _ in 0..WINDOW / SAMPLE {
+        s.step_n(SAMPLE as u64).unwrap();
+        samples.push(window(&s, n, pad));
+    }
+    (e0, samples)
+}
+
+/// Reflected energy: the largest share of the bump's energy, over the window, in the
+/// difference between a run with `boundary` on an `n × n` grid and the reference,
+/// measured on the undamped middle (nodes at least `max(frame, 1)` cells from the edge).
+pub fn reflection(n: usize, boundary: Boundary, at: Source, radius: f32) -> f64 {
+    let w = frame(boundary);
+    let (e0, samples) = reference(n, w, at, radius);
+    let p = params(n, boundary);
+    let mut s = Surface::new(p).unwrap();
+    let (sx, sz) = source(n, w, at);
+    s.drop_at(sx, sz, HEIGHT, radius).unwrap();
+    let mut worst = 0.0f64;
+    for (ry, rv) in samples.iter().skip(1) {
+        s.step_n(SAMPLE as u64).unwrap();
+        let (y, vy) = window(&s, n, 0);
+        let dy: Vec<f64> = y.iter().zip(ry).map(|(a, b)| a - b).collect();
+        let dv: Vec<f64> = vy.iter().zip(rv).map(|(a, b)| a - b).collect();
+        worst = worst.max(energy(&p, n, &dy, &dv, w.max(1)) / e0);
+    }
+    worst
+}
