@@ -208,10 +208,8 @@ impl Surface {
                     flow,
                 });
             }
-            floater::solve(&body, &scratch.under, gravity, dt, &mut scratch.forces);
+            let velocity = floater::solve(&body, &scratch.under, gravity, dt, &mut scratch.forces);
             let force: Vec3 = scratch.forces.iter().sum();
-            let velocity = body.velocity + dt * (force + body.push) / body.mass
-                - Vec3::new(0.0, gravity * dt, 0.0);
             let position = body.position + dt * velocity;
             if !(force.is_finite() && velocity.is_finite() && position.is_finite()) {
                 return Err(Error::FloaterNonFinite {

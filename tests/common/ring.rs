@@ -54,8 +54,11 @@ pub fn source(n: usize, w: usize, at: Source) -> (f32, f32) {
     }
 }
 
+/// Heights and vertical velocities of a window, row-major, in `f64`.
+pub type Field = (Vec<f64>, Vec<f64>);
+
 /// `y` and `vy` of the `n × n` window at `(off, off)` of `s`, in `f64`.
-pub fn window(s: &Surface, n: usize, off: usize) -> (Vec<f64>, Vec<f64>) {
+pub fn window(s: &Surface, n: usize, off: usize) -> Field {
     let cols = s.params().cols;
     let (y, vy) = (s.positions()[1], s.velocities()[1]);
     let at = |r: usize, c: usize| (r + off) * cols + c + off;
@@ -98,7 +101,7 @@ pub fn energy(p: &Params, n: usize, y: &[f64], vy: &[f64], d: usize) -> f64 {
 /// The reference: the same bump on an `n`-grid padded by enough cells on every side that
 /// nothing reflected reaches the window in time. Returns the bump's energy and the window's
 /// samples.
-pub fn reference(n: usize, w: usize, at: Source, radius: f32) -> (f64, Vec<(Vec<f64>, Vec<f64>)>) {
+pub fn reference(n: usize, w: usize, at: Source, radius: f32) -> (f64, Vec<Field>) {
     let (sx, sz) = source(n, w, at);
     // The fastest linear waves cross 0.8 cells per step at most.
     let reach = 0.8 * WINDOW as f64 - sx as f64 - w.max(1) as f64;

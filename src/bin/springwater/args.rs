@@ -73,17 +73,7 @@ impl ModelArgs {
             "viscosity" => params.viscosity = value(p, "--viscosity")?,
             "rest-ratio" => params.rest_ratio = value(p, "--rest-ratio")?,
             "spacing" => params.spacing = value(p, "--spacing")?,
-            "boundary" => {
-                params.boundary = match string(p, "--boundary")?.as_str() {
-                    "pinned" => Boundary::Pinned,
-                    "free" => Boundary::Free,
-                    other => {
-                        return Err(format!(
-                            "--boundary expects 'pinned' or 'free', got '{other}'"
-                        ))
-                    }
-                }
-            }
+            "boundary" => params.boundary = boundary(&string(p, "--boundary")?)?,
             "drop" => self
                 .drops
                 .push(list(&string(p, "--drop")?, "--drop COL,ROW,HEIGHT,RADIUS")?),
@@ -131,6 +121,22 @@ impl ModelArgs {
     }
 }
 
+/// `pinned`, `free`, `absorbing` or `absorbing:WIDTH`.
+fn boundary(v: &str) -> CliResult<Boundary> {
+    let expected = "--boundary expects 'pinned', 'free', 'absorbing' or 'absorbing:WIDTH'";
+    Ok(match v.split_once(':') {
+        None if v == "pinned" => Boundary::Pinned,
+        None if v == "free" => Boundary::Free,
+        None if v == "absorbing" => Boundary::absorbing(),
+        Some(("absorbing", w)) => Boundary::Absorbing {
+            width: w.parse().map_err(|_| {
+                format!("{expected}; WIDTH must be a whole number of cells, got '{w}'")
+            })?,
+        },
+        _ => return Err(format!("{expected}, got '{v}'")),
+    })
+}
+
 /// A library error in the command line's words: the flag that set the refused value goes
 /// first (the library names `Params` fields and arguments, not flags).
 pub fn lib_error(e: springwater::Error) -> String {
@@ -145,6 +151,7 @@ pub fn lib_error(e: springwater::Error) -> String {
             "viscosity" => Some("--viscosity"),
             "dt" => Some("--dt"),
             "rest_ratio" => Some("--rest-ratio"),
+            "absorbing width" => Some("--boundary"),
             "look_at" => Some("--look-at"),
             "eye" => Some("--eye"),
             "patch_cells" => Some("--patch-cells"),

@@ -19,6 +19,8 @@ usage: springwater <command> [flags]
 commands:
   render     draw the water as an animated GIF        --out FILE.gif | --png DIR
   simulate   run the steps and print a summary        [--csv FILE] [--save FILE]
+             floating balls: --floater X,Z,MASS,RADIUS (repeatable; world units,
+             released at rest on the calm surface; one summary line each)
              continue from a snapshot: simulate --load FILE --steps N [--drop …]
   bench      time the step against the scalar reference, a naive AoS
              baseline and a memory-bandwidth floor    [--repeats N] [--compare LIST]
@@ -36,7 +38,9 @@ model flags (seed defaults):
   --viscosity G        viscosity (0.05)
   --rest-ratio R       rest length / initial length, in [0, 1] (0.5)
   --spacing H          grid step (1.0)
-  --boundary pinned|free  edge condition (pinned)
+  --boundary pinned|free|absorbing[:W]
+                       edge condition (pinned); absorbing: open water, a damping
+                       frame W cells wide inside the grid (32)
   --drop COL,ROW,HEIGHT,RADIUS   add a drop (repeatable)
   --threads N          worker threads (all cores)
 
@@ -59,6 +63,7 @@ render flags (defaults in brackets):
   --rain RATE          raindrops per unit of model time, 0 for none (0.3)
   --seed S             random seed of the rain (1); same seed, same file
   --wake               a ball circling the pool, leaving a wake
+  --floaters N         N balls floating on the water, bobbing in the rain (0)
   --wireframe          overlay the LOD triangles, coloured by level
   --orbit DEGREES      turn the camera about the target over the animation (0)
 ";

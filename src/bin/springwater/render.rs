@@ -32,6 +32,7 @@ struct Options {
     rain: f32,
     seed: u64,
     wake: bool,
+    floaters: usize,
     wireframe: bool,
     orbit: f32,
     out: Option<PathBuf>,
@@ -57,6 +58,7 @@ impl Default for Options {
             rain: 0.3,
             seed: 1,
             wake: false,
+            floaters: 0,
             wireframe: false,
             orbit: 0.0,
             out: None,
@@ -98,6 +100,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             "rain" => o.rain = value(p, "--rain")?,
             "seed" => o.seed = value(p, "--seed")?,
             "wake" => o.wake = true,
+            "floaters" => o.floaters = ranged(value(p, "--floaters")?, 0, 1000, "--floaters")?,
             "wireframe" => o.wireframe = true,
             "orbit" => o.orbit = value(p, "--orbit")?,
             "out" => o.out = Some(string(p, "--out")?.into()),
@@ -288,6 +291,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         o.seed,
         if o.wake { ", a wake" } else { "" }
     );
+    if o.floaters > 0 {
+        println!("floaters     {} balls", o.floaters);
+    }
     println!(
         "per frame    simulation {:.2} ms, normals {:.2} ms, LOD {:.2} ms, refraction {:.2} ms, drawing {:.2} ms",
         ms(clock.simulation),
@@ -362,6 +368,8 @@ fn animate(
         wake.strength /= h * h;
         wake
     });
+    add_balls(&mut surface, o.floaters)?;
+    let mut balls = Vec::new();
     for k in 0..o.frames {
         let t = Instant::now();
         let steps = if k == 0 {
@@ -375,10 +383,15 @@ fn animate(
         }
         run_steps(&mut surface, &mut disturbances, steps)?;
         clock.simulation += t.elapsed();
-        if let Some(w) = &wake {
-            renderer
-                .set_balls(&[boat(&surface, w)])
-                .map_err(|e| e.to_string())?;
+        balls.clear();
+        balls.extend(wake.as_ref().map(|w| boat(&surface, w)));
+        balls.extend(surface.floaters().enumerate().map(|(k, (_, f))| Ball {
+            centre: f.position,
+            radius: f.shape.half_height(),
+            colours: BUOY_COLOURS[k % BUOY_COLOURS.len()],
+        }));
+        if wake.is_some() || !balls.is_empty() {
+            renderer.set_balls(&balls).map_err(|e| e.to_string())?;
         }
         let mut camera = *camera;
         if o.orbit != 0.0 {
@@ -395,6 +408,40 @@ fn animate(
         each(k, renderer.frame())?;
     }
     Ok(rain.fallen())
+}
+
+/// Stripe colours of the floating balls, linear RGB.
+const BUOY_COLOURS: [[[f32; 3]; 2]; 3] = [
+    [[0.9, 0.35, 0.01], [0.85, 0.85, 0.8]],
+    [[0.05, 0.25, 0.8], [0.9, 0.8, 0.1]],
+    [[0.1, 0.6, 0.1], [0.85, 0.85, 0.8]],
+];
+
+/// `n` balls at half the water's density, spread over the pool on a sunflower spiral
+/// inside its middle 70% and dropped from just above the water so they splash in.
+fn add_balls(surface: &mut Surface, n: usize) -> CliResult<()> {
+    let p = *surface.params();
+    let (w, l) = (
+        (p.cols - 1) as f32 * p.spacing,
+        (p.rows - 1) as f32 * p.spacing,
+    );
+    let radius = (0.025 * w.min(l)).max(1.2 * p.spacing);
+    let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
+    for k in 0..n {
+        let r = 0.35 * ((k as f32 + 0.5) / n as f32).sqrt();
+        let a = k as f32 * golden;
+        let at = [
+            w * (0.5 + r * a.cos()),
+            0.5 * radius,
+            l * (0.5 + r * a.sin()),
+        ];
+        let mut ball = springwater::Floater::sphere(radius, 1.0, at);
+        ball.mass = 0.5 * surface.buoyancy().density * ball.shape.volume();
+        surface
+            .add_floater(ball)
+            .map_err(|e| format!("--floaters: {e}"))?;
+    }
+    Ok(())
 }
 
 /// The object making the wake: a red and white ball floating where the wake is.

@@ -6,9 +6,9 @@
 //! `--steps`, `--drop` (added to the loaded state before the steps), `--threads`, `--csv`
 //! and `--save` apply as usual.
 
-use crate::args::{next_flag, string, unexpected, CliResult, Flag, ModelArgs};
+use crate::args::{list, next_flag, string, unexpected, CliResult, Flag, ModelArgs};
 use lexopt::Parser;
-use springwater::Surface;
+use springwater::{Floater, Surface};
 use std::io::Write;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -31,6 +31,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut save: Option<PathBuf> = None;
     let mut load: Option<PathBuf> = None;
     let mut model_flag: Option<String> = None;
+    let mut floaters: Vec<[f32; 4]> = Vec::new();
     while let Some(arg) = next_flag(p)? {
         if let Flag::Long(l) = &arg {
             if MODEL_FLAGS.contains(&l.as_str()) {
@@ -44,6 +45,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             Flag::Long(l) if l == "csv" => csv = Some(string(p, "--csv")?.into()),
             Flag::Long(l) if l == "save" => save = Some(string(p, "--save")?.into()),
             Flag::Long(l) if l == "load" => load = Some(string(p, "--load")?.into()),
+            Flag::Long(l) if l == "floater" => {
+                floaters.push(list(&string(p, "--floater")?, "--floater X,Z,MASS,RADIUS")?)
+            }
             other => return Err(unexpected(other, "simulate")),
         }
     }
@@ -61,6 +65,11 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         }
         (None, _) => model.surface()?,
     };
+    for &[x, z, mass, radius] in &floaters {
+        surface
+            .add_floater(Floater::sphere(radius, mass, [x, 0.0, z]))
+            .map_err(|e| format!("--floater {x},{z},{mass},{radius}: {e}"))?;
+    }
     // Open the outputs first: an unwritable path fails before any work is done.
     let csv = csv
         .map(|path| create(&path).map(|file| (path, file)))
@@ -144,6 +153,13 @@ pub fn print_summary(s: &Surface, steps_run: u64, seconds: f64) {
         s.simd_level(),
         springwater::SimdLevel::detect()
     );
+    for (k, (_, f)) in s.floaters().enumerate() {
+        let (p, v) = (f.position, f.velocity);
+        println!(
+            "floater {k} position {} {} {} velocity {} {} {}",
+            p.x, p.y, p.z, v.x, v.y, v.z
+        );
+    }
 }
 
 /// Creates an output file, with a one-line error naming it.

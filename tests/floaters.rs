@@ -1,0 +1,427 @@
+//! Floating bodies: action and reaction, settling, riding waves, wakes, stability at the
+//! critical timestep, snapshots, bits, and bad input.
+
+use glam::Vec3;
+use springwater::{
+    Boundary, Buoyancy, Error, Floater, FloaterId, Params, Shape, SimdLevel, Stepper, Surface,
+};
+
+/// A sphere of `radius` floating at `relative_density` of the water's, at rest at `at`.
+fn ball(s: &Surface, radius: f32, relative_density: f32, at: [f32; 3]) -> Floater {
+    let mut f = Floater::sphere(radius, 1.0, at);
+    f.mass = relative_density * s.buoyancy().density * f.shape.volume();
+    f
+}
+
+fn vertical_momentum(s: &Surface) -> f64 {
+    let vy = s.velocities()[1];
+    s.masses()
+        .iter()
+        .zip(vy)
+        .map(|(&m, &v)| m as f64 * v as f64)
+        .sum()
+}
+
+#[test]
+fn what_the_water_gets_is_minus_what_the_body_gets_every_step() {
+    // A free sheet without viscosity: the springs' forces cancel in pairs, so the water's
+    // momentum changes only by the bodies' reactions. The body's momentum changes by its
+    // water force, gravity and push: the two water forces must be opposite every step.
+    let p = Params {
+        viscosity: 0.0,
+        boundary: Boundary::Free,
+        ..Params::with_size(40, 40)
+    };
+    let mut s = Surface::new(p).unwrap();
+    let a = s
+        .add_floater(ball(&s, 3.0, 0.4, [20.0, 2.0, 20.0]))
+        .unwrap();
+    let mut boxy = Floater::cuboid([2.0, 1.0, 1.5], 8.0, [9.3, 0.0, 27.6]);
+    boxy.velocity = Vec3::new(0.3, -0.2, 0.1);
+    let b = s.add_floater(boxy).unwrap();
+    let dt = p.dt as f64;
+    let (mut worst, mut felt) = (0.0f64, 0.0);
+    for step in 0..300 {
+        if step % 50 == 0 {
+            s.push_floater(a, [1.0, 0.0, -0.5]).unwrap();
+        }
+        let before = vertical_momentum(&s);
+        s.step().unwrap();
+        let water = (vertical_momentum(&s) - before) / dt;
+        let bodies: f64 = [a, b]
+            .iter()
+            .map(|&id| s.floater(id).unwrap().water_force.y as f64)
+            .sum();
+        felt += bodies.abs();
+        // The springs' forces cancel only to rounding, which grows as the free sheet
+        // deforms: measured about 1e-6 per step on the same sheet without bodies, up to a
+        // few 1e-4 late in this run. A reaction off by 1% would be 0.01 × |body| ≈ 0.03.
+        worst = worst.max((water + bodies).abs());
+    }
+    println!("largest |water + body| over 300 steps: {worst:.2e}");
+    assert!(felt / 300.0 > 1.0, "the bodies hardly touched the water");
+    assert!(worst < 1e-3, "{worst}");
+}
+
+#[test]
+fn a_released_body_settles_where_buoyancy_balances_its_weight() {
+    let mut s = Surface::new(Params::with_size(64, 64)).unwrap();
+    let g = s.buoyancy().gravity;
+    let ids: Vec<FloaterId> = [
+        ball(&s, 3.0, 0.5, [32.0, 4.0, 32.0]),
+        Floater::cuboid([2.0, 1.0, 2.5], 12.0, [14.0, 3.0, 48.0]),
+    ]
+    .into_iter()
+    .map(|f| s.add_floater(f).unwrap())
+    .collect();
+    s.step_n(3000).unwrap();
+    for id in ids {
+        let f = *s.floater(id).unwrap();
+        let weight = f.mass * g;
+        assert!(f.velocity.length() < 1e-3, "{id:?} still moves: {f:?}");
+        assert!(
+            (f.water_force.y - weight).abs() < 1e-3 * weight,
+            "{id:?}: buoyancy {} vs weight {weight}",
+            f.water_force.y
+        );
+        // The water under it sits a little lower than calm (the body dents the surface).
+        let under = s.height_at(f.position.x, f.position.z).unwrap();
+        assert!(
+            under < 0.0 && under > -1.0,
+            "{id:?}: water under it at {under}"
+        );
+        // Submerged: displaced volume × density = mass.
+        if let Shape::Box { half_extents: e } = f.shape {
+            let draft = f.mass / (s.buoyancy().density * 4.0 * e.x * e.z);
+            let bottom = f.position.y - e.y;
+            let wet = under - bottom;
+            assert!(
+                (wet - draft).abs() < 0.1 * draft,
+                "box draft {wet} vs {draft}"
+            );
+        }
+    }
+}
+
+/// Times at which `y` crosses its mean upwards, by linear interpolation.
+fn up_crossings(y: &[f32], dt: f32) -> Vec<f32> {
+    let mean = y.iter().sum::<f32>() / y.len() as f32;
+    (1..y.len())
+        .filter(|&k| y[k - 1] < mean && y[k] >= mean)
+        .map(|k| {
+            let t = (mean - y[k - 1]) / (y[k] - y[k - 1]);
+            (k as f32 - 1.0 + t) * dt
+        })
+        .collect()
+}
+
+#[test]
+fn a_body_riding_a_passing_wave_bobs_with_the_waves_period() {
+    // A long plane wave driven along a line of nodes in open water; a small light ball
+    // further along rides it.
+    let p = Params {
+        boundary: Boundary::Absorbing { width: 16 },
+        ..Params::with_size(260, 72)
+    };
+    let mut s = Surface::new(p).unwrap();
+    let body = s
+        .add_floater(ball(&s, 1.0, 0.3, [150.0, 0.0, 36.0]))
+        .unwrap();
+    let period = 30.0f32; // model time: 75 steps, a wavelength of about 49 cells
+    let mut heights = Vec::new();
+    for step in 0..900 {
+        let t = step as f32 * p.dt;
+        let f = 0.4 * (std::f32::consts::TAU * t / period).sin();
+        for row in 16..56 {
+            s.add_force(row * p.cols + 60, [0.0, f, 0.0]).unwrap();
+        }
+        s.step().unwrap();
+        if step >= 450 {
+            heights.push(s.floater(body).unwrap().position.y);
+        }
+    }
+    let ups = up_crossings(&heights, p.dt);
+    assert!(ups.len() >= 4, "the ball did not bob: {ups:?}");
+    let measured = (ups[ups.len() - 1] - ups[0]) / (ups.len() - 1) as f32;
+    println!("wave period {period}, bobbing period {measured}");
+    assert!(
+        (measured - period).abs() < 0.03 * period,
+        "{measured} vs {period}"
+    );
+    let swing = heights.iter().fold(0.0f32, |a, &y| a.max(y.abs()));
+    assert!(swing > 0.05, "it barely moves: {swing}");
+}
+
+/// Largest |y| over the nodes whose rest position satisfies `region`.
+fn largest_height(s: &Surface, region: impl Fn(f32, f32) -> bool) -> f32 {
+    let grid = s.grid();
+    let y = s.positions()[1];
+    (0..s.len())
+        .filter(|&i| {
+            let (c, r) = grid.coords(i);
+            region(c as f32, r as f32)
+        })
+        .fold(0.0, |a, i| a.max(y[i].abs()))
+}
+
+/// Drives a ball along the middle of a pool at `speed` (a multiple of the ripple speed)
+/// and returns the largest heights ahead of it and behind it.
+fn drive(speed: f32) -> (f32, f32) {
+    let p = Params {
+        boundary: Boundary::absorbing(),
+        ..Params::with_size(260, 120)
+    };
+    let mut s = Surface::new(p).unwrap();
+    let v = speed * p.ripple_speed() / p.time_scale;
+    let mut b = ball(&s, 2.0, 0.5, [50.0, 0.0, 60.0]);
+    let id = s.add_floater(b).unwrap();
+    for _ in 0..300 {
+        b = *s.floater(id).unwrap();
+        b.velocity = Vec3::new(v, 0.0, 0.0);
+        b.position.y = 0.0;
+        s.set_floater(id, b).unwrap();
+        s.step().unwrap();
+    }
+    let front = s.floater(id).unwrap().position.x + 2.0 + 2.0;
+    let ahead = largest_height(&s, |x, _| x > front && x < 225.0);
+    let behind = largest_height(&s, |x, _| x < front - 8.0 && x > 35.0);
+    (ahead, behind)
+}
+
+#[test]
+fn a_body_faster_than_the_waves_leaves_a_wake_and_calm_water_ahead() {
+    let (ahead, behind) = drive(2.0);
+    println!("twice the ripple speed: ahead {ahead:.2e}, behind {behind:.2e}");
+    assert!(behind > 1e-2, "no wake: {behind}");
+    assert!(
+        ahead < 1e-3 * behind,
+        "waves ran ahead: {ahead} vs {behind}"
+    );
+    // Slower than the waves, the ripples outrun the body.
+    let (ahead, behind) = drive(0.5);
+    println!("half the ripple speed: ahead {ahead:.2e}, behind {behind:.2e}");
+    assert!(ahead > 0.05 * behind, "{ahead} vs {behind}");
+}
+
+/// Forty bodies of many sizes, masses and speeds and a `dt` of `share` of the critical
+/// timestep with them floating.
+fn crowded(share: f32) -> Surface {
+    let base = Params::with_size(96, 96);
+    let bodies = |s: &mut Surface| {
+        for k in 0..40u32 {
+            let x = 8.0 + (k % 8) as f32 * 11.0;
+            let z = 8.0 + (k / 8) as f32 * 18.0;
+            let size = 0.3 + (k % 5) as f32 * 0.9;
+            let mut f = if k % 3 == 0 {
+                Floater::cuboid([size, 0.5 * size, 1.3 * size], 1.0, [x, 1.0, z])
+            } else {
+                Floater::sphere(size, 1.0, [x, 0.5, z])
+            };
+            f.mass = [0.05, 0.3, 0.7, 0.95, 0.5][k as usize % 5] * f.shape.volume();
+            f.velocity = Vec3::new((k % 7) as f32 - 3.0, 0.5, (k % 4) as f32 - 1.5);
+            f.drag = [0.0, 0.25, 2.0, 50.0][k as usize % 4];
+            s.add_floater(f).unwrap();
+        }
+    };
+    let mut probe = Surface::new(base).unwrap();
+    bodies(&mut probe);
+    let p = Params {
+        dt: share * probe.critical_dt(),
+        ..base
+    };
+    let mut s = Surface::new(p).unwrap();
+    bodies(&mut s);
+    s
+}
+
+#[test]
+fn many_bodies_stay_stable_at_099_of_the_critical_timestep() {
+    let mut s = crowded(0.99);
+    for step in 0..3000 {
+        if step % 40 == 0 {
+            let k = step as f32;
+            s.drop_at((k * 7.3) % 90.0 + 3.0, (k * 3.1) % 90.0 + 3.0, 1.0, 2.0)
+                .unwrap();
+        }
+        s.step().unwrap();
+    }
+    // The prestressed lattice's energy at rest, and what the drops and bodies add.
+    let rest = Surface::new(*s.params()).unwrap().energy().total();
+    let e = s.energy().total();
+    assert!(
+        e.is_finite() && e < rest + 1e3,
+        "energy {e}, at rest {rest}"
+    );
+    for (id, f) in s.floaters() {
+        assert!(
+            f.position.is_finite() && f.velocity.length() < 10.0,
+            "{id:?}: {f:?}"
+        );
+    }
+}
+
+#[test]
+fn bodies_step_with_the_same_bits_at_every_level_thread_count_and_stepper() {
+    let run = |level: Option<SimdLevel>, threads: usize, stepper: Stepper| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut s = crowded(0.9);
+            if let Some(level) = level {
+                s.set_simd_level(level);
+            }
+            s.drop_at(40.0, 40.0, 1.0, 3.0).unwrap();
+            for _ in 0..60 {
+                s.step_with(stepper).unwrap();
+            }
+            s.advance(0.1).unwrap();
+            s.to_bytes()
+        })
+    };
+    let reference = run(None, 1, Stepper::Reference);
+    for level in [
+        SimdLevel::Scalar,
+        SimdLevel::Sse2,
+        SimdLevel::Avx2,
+        SimdLevel::Avx512,
+    ] {
+        for threads in [1, 2] {
+            assert!(
+                run(Some(level), threads, Stepper::Engine) == reference,
+                "{level:?} on {threads} threads"
+            );
+        }
+    }
+}
+
+#[test]
+fn bodies_are_part_of_snapshots() {
+    let mut a = crowded(0.9);
+    a.step_n(25).unwrap();
+    let id = a.floaters().nth(3).unwrap().0;
+    a.push_floater(id, [0.0, 5.0, 0.0]).unwrap();
+    let first = a.floaters().next().unwrap().0;
+    a.remove_floater(first).unwrap();
+    let mut b = Surface::from_bytes(&a.to_bytes()).unwrap();
+    assert_eq!(b.floaters().count(), 39);
+    assert_eq!(b.snapshot(), a.snapshot());
+    a.step_n(40).unwrap();
+    b.step_n(40).unwrap();
+    assert_eq!(a.to_bytes(), b.to_bytes());
+    // Ids are never reused, also across a snapshot.
+    let next = b
+        .add_floater(Floater::sphere(1.0, 2.0, [5.0, 0.0, 5.0]))
+        .unwrap();
+    assert_eq!(next, FloaterId(40));
+}
+
+#[test]
+fn bad_bodies_are_refused_and_change_nothing() {
+    let mut s = Surface::new(Params::with_size(32, 32)).unwrap();
+    let good = Floater::sphere(1.0, 2.0, [16.0, 0.0, 16.0]);
+    let id = s.add_floater(good).unwrap();
+    let before = s.to_bytes();
+    let bad = [
+        Floater::sphere(0.0, 1.0, [1.0, 0.0, 1.0]),
+        Floater::sphere(f32::NAN, 1.0, [1.0, 0.0, 1.0]),
+        Floater::sphere(2e9, 1.0, [1.0, 0.0, 1.0]),
+        Floater::sphere(1.0, 0.0, [1.0, 0.0, 1.0]),
+        Floater::sphere(1.0, -1.0, [1.0, 0.0, 1.0]),
+        Floater::sphere(1.0, 1e-40, [1.0, 0.0, 1.0]),
+        Floater::cuboid([1.0, -1.0, 1.0], 1.0, [1.0, 0.0, 1.0]),
+        Floater::sphere(1.0, 1.0, [f32::INFINITY, 0.0, 1.0]),
+        Floater {
+            velocity: Vec3::new(0.0, 2e9, 0.0),
+            ..good
+        },
+        Floater { drag: -1.0, ..good },
+        Floater {
+            push: Vec3::new(f32::NAN, 0.0, 0.0),
+            ..good
+        },
+    ];
+    for f in bad {
+        assert!(
+            matches!(s.add_floater(f), Err(Error::InvalidParam { .. })),
+            "{f:?}"
+        );
+        assert!(s.set_floater(id, f).is_err(), "{f:?}");
+    }
+    assert!(s.push_floater(id, [f32::NAN, 0.0, 0.0]).is_err());
+    assert!(s.push_floater(id, [f32::MAX, 0.0, 0.0]).is_ok());
+    assert!(
+        s.push_floater(id, [f32::MAX, 0.0, 0.0]).is_err(),
+        "overflows"
+    );
+    s.set_floater(id, good).unwrap();
+    for b in [
+        Buoyancy {
+            gravity: -1.0,
+            ..Buoyancy::default()
+        },
+        Buoyancy {
+            density: f32::NAN,
+            ..Buoyancy::default()
+        },
+        // A waterline stiff enough to need a smaller timestep.
+        Buoyancy {
+            gravity: 100.0,
+            density: 100.0,
+        },
+    ] {
+        assert!(s.set_buoyancy(b).is_err(), "{b:?}");
+    }
+    assert!(matches!(
+        s.floater(FloaterId(7)),
+        Err(Error::NoSuchFloater(7))
+    ));
+    assert_eq!(s.to_bytes(), before);
+}
+
+#[test]
+fn a_step_whose_bodies_blow_up_changes_nothing() {
+    // A fine grid leaves room for a dense, strongly pulled water; a box of the largest
+    // size then displaces more than f32 can weigh. The step is refused: bodies, water and
+    // pending forces untouched.
+    let mut s = Surface::new(Params {
+        spacing: 1e-6,
+        ..Params::with_size(32, 32)
+    })
+    .unwrap();
+    s.add_force(100, [0.0, 1.0, 0.0]).unwrap();
+    s.set_buoyancy(Buoyancy {
+        gravity: 1e6,
+        density: 1e5,
+    })
+    .unwrap();
+    s.add_floater(Floater::sphere(1e-6, 1e-12, [16e-6, 0.0, 16e-6]))
+        .unwrap();
+    s.add_floater(Floater::cuboid([1e9, 1e9, 1e9], 1.0, [0.0, 0.0, 0.0]))
+        .unwrap();
+    let before = s.to_bytes();
+    let err = s.step().unwrap_err();
+    assert!(
+        matches!(err, Error::FloaterNonFinite { floater: 1, .. }),
+        "{err}"
+    );
+    assert_eq!(s.to_bytes(), before);
+}
+
+#[test]
+fn bodies_off_the_patch_float_on_calm_water() {
+    let mut s = Surface::new(Params::with_size(16, 16)).unwrap();
+    let id = s
+        .add_floater(ball(&s, 1.0, 0.5, [-20.0, 1.0, 8.0]))
+        .unwrap();
+    s.step_n(2000).unwrap();
+    let f = s.floater(id).unwrap();
+    assert!(f.position.y.abs() < 0.05, "{f:?}");
+    let calm = Surface::new(*s.params()).unwrap();
+    assert_eq!(
+        s.positions(),
+        calm.positions(),
+        "nothing was pushed into the water"
+    );
+}
