@@ -27,7 +27,8 @@ struct Input {
     viscosity: f32,
     dt: f32,
     rest_ratio: f32,
-    free: bool,
+    /// 0 pinned, 1 free, k ≥ 2 absorbing with a frame of k − 2 rings.
+    boundary: u8,
     acceleration: [f32; 3],
     time_scale: f32,
     drop: [f32; 4],
@@ -46,10 +47,12 @@ fuzz_target!(|input: Input| {
         viscosity: input.viscosity,
         dt: input.dt,
         rest_ratio: input.rest_ratio,
-        boundary: if input.free {
-            Boundary::Free
-        } else {
-            Boundary::Pinned
+        boundary: match input.boundary {
+            0 => Boundary::Pinned,
+            1 => Boundary::Free,
+            k => Boundary::Absorbing {
+                width: k as usize - 2,
+            },
         },
         acceleration: input.acceleration,
         time_scale: input.time_scale,
