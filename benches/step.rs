@@ -3,12 +3,14 @@
 //! `step/<kernel>/<cols>x<rows>` for the scalar reference, the engine on 1 and 2 threads
 //! (single steps, and passes of 4 steps per sweep over memory), the naive array-of-structs
 //! baseline and the memory-floor kernel; `band_rows/<h>` sweeps the colour granularity and
-//! `pass_steps/<k>` the steps per pass. Throughput counts node updates (nodes × steps). Run: `cargo bench --bench step` (add
+//! `pass_steps/<k>` the steps per pass; `open_water/<case>/<n>` steps a pool with a pinned
+//! wall, with the absorbing boundary, and with 1, 16 or 64 floating balls (2 threads, 8
+//! steps per iteration). Throughput counts node updates (nodes × steps). Run: `cargo bench --bench step` (add
 //! `RUSTFLAGS="-C target-cpu=native"` for the AVX-512 build).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use springwater::internals::{MemoryFloor, NaiveSurface};
-use springwater::{Params, Stepper, Surface};
+use springwater::{Boundary, Floater, Params, Stepper, Surface};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -110,5 +112,49 @@ fn pass_steps(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, step, band_rows, pass_steps);
+fn open_water(c: &mut Criterion) {
+    let mut group = c.benchmark_group("open_water");
+    group
+        .sample_size(20)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(2));
+    let pool = pool(2);
+    for n in [256, 1024] {
+        group.throughput(Throughput::Elements((8 * n * n) as u64));
+        let with = |boundary: Boundary, balls: usize| {
+            let mut s = Surface::new(Params {
+                boundary,
+                ..Params::with_size(n, n)
+            })
+            .unwrap();
+            s.drop_at(n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0).unwrap();
+            for k in 0..balls {
+                let at = [
+                    40.0 + (k % 8) as f32 * 22.0,
+                    0.0,
+                    40.0 + (k / 8) as f32 * 22.0,
+                ];
+                let mut ball = Floater::sphere(2.0, 1.0, at);
+                ball.mass = 0.5 * ball.shape.volume();
+                s.add_floater(ball).unwrap();
+            }
+            s
+        };
+        let cases = [
+            ("pinned", with(Boundary::Pinned, 0)),
+            ("absorbing", with(Boundary::absorbing(), 0)),
+            ("floaters_1", with(Boundary::Pinned, 1)),
+            ("floaters_16", with(Boundary::Pinned, 16)),
+            ("floaters_64", with(Boundary::Pinned, 64)),
+        ];
+        for (name, mut s) in cases {
+            group.bench_function(BenchmarkId::new(name, n), |b| {
+                pool.install(|| b.iter(|| s.step_n(8).unwrap()))
+            });
+        }
+    }
+    group.finish();
+}
+
+criterion_group!(benches, step, band_rows, pass_steps, open_water);
 criterion_main!(benches);

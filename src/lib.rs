@@ -56,7 +56,11 @@
 //!   ([`Surface::height_at`] and friends), snapshots ([`Snapshot`], a versioned binary
 //!   format with a checksum), the host's threads ([`Surface::set_thread_pool`], or any
 //!   [`JobSystem`] with [`Surface::set_job_system`]).
-//! * [`Params`], [`Boundary`]: the model's parameters, their defaults and limits.
+//! * [`Params`], [`Boundary`]: the model's parameters, their defaults and limits; the
+//!   boundary is a pinned pool, a free sheet, or open water whose waves leave through a
+//!   damping frame ([`Boundary::Absorbing`]).
+//! * [`floater`]: floating spheres and boxes ([`Floater`], [`Surface::add_floater`]) that
+//!   ride the waves and push back on them, two-way.
 //! * [`disturb`]: rain reproducible from a seed, a moving object's wake, and the
 //!   [`disturb::Disturbance`] trait that [`Surface::advance_with`] applies every substep.
 //! * [`mesh`]: normals and the LOD index buffer. Its docs show a renderer's frame.
