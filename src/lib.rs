@@ -116,6 +116,9 @@ mod view;
 
 pub use error::{Error, IoError, Result};
 pub use floater::{Buoyancy, Floater, FloaterId, Shape};
+/// The `glam` the public API speaks (`Vec3` in floaters and queries), for callers whose own
+/// `glam` is another version.
+pub use glam;
 pub use grid::{Family, Grid, SpringId};
 pub use jobs::JobSystem;
 pub use params::{Boundary, Params, MAX_NODES};

@@ -1,198 +1,235 @@
-//! Floating bodies, two-way: the water lifts and drags a [`Buoyant`] sphere, the sphere
-//! pushes back on the water.
+//! Floating bodies, two-way: a [`Buoyant`] entity is one of springwater's floating bodies
+//! ([`springwater::Floater`]) on the water under it; the plugin keeps the two in step.
+
+use std::collections::HashMap;
 
 use bevy::ecs::prelude::*;
 use bevy::math::Vec3;
-use bevy::time::Time;
 use bevy::transform::components::{GlobalTransform, Transform};
-use std::f32::consts::PI;
+use springwater::disturb::Disturbance;
+use springwater::{Buoyancy, Floater, FloaterId, Shape, Surface};
 
 use crate::step::report;
 use crate::water::{Space, WaterError, WaterSurface};
 
-/// A floating sphere. Needs a `Transform`; the plugin moves it.
+/// A floating sphere or box (it does not rotate). Needs a `Transform` on a root entity
+/// (its translation is the body's centre in world space); the plugin moves it.
 ///
-/// # The model
+/// The body is one of springwater's floating bodies on the water whose footprint holds it
+/// when it appears: the water lifts and drags it from the height and velocity under each
+/// column of its footprint and gets exactly minus that force back, every substep, so a
+/// floating body dents the water and a moving one leaves a wake. The model is
+/// [`springwater::floater`]'s; this component speaks world units and seconds:
+/// `velocity` in units per second, `force` and [`Buoyant::water_force`] in mass × units
+/// per second², `drag` per second. They are converted with the water's
+/// [`Params::time_scale`](springwater::Params::time_scale) (model time per second) and its
+/// `GlobalTransform`.
 ///
-/// A body is a sphere of radius `r` and mass `m` centred on its `Transform`'s translation
-/// (a root entity: its `Transform` is its world placement). Once per frame, before the
-/// water steps, the plugin samples the water under the centre (height `y_w`, velocity
-/// `v_w`, springwater's bilinear queries) and computes
-///
-/// * the immersion `d = clamp(y_w − (y − r), 0, 2r)` and the submerged volume of the
-///   spherical cap, `V = π d² (3r − d) / 3`;
-/// * buoyancy `F_b = −ρ V g` (Archimedes, with the [`BuoyancySettings`] density `ρ` and
-///   gravity `g`);
-/// * drag `F_d = −k m (V / V_sphere) (v − v_w)`: linear in the velocity relative to the
-///   water, proportional to the submerged fraction, `k` = [`Buoyant::drag`] per second.
-///   Only its vertical part unless [`Buoyant::horizontal`], in which case the water's
-///   flow also carries the body sideways.
-///
-/// and integrates `m v' = m g + F_b + F_d + F_ext` with semi-implicit Euler in substeps of
-/// at most 1/120 s (the water is sampled once per frame). A body of density `ρ_b` settles
-/// where `V / V_sphere = ρ_b / ρ`: half under for half the water's density.
-///
-/// **Reaction.** The water receives `−coupling × (F_b + F_d)`'s vertical component (in the
-/// water's local frame) at the body's point through [`springwater::Surface::add_force_at`],
-/// times the frame's substep count because springwater applies such a force to one step.
-/// A body's forces are in world units per second², the lattice's in its own mass and
-/// model-time units, so [`Buoyant::coupling`] is a tuning factor, not a derived constant;
-/// the default makes a floating ball dent the surface and leave a wake when it moves.
-///
-/// Not modelled: rotation, added mass, waves' pressure beyond the height at the centre,
-/// contact with the pool's walls (a body leaving the footprint falls).
+/// A body away from every water's footprint floats on calm water at the water's rest
+/// height (springwater's open-water assumption); with no water at all it stays where it is.
+/// When a water's parameters change its surface starts over, and its bodies are put back
+/// where their components say.
 #[derive(Component, Debug, Clone, Copy, PartialEq)]
 #[require(Transform)]
 pub struct Buoyant {
-    /// Radius in world units (> 0).
-    pub radius: f32,
-    /// Mass (> 0), in the units of [`BuoyancySettings::density`] × volume.
+    /// Sphere or box, in world units (the water's local units if its transform scales).
+    pub shape: Shape,
+    /// Mass, in the units of [`BuoyancySettings::density`] × volume (> 0).
     pub mass: f32,
-    /// Linear drag rate `k`, per second, at full immersion (default: 2).
+    /// Drag rate per second at full immersion (≥ 0; default 6, springwater's default rate
+    /// at the default time scale): the drag is this rate times the displaced water's mass
+    /// times the velocity relative to the water.
     pub drag: f32,
-    /// Scale of the reaction pushed into the water (default: 0.05; 0: one-way).
-    pub coupling: f32,
-    /// Integrate horizontal motion too (drag towards the water's flow, external forces);
-    /// when false only `y` moves (default: true).
-    pub horizontal: bool,
     /// World velocity, per second. Set it to throw the body.
     pub velocity: Vec3,
-    /// External world force for the next frame (game input, wind); cleared after use.
+    /// External world force held during the next frame (game input, wind, an engine);
+    /// cleared after use.
     pub force: Vec3,
+    /// Read only: the world force the water exerted on the body in the last substep
+    /// (buoyancy and drag).
+    pub water_force: Vec3,
 }
 
 impl Buoyant {
-    /// A sphere of `radius` with `density` relative to the water's (0.5: floats half
-    /// under), at rest.
+    /// A sphere of `radius` with `relative_density` (0.5: floats half under), at rest.
     pub fn sphere(radius: f32, relative_density: f32, settings: &BuoyancySettings) -> Self {
-        let volume = 4.0 / 3.0 * PI * radius.powi(3);
+        Self::new(Shape::Sphere { radius }, relative_density, settings)
+    }
+
+    /// A box of `half_extents` with `relative_density`, at rest.
+    pub fn cuboid(half_extents: Vec3, relative_density: f32, settings: &BuoyancySettings) -> Self {
+        let half_extents = springwater::glam::Vec3::from_array(half_extents.to_array());
+        Self::new(Shape::Box { half_extents }, relative_density, settings)
+    }
+
+    fn new(shape: Shape, relative_density: f32, settings: &BuoyancySettings) -> Self {
         Self {
-            radius,
-            mass: relative_density * settings.density * volume,
-            drag: 2.0,
-            coupling: 0.05,
-            horizontal: true,
+            shape,
+            mass: relative_density * settings.density * shape.volume(),
+            drag: 6.0,
             velocity: Vec3::ZERO,
             force: Vec3::ZERO,
+            water_force: Vec3::ZERO,
         }
     }
 
-    /// Submerged volume of the sphere when the water is `depth` above its lowest point.
-    pub fn submerged_volume(&self, depth: f32) -> f32 {
-        let r = self.radius;
-        let d = depth.clamp(0.0, 2.0 * r);
-        PI * d * d * (3.0 * r - d) / 3.0
+    /// The body in the water's local space and model time.
+    fn floater(&self, centre: Vec3, space: &Space, time_scale: f32) -> Floater {
+        let local = |v: Vec3| springwater::glam::Vec3::from_array(v.to_array());
+        Floater {
+            shape: self.shape,
+            mass: self.mass,
+            drag: self.drag / time_scale,
+            position: local(space.local_point(centre)),
+            velocity: local(space.local_vector(self.velocity) / time_scale),
+            push: springwater::glam::Vec3::ZERO,
+            water_force: springwater::glam::Vec3::ZERO,
+        }
     }
 }
 
 /// Gravity and the water's density for every [`Buoyant`] body.
+///
+/// The default is springwater's [`Buoyancy::default`] at the default time scale (24 units
+/// of model time per second): gravity 57.6 units per second², density 1. The seed's
+/// lattice is fast water (ripples cross about 39 units per second), and bodies fall to
+/// match. With real gravity (9.81 for metres) they float the same but, being 6 times
+/// lighter for the lattice, dent it and make waves 6 times less.
 #[derive(Resource, Debug, Clone, Copy, PartialEq)]
 pub struct BuoyancySettings {
-    /// Gravity, world units per second² (default: `(0, −9.81, 0)`).
-    pub gravity: Vec3,
-    /// Density of the water, mass per cubic world unit (default: 1).
+    /// Gravity along the water's −y, world units per second² (default 57.6).
+    pub gravity: f32,
+    /// Density of the water, mass per cubic world unit (default 1).
     pub density: f32,
 }
 
 impl Default for BuoyancySettings {
     fn default() -> Self {
+        let model = Buoyancy::default();
+        let ts = springwater::Params::default().time_scale;
         Self {
-            gravity: Vec3::new(0.0, -9.81, 0.0),
-            density: 1.0,
+            gravity: model.gravity * ts * ts,
+            density: model.density,
         }
     }
 }
 
-/// Longest substep of a body's integration, seconds.
-const MAX_BODY_STEP: f32 = 1.0 / 120.0;
+/// Which water and floater each body is.
+#[derive(Resource, Debug, Default)]
+pub(crate) struct Bodies(HashMap<Entity, (Entity, FloaterId)>);
 
-/// Samples the water under every body, integrates the bodies over the frame and pushes
-/// the reactions into the water (runs before the water steps).
-pub(crate) fn float_bodies(
-    time: Res<Time>,
+/// The world forces of the frame, per floater, applied before every substep.
+#[derive(Debug, Default)]
+pub(crate) struct Pushes(pub Vec<(FloaterId, springwater::glam::Vec3)>);
+
+impl Disturbance for Pushes {
+    fn apply(&mut self, surface: &mut Surface, _dt: f32) -> springwater::Result<()> {
+        for &(id, force) in &self.0 {
+            surface.push_floater(id, force)?;
+        }
+        Ok(())
+    }
+}
+
+/// Hands every body's state to its water (adding new bodies, putting back those a
+/// restarted surface lost, removing those that are gone) before the water steps.
+pub(crate) fn sync_bodies(
     settings: Res<BuoyancySettings>,
-    mut bodies: Query<(&mut Buoyant, &mut Transform)>,
+    mut registry: ResMut<Bodies>,
+    bodies: Query<(Entity, &Buoyant, &Transform)>,
     mut waters: Query<(Entity, &mut WaterSurface, &GlobalTransform)>,
     mut errors: MessageWriter<WaterError>,
 ) {
-    let seconds = time.delta_secs();
-    if seconds <= 0.0 {
-        return;
+    registry.0.retain(|&body, &mut (water, id)| {
+        let alive = bodies.contains(body);
+        if !alive {
+            if let Ok((_, mut ws, _)) = waters.get_mut(water) {
+                let _ = ws.surface.remove_floater(id);
+            }
+        }
+        alive
+    });
+    for (entity, mut ws, _) in &mut waters {
+        ws.pushes.0.clear();
+        let ts = ws.surface.params().time_scale;
+        let buoyancy = Buoyancy {
+            gravity: settings.gravity / (ts * ts),
+            density: settings.density,
+        };
+        if ws.surface.buoyancy() != buoyancy {
+            if let Err(e) = ws.surface.set_buoyancy(buoyancy) {
+                report(&mut errors, entity, "buoyancy settings refused", &e);
+            }
+        }
     }
-    for (mut body, mut transform) in &mut bodies {
-        if !(body.radius > 0.0 && body.mass > 0.0) {
-            continue;
-        }
+    for (body, buoyant, transform) in &bodies {
         let centre = transform.translation;
-        // The water under the body: its surface point and velocity, world space.
-        let mut under = None;
-        for (water_entity, ws, global) in &mut waters {
-            let space = Space::new(global);
-            let p = space.local_point(centre);
-            let s = &ws.surface;
-            if let (Ok(h), Ok(v)) = (s.height_at(p.x, p.z), s.velocity_at(p.x, p.z)) {
-                let surface_y = space.world_point(Vec3::new(p.x, h, p.z)).y;
-                let flow =
-                    space.world_vector(Vec3::from_array(v.to_array()) * s.params().time_scale);
-                under = Some((water_entity, space, p, surface_y, flow));
-                break;
+        let linked = registry.0.get(&body).copied().filter(|&(water, id)| {
+            waters
+                .get(water)
+                .is_ok_and(|(_, ws, _)| ws.surface.floater(id).is_ok())
+        });
+        let water = match linked {
+            Some((water, _)) => water,
+            None => {
+                let under = waters.iter().find(|(_, ws, global)| {
+                    let p = Space::new(global).local_point(centre);
+                    ws.surface.contains(p.x, p.z)
+                });
+                match under.or_else(|| waters.iter().next()) {
+                    Some((water, _, _)) => water,
+                    None => continue,
+                }
             }
-        }
-        let full = 4.0 / 3.0 * PI * body.radius.powi(3);
-        let (buoyancy, drag_rate, flow) = match &under {
-            Some((_, _, _, surface_y, flow)) => {
-                let volume = body.submerged_volume(surface_y - (centre.y - body.radius));
-                let fraction = volume / full;
-                (
-                    -settings.gravity * settings.density * volume,
-                    body.drag * fraction,
-                    *flow,
-                )
-            }
-            None => (Vec3::ZERO, 0.0, Vec3::ZERO),
         };
-        // Integrate: semi-implicit Euler; drag implicit in the relative velocity so that
-        // any rate stays stable.
-        let substeps = (seconds / MAX_BODY_STEP).ceil().max(1.0);
-        let h = seconds / substeps;
-        let external = body.force;
-        let mass = body.mass;
-        let horizontal = body.horizontal;
-        let mut v = body.velocity;
-        let mut x = centre;
-        let mut mean_drag = Vec3::ZERO;
-        for _ in 0..substeps as u32 {
-            let accel = settings.gravity + (buoyancy + external) / mass;
-            let mut rel = v - flow + accel * h;
-            rel /= 1.0 + drag_rate * h;
-            let next = rel + flow;
-            mean_drag += (next - v) / h - accel;
-            v = next;
-            if !horizontal {
-                v.x = 0.0;
-                v.z = 0.0;
+        let Ok((_, mut ws, global)) = waters.get_mut(water) else {
+            continue;
+        };
+        let space = Space::new(global);
+        let ts = ws.surface.params().time_scale;
+        let floater = buoyant.floater(centre, &space, ts);
+        let done = match linked {
+            Some((_, id)) => ws.surface.set_floater(id, floater).map(|()| id),
+            None => ws.surface.add_floater(floater),
+        };
+        match done {
+            Ok(id) => {
+                registry.0.insert(body, (water, id));
+                let push = space.local_vector(buoyant.force) / (ts * ts);
+                ws.pushes
+                    .0
+                    .push((id, springwater::glam::Vec3::from_array(push.to_array())));
             }
-            x += v * h;
+            Err(e) => {
+                registry.0.remove(&body);
+                report(&mut errors, water, "buoyant body refused", &e);
+            }
         }
-        let drag = mean_drag / substeps * mass;
-        body.velocity = v;
-        body.force = Vec3::ZERO;
-        transform.translation = x;
+    }
+}
 
-        // Two-way: the reaction into the water, for this frame's substeps.
-        let Some((water_entity, space, p, _, _)) = under else {
+/// Moves every body's `Transform` and `Buoyant` to where its water left it.
+pub(crate) fn write_bodies(
+    registry: Res<Bodies>,
+    mut bodies: Query<(Entity, &mut Buoyant, &mut Transform)>,
+    waters: Query<(&WaterSurface, &GlobalTransform)>,
+) {
+    for (body, mut buoyant, mut transform) in &mut bodies {
+        let Some(&(water, id)) = registry.0.get(&body) else {
             continue;
         };
-        if body.coupling == 0.0 || buoyancy == Vec3::ZERO {
-            continue;
-        }
-        let Ok((_, mut ws, _)) = waters.get_mut(water_entity) else {
+        let Ok((ws, global)) = waters.get(water) else {
             continue;
         };
-        let steps = ws.surface.split_frame(seconds).map_or(1, |(n, _)| n.max(1));
-        let reaction = space.local_vector(-(buoyancy + drag) * body.coupling * steps as f32);
-        if let Err(e) = ws.surface.add_force_at(p.x, p.z, [0.0, reaction.y, 0.0]) {
-            report(&mut errors, water_entity, "buoyancy reaction refused", &e);
-        }
+        let Ok(f) = ws.surface.floater(id) else {
+            continue;
+        };
+        let space = Space::new(global);
+        let ts = ws.surface.params().time_scale;
+        let world = |v: springwater::glam::Vec3| space.world_vector(Vec3::from_array(v.to_array()));
+        transform.translation = space.world_point(Vec3::from_array(f.position.to_array()));
+        buoyant.velocity = world(f.velocity) * ts;
+        buoyant.water_force = world(f.water_force) * (ts * ts);
+        buoyant.force = Vec3::ZERO;
     }
 }

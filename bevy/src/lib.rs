@@ -40,12 +40,14 @@
 //!
 //! 1. [`WaterSystems::SyncInputs`]: creates the [`springwater::Surface`] and the mesh of
 //!    every new [`Water`], restarts surfaces whose `Params` changed, applies [`WaterDrop`]
-//!    and [`WaterForce`] messages, floats [`Buoyant`] bodies and pushes their reactions.
+//!    and [`WaterForce`] messages, hands every [`Buoyant`] body's state to its water
+//!    (springwater's floating bodies, which step with the water and push back on it).
 //! 2. [`WaterSystems::Step`]: [`springwater::Surface::advance`] (or `advance_with` a
 //!    [`WaterDisturbance`]) by the schedule's `Time` delta, on Bevy's compute task pool
 //!    ([`TaskPoolJobs`]).
 //! 3. [`WaterSystems::Writeback`]: normals and refraction from the eye (a [`WaterViewer`],
-//!    else the active camera), the LOD, and the mesh attributes written in place.
+//!    else the active camera), the LOD, and the mesh attributes written in place; the
+//!    bodies' `Transform`s and velocities from their water.
 //!
 //! Game systems that read the water ([`WaterQuery`]) see the state of the last frame's
 //! step; drops and forces land before the next one. The eye and the water's
@@ -160,6 +162,7 @@ impl Plugin for SpringwaterPlugin {
             task_pool: self.task_pool,
         })
         .init_resource::<BuoyancySettings>()
+        .init_resource::<buoyancy::Bodies>()
         .add_message::<WaterDrop>()
         .add_message::<WaterForce>()
         .add_message::<WaterError>();
@@ -186,12 +189,12 @@ impl Plugin for SpringwaterPlugin {
                 (
                     step::create_surfaces,
                     step::apply_messages,
-                    buoyancy::float_bodies,
+                    buoyancy::sync_bodies,
                 )
                     .chain()
                     .in_set(WaterSystems::SyncInputs),
                 step::step_surfaces.in_set(WaterSystems::Step),
-                mesh::write_meshes.in_set(WaterSystems::Writeback),
+                (mesh::write_meshes, buoyancy::write_bodies).in_set(WaterSystems::Writeback),
             ),
         );
     }

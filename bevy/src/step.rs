@@ -155,9 +155,13 @@ pub(crate) fn step_surfaces(
             ws.substeps = 0;
             continue;
         }
+        let WaterSurface {
+            surface, pushes, ..
+        } = &mut *ws;
         let result = match disturbance {
-            Some(mut d) => ws.surface.advance_with(seconds, &mut *d.0),
-            None => ws.surface.advance(seconds),
+            Some(mut d) => surface.advance_with(seconds, &mut (&mut *pushes, &mut *d.0)),
+            None if pushes.0.is_empty() => surface.advance(seconds),
+            None => surface.advance_with(seconds, pushes),
         };
         match result {
             Ok(n) => ws.substeps = n,

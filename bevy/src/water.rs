@@ -85,6 +85,8 @@ pub struct WaterSurface {
     pub(crate) normals: Normals,
     pub(crate) uv: Refraction,
     pub(crate) substeps: usize,
+    /// The frame's forces on floating bodies, applied before every substep.
+    pub(crate) pushes: crate::buoyancy::Pushes,
 }
 
 impl WaterSurface {
@@ -95,6 +97,7 @@ impl WaterSurface {
             normals: Normals::new(),
             uv: Refraction::default(),
             substeps: 0,
+            pushes: Default::default(),
         })
     }
 
