@@ -5,7 +5,7 @@
 mod ring;
 
 use ring::{reflection, Source};
-use springwater::{Boundary, Error, Params, Surface};
+use springwater::{Boundary, Error, Params, SimdLevel, Stepper, Surface};
 
 /// The undamped middle the ring test measures, in nodes per side.
 const MIDDLE: usize = 128;
@@ -128,4 +128,44 @@ fn absorbing_surfaces_snapshot_and_restore_bitwise() {
     a.step_n(20).unwrap();
     b.step_n(20).unwrap();
     assert_eq!(a.to_bytes(), b.to_bytes());
+}
+
+#[test]
+fn the_absorbing_boundary_gives_the_same_bits_at_every_level_and_thread_count() {
+    let run = |level: Option<SimdLevel>, threads: usize, stepper: Stepper| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let p = Params {
+                boundary: Boundary::Absorbing { width: 12 },
+                ..Params::with_size(70, 45)
+            };
+            let mut s = Surface::new(p).unwrap();
+            if let Some(level) = level {
+                s.set_simd_level(level);
+            }
+            s.drop_at(20.0, 30.0, 1.5, 3.0).unwrap();
+            for _ in 0..50 {
+                s.step_with(stepper).unwrap();
+            }
+            s.step_n(37).unwrap();
+            s.to_bytes()
+        })
+    };
+    let reference = run(None, 1, Stepper::Reference);
+    for level in [
+        SimdLevel::Scalar,
+        SimdLevel::Sse2,
+        SimdLevel::Avx2,
+        SimdLevel::Avx512,
+    ] {
+        for threads in [1, 2] {
+            assert!(
+                run(Some(level), threads, Stepper::Engine) == reference,
+                "{level:?} on {threads} threads"
+            );
+        }
+    }
 }
