@@ -76,11 +76,13 @@ pub enum Error {
         node: usize,
     },
 
-    /// A floating body's forces or motion would have become non-finite (bodies far too
-    /// large, dense or fast for `f32`). The step was not applied.
+    /// A floating body's forces or motion would have become non-finite or left the ranges
+    /// of [`Floater::validate`](crate::Floater::validate) (bodies far too large, dense,
+    /// fast or hard pushed for `f32`). The step was not applied.
     #[error(
-        "step {step} would make floater {floater} non-finite; the step was not applied. \
-         Check the floater's size, mass and speed and the buoyancy's gravity and density"
+        "step {step} would make floater {floater} non-finite or out of range; the step was \
+         not applied. Check the floater's size, mass, speed and push and the buoyancy's \
+         gravity and density"
     )]
     FloaterNonFinite {
         /// Steps taken before the refused one.

@@ -425,3 +425,63 @@ fn bodies_off_the_patch_float_on_calm_water() {
         "nothing was pushed into the water"
     );
 }
+
+#[test]
+fn a_push_that_would_throw_a_body_out_of_range_is_refused() {
+    let mut s = Surface::new(Params::with_size(16, 16)).unwrap();
+    let mut f = Floater::sphere(1.0, 1.0, [8.0, 0.0, 8.0]);
+    f.drag = 0.0;
+    let id = s.add_floater(f).unwrap();
+    s.push_floater(id, [f32::MAX, 0.0, 0.0]).unwrap();
+    let before = s.to_bytes();
+    assert!(matches!(
+        s.step(),
+        Err(Error::FloaterNonFinite { floater: 0, .. })
+    ));
+    assert_eq!(s.to_bytes(), before);
+    // Every snapshot a surface writes loads again.
+    Surface::from_bytes(&before).unwrap();
+}
+
+#[test]
+fn ids_run_out_with_an_error_not_an_overflow() {
+    let mut s = Surface::new(Params::with_size(16, 16)).unwrap();
+    let mut snap = s.snapshot();
+    snap.next_floater_id = u64::MAX;
+    s = Surface::from_snapshot(snap).unwrap();
+    let before = s.to_bytes();
+    let err = s.add_floater(Floater::sphere(1.0, 1.0, [8.0, 0.0, 8.0]));
+    assert!(
+        matches!(
+            err,
+            Err(Error::InvalidParam {
+                name: "floater id",
+                ..
+            })
+        ),
+        "{err:?}"
+    );
+    assert_eq!(s.to_bytes(), before);
+}
+
+#[test]
+fn water_force_is_read_only() {
+    let mut s = Surface::new(Params::with_size(16, 16)).unwrap();
+    let f = Floater {
+        water_force: Vec3::NAN,
+        ..Floater::sphere(1.0, 2.0, [8.0, 0.0, 8.0])
+    };
+    let id = s.add_floater(f).unwrap();
+    assert_eq!(s.floater(id).unwrap().water_force, Vec3::ZERO);
+    s.step().unwrap();
+    let felt = s.floater(id).unwrap().water_force;
+    s.set_floater(
+        id,
+        Floater {
+            water_force: Vec3::splat(7.0),
+            ..f
+        },
+    )
+    .unwrap();
+    assert_eq!(s.floater(id).unwrap().water_force, felt);
+}

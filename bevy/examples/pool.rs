@@ -5,25 +5,67 @@
 //!
 //! Drag with the left mouse button to orbit, scroll to zoom, arrows or WASD push the
 //! ball, space drops a splash under the ball, R toggles the rain.
+//!
+//! `SPRINGWATER_SCREENSHOT=pool.png` runs on a fixed 1/60 s clock instead, saves the
+//! window after `SPRINGWATER_SCREENSHOT_FRAME` frames (default 180) and exits: the
+//! picture in the README was made so, under Xvfb with Mesa's software Vulkan.
 
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageSampler, ImageSamplerDescriptor};
 use bevy::input::mouse::{AccumulatedMouseMotion, AccumulatedMouseScroll};
 use bevy::prelude::*;
 use bevy::render::render_resource::{Extent3d, TextureDimension, TextureFormat};
+use bevy::render::view::screenshot::{save_to_disk, Screenshot, ScreenshotCaptured};
+use bevy::time::TimeUpdateStrategy;
 use springwater::disturb::{Disturbance, Rain};
 use springwater_bevy::prelude::*;
 
 const COLS: usize = 129;
 const ROWS: usize = 97;
+/// Rain drops per unit of model time (24 per second).
+const RAIN: f32 = 0.3;
 
 fn main() {
-    App::new()
-        .add_plugins((DefaultPlugins, SpringwaterPlugin::default()))
+    let mut app = App::new();
+    app.add_plugins((DefaultPlugins, SpringwaterPlugin::default()))
         .insert_resource(ClearColor(Color::srgb(0.55, 0.7, 0.85)))
         .add_systems(Startup, setup)
-        .add_systems(Update, (orbit_camera, push_ball, toggle_rain))
-        .run();
+        .add_systems(Update, (orbit_camera, push_ball, toggle_rain));
+    if let Ok(path) = std::env::var("SPRINGWATER_SCREENSHOT") {
+        let frame = std::env::var("SPRINGWATER_SCREENSHOT_FRAME")
+            .ok()
+            .and_then(|f| f.parse().ok())
+            .unwrap_or(180)
+            .max(1);
+        // A fixed clock, so the picture does not depend on how fast the machine renders.
+        app.insert_resource(TimeUpdateStrategy::ManualDuration(
+            std::time::Duration::from_secs_f64(1.0 / 60.0),
+        ))
+        .insert_resource(ScreenshotAt { path, frame })
+        .add_systems(Update, screenshot);
+    }
+    app.run();
+}
+
+/// Where and after how many frames to save the window (screenshot mode).
+#[derive(Resource)]
+struct ScreenshotAt {
+    path: String,
+    frame: u32,
+}
+
+fn screenshot(mut frames: Local<u32>, at: Res<ScreenshotAt>, mut commands: Commands) {
+    *frames += 1;
+    if *frames == at.frame {
+        commands
+            .spawn(Screenshot::primary_window())
+            .observe(save_to_disk(at.path.clone()))
+            .observe(
+                |_: On<ScreenshotCaptured>, mut exit: MessageWriter<AppExit>| {
+                    exit.write(AppExit::Success);
+                },
+            );
+    }
 }
 
 /// Pool tiles with grout lines, RGBA8: 16 × 12 tiles over the pool's bottom.
@@ -104,9 +146,9 @@ fn setup(
     // bottom's tiles at the refracted coordinates, tinted like water.
     commands.spawn((
         Water::with_size(COLS, ROWS).with_depth(6.0),
-        WaterDisturbance::new(Toggled(Rain::new(0.15, 7), true)),
+        WaterDisturbance::new(Toggled(Rain::new(RAIN, 7), true)),
         MeshMaterial3d(materials.add(StandardMaterial {
-            base_color: Color::srgb(0.75, 0.9, 1.0),
+            base_color: Color::srgb(0.55, 0.8, 0.95),
             base_color_texture: Some(bottom),
             perceptual_roughness: 0.08,
             reflectance: 0.6,
@@ -128,21 +170,52 @@ fn setup(
         })),
         Transform::from_xyz(-10.0, 4.0, 5.0),
     ));
+    // The deck around the pool: four stone slabs whose tops stand a little above the water.
+    let stone = materials.add(StandardMaterial {
+        base_color: Color::srgb(0.5, 0.47, 0.42),
+        perceptual_roughness: 0.9,
+        ..default()
+    });
+    let (far, rim) = (200.0, 0.8);
+    for (x0, z0, x1, z1) in [
+        (-far, -far, far, -d / 2.0),
+        (-far, d / 2.0, far, far),
+        (-far, -d / 2.0, -w / 2.0, d / 2.0),
+        (w / 2.0, -d / 2.0, far, d / 2.0),
+    ] {
+        let (min, max) = (Vec3::new(x0, -8.0, z0), Vec3::new(x1, rim, z1));
+        commands.spawn((
+            Mesh3d(meshes.add(Cuboid::from_corners(min, max))),
+            MeshMaterial3d(stone.clone()),
+            Transform::from_translation((min + max) / 2.0),
+        ));
+    }
+    // A low sun behind the pool, so that the ripples glint towards the camera.
     commands.spawn((
         DirectionalLight {
             illuminance: 12_000.0,
             ..default()
         },
-        Transform::from_xyz(30.0, 80.0, 40.0).looking_at(Vec3::ZERO, Vec3::Y),
+        Transform::from_xyz(-30.0, 30.0, -45.0).looking_at(Vec3::ZERO, Vec3::Y),
     ));
     commands.spawn((
         Camera3d::default(),
         Transform::default(),
+        // The sky, for the water's reflections.
+        EnvironmentMapLight {
+            intensity: 1500.0,
+            ..EnvironmentMapLight::hemispherical_gradient(
+                &mut images,
+                Color::srgb(0.45, 0.6, 0.85),
+                Color::srgb(0.8, 0.85, 0.9),
+                Color::srgb(0.3, 0.3, 0.3),
+            )
+        },
         Orbit {
-            focus: Vec3::ZERO,
-            distance: 120.0,
+            focus: Vec3::new(-4.0, 0.0, 0.0),
+            distance: 85.0,
             yaw: 0.6,
-            pitch: 0.65,
+            pitch: 0.6,
         },
     ));
 }
@@ -214,7 +287,7 @@ fn toggle_rain(
     if keys.just_pressed(KeyCode::KeyR) {
         *off = !*off;
         for mut d in &mut rain {
-            d.0 = Box::new(Toggled(Rain::new(0.15, 7), !*off));
+            d.0 = Box::new(Toggled(Rain::new(RAIN, 7), !*off));
         }
     }
 }

@@ -40,8 +40,13 @@ typedef struct SwParams {
   float acceleration_y;
   // Uniform acceleration on free nodes, z.
   float acceleration_z;
-  // `SW_BOUNDARY_PINNED` or `SW_BOUNDARY_FREE`.
+  // `SW_BOUNDARY_PINNED`, `SW_BOUNDARY_FREE` or `SW_BOUNDARY_ABSORBING`.
   SwBoundary boundary;
+  // Rings of damping of an `SW_BOUNDARY_ABSORBING` boundary, inside its pinned outer
+  // ring: at least 1, and the grid must be at least `2 · absorbing_width + 2` nodes
+  // across (32 in `sw_params_default()`, the width that reflects below 10⁻³ of a ring
+  // wave's energy). Ignored by the other boundaries, which read it back as 32.
+  uint32_t absorbing_width;
 } SwParams;
 
 // The view-dependent LOD index buffer's parameters; `sw_lod_params_default()` gives the
@@ -114,6 +119,55 @@ typedef struct SwEnergy {
   double total;
 } SwEnergy;
 
+// The shape of a floating body (`SW_SHAPE_*`).
+typedef int32_t SwShape;
+
+// A floating body: `sw_floater_sphere()` and `sw_floater_box()` make one at rest with the
+// default drag. Plain data: hand it to `sw_surface_add_floater`, read it back with
+// `sw_surface_get_floater`.
+typedef struct SwFloater {
+  // `SW_SHAPE_SPHERE` or `SW_SHAPE_BOX`.
+  SwShape shape;
+  // The sphere's radius, world units (> 0, at most 1e9). Ignored for a box, read back as
+  // 0.
+  float radius;
+  // The box's half size along x, y and z, world units (each > 0, at most 1e9). Ignored
+  // for a sphere, read back as 0.
+  float half_extents[3];
+  // Mass, in the lattice's mass units (> 0; a node has `SwParams::mass`).
+  float mass;
+  // Drag rate per unit of model time (0 to 1e6): the drag is this times the mass of the
+  // displaced water times the velocity relative to the water.
+  float drag;
+  // Centre in the water's local space (the calm surface is y = 0), world units (each
+  // component at most 1e15 in magnitude).
+  float position[3];
+  // Velocity, world units per unit of model time (each component at most 1e9 in
+  // magnitude).
+  float velocity[3];
+  // External force (an engine, the wind, a player's push) for the next step only, cleared
+  // by it; `sw_surface_push_floater` adds to it. Finite.
+  float push[3];
+  // Read only: the force the water exerted on the body during its last step (buoyancy and
+  // drag, without gravity and push); the water got exactly minus this. Ignored on input:
+  // a body added starts at 0, a body set keeps its current value.
+  float water_force[3];
+} SwFloater;
+
+// The world the bodies of a surface float in; `sw_buoyancy_default()` gives the defaults.
+typedef struct SwBuoyancy {
+  // Gravity pulling bodies down (−y), world units per unit of model time² (0 to 1e6;
+  // default 0.1).
+  float gravity;
+  // Density of the water, mass units per cubic world unit (0 to 1e6; default 1: the
+  // seed's node mass 4 per cell is a layer 4 cells deep).
+  float density;
+} SwBuoyancy;
+
+// A floating body's id on its surface, never reused by that surface (also not after the
+// body is removed, or across a snapshot).
+typedef uint64_t SwFloaterId;
+
 // Runs items `start` to `end − 1` of a task. `task_context` is the pointer the library
 // passed to `enqueue_task`; pass it back unchanged.
 typedef void (*SwTaskFn)(uint32_t start, uint32_t end, void *task_context);
@@ -156,6 +210,12 @@ typedef struct SwJobSystem {
 // No node is pinned: the sheet floats freely.
 #define SW_BOUNDARY_FREE 1
 
+// Open water: waves leave the patch instead of coming back. The outer ring of nodes is
+// pinned and the `SwParams::absorbing_width` rings inside it damp outgoing waves; the
+// frame lies inside the grid, so the undamped water is the
+// `(cols − 2·width) × (rows − 2·width)` middle.
+#define SW_BOUNDARY_ABSORBING 2
+
 // No SIMD: the scalar reference loops.
 #define SW_SIMD_SCALAR 0
 
@@ -167,6 +227,12 @@ typedef struct SwJobSystem {
 
 // AVX-512F.
 #define SW_SIMD_AVX512 3
+
+// A ball of `SwFloater::radius`.
+#define SW_SHAPE_SPHERE 0
+
+// A box aligned with the water's axes (bodies do not rotate) of `SwFloater::half_extents`.
+#define SW_SHAPE_BOX 1
 
 // Success.
 #define SW_OK 0
@@ -187,7 +253,8 @@ typedef struct SwJobSystem {
 // A query point is outside the water's rest footprint.
 #define SW_ERROR_OUTSIDE_GRID -5
 
-// A step would have made the state non-finite; it was not applied.
+// A step would have made the state non-finite (the water's, or a floating body's forces
+// or motion); it was not applied.
 #define SW_ERROR_NON_FINITE -6
 
 // A snapshot was refused: truncated, corrupted, or from another format version.
@@ -203,6 +270,10 @@ typedef struct SwJobSystem {
 // The library failed internally (a bug: please report the message). The surface the
 // call was made on is unusable from then on; destroy it.
 #define SW_ERROR_INTERNAL -10
+
+// No floating body of this surface has the id: never added, or removed (ids are never
+// reused).
+#define SW_ERROR_NO_SUCH_FLOATER -11
 
 #ifdef __cplusplus
 extern "C" {
@@ -444,6 +515,109 @@ SwStatus sw_surface_simd_level(const struct SwSurface *surface, SwSimdLevel *out
 //
 // `ran` is NULL or a valid pointer.
 SwStatus sw_surface_set_simd_level(struct SwSurface *surface, SwSimdLevel level, SwSimdLevel *ran);
+
+// A sphere of `radius` and `mass` centred at `(x, y, z)`, at rest, with the default drag
+// (0.25). Not checked here: `sw_surface_add_floater` checks it.
+struct SwFloater sw_floater_sphere(float radius, float mass, float x, float y, float z);
+
+// A box of half extents `(half_x, half_y, half_z)` and `mass` centred at `(x, y, z)`, at
+// rest, with the default drag (0.25). Not checked here: `sw_surface_add_floater` checks
+// it.
+struct SwFloater sw_floater_box(float half_x,
+                                float half_y,
+                                float half_z,
+                                float mass,
+                                float x,
+                                float y,
+                                float z);
+
+// The default gravity and water density.
+struct SwBuoyancy sw_buoyancy_default(void);
+
+// Adds a floating body and writes its id to `id`. The body steps with every step and
+// substep of the surface and is part of its snapshots. Refused (nothing changes) when a
+// field is out of range or the shape code is unknown, or when the water under the bodies
+// would need a smaller timestep than the surface's `dt` (a stiff waterline: large gravity
+// times density).
+//
+// # Safety
+//
+// `floater` and `id` are NULL or valid pointers.
+SwStatus sw_surface_add_floater(struct SwSurface *surface,
+                                const struct SwFloater *floater,
+                                SwFloaterId *id);
+
+// Removes a floating body; its id stays unused. An unknown id is
+// `SW_ERROR_NO_SUCH_FLOATER`.
+SwStatus sw_surface_remove_floater(struct SwSurface *surface, SwFloaterId id);
+
+// Writes a floating body's current state to `out`. An unknown id is
+// `SW_ERROR_NO_SUCH_FLOATER`.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_get_floater(const struct SwSurface *surface,
+                                SwFloaterId id,
+                                struct SwFloater *out);
+
+// Replaces a floating body's state (teleport it, change its velocity, mass, drag or
+// shape), checked like `sw_surface_add_floater`; `water_force` is ignored and keeps the
+// body's current value. An unknown id is `SW_ERROR_NO_SUCH_FLOATER`. On error nothing
+// changes.
+//
+// # Safety
+//
+// `floater` is NULL or a valid pointer.
+SwStatus sw_surface_set_floater(struct SwSurface *surface,
+                                SwFloaterId id,
+                                const struct SwFloater *floater);
+
+// Adds the force `(fx, fy, fz)` to a floating body for the next step only (an engine, the
+// wind, a player's push); pushes add up until that step. Refused (nothing changes) when a
+// component, or the sum with what was pushed before, is not finite. An unknown id is
+// `SW_ERROR_NO_SUCH_FLOATER`.
+SwStatus sw_surface_push_floater(struct SwSurface *surface,
+                                 SwFloaterId id,
+                                 float fx,
+                                 float fy,
+                                 float fz);
+
+// Writes the number of floating bodies on the surface to `out`.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_floater_count(const struct SwSurface *surface, size_t *out);
+
+// Copies the ids of the surface's floating bodies, in the order they were added (ids
+// increase along it), to `ids` and writes their number to `count`. With `ids` NULL only
+// `count` is written (ask the size first); a `len` smaller than the number of bodies is
+// `SW_ERROR_BUFFER_TOO_SMALL`, with `count` still written.
+//
+// # Safety
+//
+// `ids` is NULL or points to `len` writable ids; `count` is NULL or valid.
+SwStatus sw_surface_floater_ids(const struct SwSurface *surface,
+                                SwFloaterId *ids,
+                                size_t len,
+                                size_t *count);
+
+// Writes the gravity and water density the surface's bodies float in to `out`.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_get_buoyancy(const struct SwSurface *surface, struct SwBuoyancy *out);
+
+// Sets the gravity and water density for every body of the surface. Refused (nothing
+// changes) when a field is out of range, or when bodies float and the stiffer waterline
+// would need a smaller timestep than the surface's `dt`.
+//
+// # Safety
+//
+// `buoyancy` is NULL or a valid pointer.
+SwStatus sw_surface_set_buoyancy(struct SwSurface *surface, const struct SwBuoyancy *buoyancy);
 
 // Runs the surface's steps on the host's job system (`jobs`), or on the library's
 // built-in thread pool again when `jobs` is NULL. The job system is copied; its

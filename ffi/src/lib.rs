@@ -29,12 +29,15 @@
 //!   values; structs hold only integers, floats and pointers (C# `StructLayout.Sequential`
 //!   maps them as they are); no varargs, no callbacks but the job system's.
 //! * **Units.** World units for lengths and points (`x, z` in the water's local space, y
-//!   up), seconds for frame times; the same as the Rust API.
+//!   up), seconds for frame times, model time for floating bodies' velocities and the
+//!   buoyancy's gravity; the same as the Rust API.
 
+mod floaters;
 mod handle;
 mod jobs;
 mod status;
 
+pub use floaters::*;
 pub use handle::SwSurface;
 pub use jobs::{sw_surface_set_job_system, SwEnqueueTaskFn, SwFinishTaskFn, SwJobSystem, SwTaskFn};
 pub use status::*;
@@ -52,6 +55,11 @@ pub type SwBoundary = i32;
 pub const SW_BOUNDARY_PINNED: SwBoundary = 0;
 /// No node is pinned: the sheet floats freely.
 pub const SW_BOUNDARY_FREE: SwBoundary = 1;
+/// Open water: waves leave the patch instead of coming back. The outer ring of nodes is
+/// pinned and the `SwParams::absorbing_width` rings inside it damp outgoing waves; the
+/// frame lies inside the grid, so the undamped water is the
+/// `(cols − 2·width) × (rows − 2·width)` middle.
+pub const SW_BOUNDARY_ABSORBING: SwBoundary = 2;
 
 /// An instruction set the engine can run (`SW_SIMD_*`). Every level gives the same bits.
 pub type SwSimdLevel = i32;
@@ -96,8 +104,13 @@ pub struct SwParams {
     pub acceleration_y: f32,
     /// Uniform acceleration on free nodes, z.
     pub acceleration_z: f32,
-    /// `SW_BOUNDARY_PINNED` or `SW_BOUNDARY_FREE`.
+    /// `SW_BOUNDARY_PINNED`, `SW_BOUNDARY_FREE` or `SW_BOUNDARY_ABSORBING`.
     pub boundary: SwBoundary,
+    /// Rings of damping of an `SW_BOUNDARY_ABSORBING` boundary, inside its pinned outer
+    /// ring: at least 1, and the grid must be at least `2 · absorbing_width + 2` nodes
+    /// across (32 in `sw_params_default()`, the width that reflects below 10⁻³ of a ring
+    /// wave's energy). Ignored by the other boundaries, which read it back as 32.
+    pub absorbing_width: u32,
 }
 
 /// The view-dependent LOD index buffer's parameters; `sw_lod_params_default()` gives the
@@ -821,7 +834,14 @@ fn read_into<T>(
     })
 }
 
+/// The one conversion of `Params` to `SwParams` (`sw_params_default`, `sw_surface_params`);
+/// [`rust_params`] is its inverse: `rust_params(&c_params(p)) == Ok(*p)`.
 fn c_params(p: &Params) -> SwParams {
+    let (boundary, absorbing_width) = match p.boundary {
+        Boundary::Pinned => (SW_BOUNDARY_PINNED, Boundary::ABSORBING_WIDTH),
+        Boundary::Free => (SW_BOUNDARY_FREE, Boundary::ABSORBING_WIDTH),
+        Boundary::Absorbing { width } => (SW_BOUNDARY_ABSORBING, width),
+    };
     SwParams {
         cols: p.cols as u32,
         rows: p.rows as u32,
@@ -835,17 +855,24 @@ fn c_params(p: &Params) -> SwParams {
         acceleration_x: p.acceleration[0],
         acceleration_y: p.acceleration[1],
         acceleration_z: p.acceleration[2],
-        boundary: boundary_code(p.boundary),
+        boundary,
+        // Validation bounds the width by the grid, so it fits.
+        absorbing_width: u32::try_from(absorbing_width).unwrap_or(u32::MAX),
     }
 }
 
+/// The inverse of [`c_params`]; the library validates the result when it builds a surface.
 fn rust_params(p: &SwParams) -> Outcome<Params> {
     let boundary = match p.boundary {
         SW_BOUNDARY_PINNED => Boundary::Pinned,
         SW_BOUNDARY_FREE => Boundary::Free,
+        SW_BOUNDARY_ABSORBING => Boundary::Absorbing {
+            width: p.absorbing_width as usize,
+        },
         other => {
             return Err(Failure::invalid(format!(
-                "boundary = {other} is invalid: use SW_BOUNDARY_PINNED (0) or SW_BOUNDARY_FREE (1)"
+                "boundary = {other} is invalid: use SW_BOUNDARY_PINNED (0), SW_BOUNDARY_FREE (1) \
+                 or SW_BOUNDARY_ABSORBING (2)"
             )))
         }
     };
@@ -862,13 +889,6 @@ fn rust_params(p: &SwParams) -> Outcome<Params> {
         acceleration: [p.acceleration_x, p.acceleration_y, p.acceleration_z],
         boundary,
     })
-}
-
-fn boundary_code(b: Boundary) -> SwBoundary {
-    match b {
-        Boundary::Free => SW_BOUNDARY_FREE,
-        _ => SW_BOUNDARY_PINNED,
-    }
 }
 
 fn simd_code(level: SimdLevel) -> SwSimdLevel {
@@ -1010,5 +1030,39 @@ fn too_long<T>(len: usize, what: &str) -> Outcome {
         _ => Err(Failure::invalid(format!(
             "{what}: length {len} is too large"
         ))),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn params_convert_both_ways_for_every_boundary() {
+        for boundary in [
+            Boundary::Pinned,
+            Boundary::Free,
+            Boundary::absorbing(),
+            Boundary::Absorbing { width: 5 },
+        ] {
+            let p = Params {
+                boundary,
+                acceleration: [0.5, -1.0, 0.25],
+                ..Params::with_size(40, 30)
+            };
+            assert_eq!(rust_params(&c_params(&p)).unwrap(), p, "{boundary:?}");
+        }
+        let d = sw_params_default();
+        assert_eq!(
+            (d.boundary, d.absorbing_width),
+            (SW_BOUNDARY_PINNED, Boundary::ABSORBING_WIDTH as u32)
+        );
+        let open = SwParams {
+            boundary: SW_BOUNDARY_ABSORBING,
+            ..d
+        };
+        assert_eq!(rust_params(&open).unwrap().boundary, Boundary::absorbing());
+        let unknown = SwParams { boundary: 3, ..d };
+        assert!(rust_params(&unknown).is_err());
     }
 }

@@ -22,7 +22,8 @@ pub const SW_ERROR_INVALID_ARGUMENT: SwStatus = -3;
 pub const SW_ERROR_BUFFER_TOO_SMALL: SwStatus = -4;
 /// A query point is outside the water's rest footprint.
 pub const SW_ERROR_OUTSIDE_GRID: SwStatus = -5;
-/// A step would have made the state non-finite; it was not applied.
+/// A step would have made the state non-finite (the water's, or a floating body's forces
+/// or motion); it was not applied.
 pub const SW_ERROR_NON_FINITE: SwStatus = -6;
 /// A snapshot was refused: truncated, corrupted, or from another format version.
 pub const SW_ERROR_SNAPSHOT: SwStatus = -7;
@@ -34,6 +35,9 @@ pub const SW_ERROR_BUSY: SwStatus = -9;
 /// The library failed internally (a bug: please report the message). The surface the
 /// call was made on is unusable from then on; destroy it.
 pub const SW_ERROR_INTERNAL: SwStatus = -10;
+/// No floating body of this surface has the id: never added, or removed (ids are never
+/// reused).
+pub const SW_ERROR_NO_SUCH_FLOATER: SwStatus = -11;
 
 /// A failure on its way to the caller: its status and message.
 #[derive(Debug)]
@@ -64,7 +68,8 @@ impl From<Error> for Failure {
         let status = match e {
             Error::LengthMismatch { .. } => SW_ERROR_BUFFER_TOO_SMALL,
             Error::OutsideGrid { .. } => SW_ERROR_OUTSIDE_GRID,
-            Error::NonFinite { .. } => SW_ERROR_NON_FINITE,
+            Error::NonFinite { .. } | Error::FloaterNonFinite { .. } => SW_ERROR_NON_FINITE,
+            Error::NoSuchFloater(_) => SW_ERROR_NO_SUCH_FLOATER,
             Error::Snapshot(_) | Error::Io { .. } => SW_ERROR_SNAPSHOT,
             Error::JobSystem => SW_ERROR_JOB_SYSTEM,
             _ => SW_ERROR_INVALID_ARGUMENT,
@@ -153,6 +158,7 @@ pub extern "C" fn sw_status_name(status: SwStatus) -> *const std::ffi::c_char {
         SW_ERROR_JOB_SYSTEM => c"SW_ERROR_JOB_SYSTEM",
         SW_ERROR_BUSY => c"SW_ERROR_BUSY",
         SW_ERROR_INTERNAL => c"SW_ERROR_INTERNAL",
+        SW_ERROR_NO_SUCH_FLOATER => c"SW_ERROR_NO_SUCH_FLOATER",
         _ => c"unknown status",
     };
     name.as_ptr()
@@ -194,7 +200,7 @@ mod tests {
 
     #[test]
     fn every_status_has_a_name() {
-        for status in 0..=10 {
+        for status in 0..=11 {
             // SAFETY: sw_status_name returns a static C string.
             let name = unsafe { std::ffi::CStr::from_ptr(sw_status_name(-status)) };
             assert!(name.to_str().unwrap().starts_with("SW_"), "{status}");

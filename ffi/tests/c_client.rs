@@ -2,8 +2,8 @@
 //! static and dynamic libraries this crate builds:
 //!
 //! * `tests/c/client.c`: a frame loop over the whole API, a job system on the host's own
-//!   threads, and every kind of bad input; its printed values must equal what the Rust
-//!   API computes for the same frames. It runs plainly, under AddressSanitizer, and under
+//!   threads, floating bodies on an absorbing (open water) surface, and every kind of bad
+//!   input; its printed values must equal what the Rust API computes for the same frames. It runs plainly, under AddressSanitizer, and under
 //!   Valgrind's memcheck where those are installed.
 //! * the README's C example, linked against the dynamic library;
 //! * the header compiled as C++.
@@ -13,7 +13,7 @@
 
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use springwater::refraction::{refract, Refraction, RefractionParams};
-use springwater::{Params, Surface};
+use springwater::{Boundary, Buoyancy, Floater, FloaterId, Params, Shape, Surface};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -134,6 +134,90 @@ fn fnv(values: impl Iterator<Item = f32>) -> u64 {
     })
 }
 
+/// A body's fields in the order the C client fingerprints them: radius, half extents
+/// (the other shape's read as 0), mass, drag, position, velocity, push, water force.
+fn floater_floats(f: &Floater) -> Vec<f32> {
+    let (radius, half_extents) = match f.shape {
+        Shape::Sphere { radius } => (radius, [0.0; 3]),
+        Shape::Box { half_extents } => (0.0, half_extents.to_array()),
+    };
+    let mut floats = vec![radius];
+    floats.extend(half_extents);
+    floats.extend([f.mass, f.drag]);
+    for v in [f.position, f.velocity, f.push, f.water_force] {
+        floats.extend(v.to_array());
+    }
+    floats
+}
+
+fn floaters_fingerprint(s: &Surface) -> String {
+    format!(
+        "{:016x}",
+        fnv(s.floaters().flat_map(|(_, f)| floater_floats(f)))
+    )
+}
+
+/// The C client's floating bodies on open water, through the Rust API.
+fn expected_floaters() -> Vec<(&'static str, String)> {
+    let p = Params {
+        boundary: Boundary::Absorbing { width: 6 },
+        ..Params::with_size(32, 28)
+    };
+    let mut s = Surface::new(p).unwrap();
+    let calm = Buoyancy::default();
+    s.set_buoyancy(Buoyancy {
+        gravity: 0.12,
+        density: 1.1,
+    })
+    .unwrap();
+    let mut ball = Floater::sphere(2.0, 10.0, [12.0, 1.0, 14.0]);
+    ball.velocity = glam::Vec3::new(0.05, 0.0, -0.02);
+    let a = s.add_floater(ball).unwrap();
+    let b = s
+        .add_floater(Floater::cuboid([1.5, 0.5, 2.0], 4.0, [20.0, 0.5, 10.0]))
+        .unwrap();
+    let spare = s
+        .add_floater(Floater::sphere(1.0, 1.0, [8.0, 0.0, 8.0]))
+        .unwrap();
+    s.remove_floater(spare).unwrap();
+    assert_eq!((a, b, spare), (FloaterId(0), FloaterId(1), FloaterId(2)));
+    s.drop_at(16.0, 14.0, 0.5, 2.0).unwrap();
+    for frame in 0..40 {
+        if frame == 10 {
+            s.push_floater(a, [0.5, 0.0, 0.2]).unwrap();
+        }
+        s.advance(1.0 / 60.0).unwrap();
+    }
+    let mut boxy = *s.floater(b).unwrap();
+    boxy.velocity.x = 0.1;
+    boxy.drag = 1.0;
+    s.set_floater(b, boxy).unwrap();
+    s.step_n(20).unwrap();
+    let floaters = floaters_fingerprint(&s);
+    let [x, y, z] = s.positions();
+    let positions = fnv((0..s.len()).flat_map(|i| [x[i], y[i], z[i]]));
+    let snapshot_bytes = s.to_bytes().len();
+    s.step_n(2500).unwrap();
+    vec![
+        (
+            "floater_drag",
+            format!("{:08x}", Floater::DEFAULT_DRAG.to_bits()),
+        ),
+        (
+            "buoyancy",
+            format!(
+                "{:08x} {:08x}",
+                calm.gravity.to_bits(),
+                calm.density.to_bits()
+            ),
+        ),
+        ("floaters", floaters),
+        ("open_positions", format!("{positions:016x}")),
+        ("open_snapshot_bytes", snapshot_bytes.to_string()),
+        ("settled", floaters_fingerprint(&s)),
+    ]
+}
+
 /// What the C client prints, computed through the Rust API for the same frames.
 fn expected() -> HashMap<&'static str, String> {
     let mut s = Surface::new(Params::with_size(48, 40)).unwrap();
@@ -187,6 +271,9 @@ fn expected() -> HashMap<&'static str, String> {
         ("checks", "passed".to_string()),
         ("version", env!("CARGO_PKG_VERSION").to_string()),
     ])
+    .into_iter()
+    .chain(expected_floaters())
+    .collect()
 }
 
 /// Checks the client's values against the Rust API's, except the keys in `ignore`.

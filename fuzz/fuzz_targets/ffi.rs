@@ -1,7 +1,9 @@
-//! The C ABI under arbitrary calls: any parameters, floats, buffer lengths, enum values,
-//! snapshot bytes and handles (live, destroyed, NULL or made up), in any order. Every call
-//! returns a status (never a panic or a crash, never a write past the length it was
-//! given), and the live surfaces' positions stay finite.
+//! The C ABI under arbitrary calls: any parameters (the absorbing boundary's width among
+//! them), floats, buffer lengths, enum values, snapshot bytes, floating bodies, floater ids
+//! (live, removed or made up) and handles (live, destroyed, NULL or made up), in any order.
+//! Every call returns a status (never a panic or a crash, never a write past the length it
+//! was given), the live surfaces' positions and bodies stay finite, and a floater call that
+//! fails changes nothing (the surface's snapshot bytes stay the same).
 //!
 //! Buffers are real allocations of the length the call is told, so a write past a stated
 //! length would be caught by the allocator's bounds only under a sanitizer
@@ -22,6 +24,54 @@ enum Handle {
     MadeUp(usize),
 }
 
+/// A floater id: one a surface returned (maybe removed since), or any number.
+#[derive(Debug, Arbitrary)]
+enum Id {
+    Known(u8),
+    MadeUp(u64),
+}
+
+/// A floating body's fields, as raw as C can pass them.
+#[derive(Debug, Arbitrary)]
+struct Body {
+    shape: i32,
+    /// radius, half extents, mass, drag
+    size: [f32; 6],
+    position: [f32; 3],
+    velocity: [f32; 3],
+    push: [f32; 3],
+    water_force: [f32; 3],
+    /// Start from `sw_floater_sphere` / `sw_floater_box` with small sane values instead.
+    sane: Option<(bool, u8, [u8; 3])>,
+}
+
+impl Body {
+    fn floater(&self) -> SwFloater {
+        if let Some((sphere, size, [x, y, z])) = self.sane {
+            let size = 0.25 + size as f32 / 32.0;
+            let at = [x as f32 / 6.0, y as f32 / 64.0 - 2.0, z as f32 / 6.0];
+            let mass = size * size;
+            return if sphere {
+                sw_floater_sphere(size, mass, at[0], at[1], at[2])
+            } else {
+                sw_floater_box(size, 0.5 * size, 1.5 * size, mass, at[0], at[1], at[2])
+            };
+        }
+        let [radius, hx, hy, hz, mass, drag] = self.size;
+        SwFloater {
+            shape: self.shape,
+            radius,
+            half_extents: [hx, hy, hz],
+            mass,
+            drag,
+            position: self.position,
+            velocity: self.velocity,
+            push: self.push,
+            water_force: self.water_force,
+        }
+    }
+}
+
 #[derive(Debug, Arbitrary)]
 enum Call {
     Create {
@@ -29,6 +79,7 @@ enum Call {
         rows: u8,
         floats: [f32; 10],
         boundary: i32,
+        absorbing_width: u32,
     },
     Destroy(Handle),
     Advance(Handle, f32),
@@ -48,6 +99,142 @@ enum Call {
     Load(Vec<u8>),
     Simd(Handle, i32),
     Energy(Handle),
+    AddFloater(Handle, Body),
+    RemoveFloater(Handle, Id),
+    GetFloater(Handle, Id),
+    SetFloater(Handle, Id, Body),
+    PushFloater(Handle, Id, [f32; 3]),
+    FloaterIds(Handle, u8),
+    Buoyancy(Handle, [f32; 2]),
+    /// A body added to a surface, then calls on its id: reaches the calls that take an id
+    /// with a live one far more often than separate calls do.
+    Floating(Handle, Body, Vec<Op>),
+}
+
+#[derive(Debug, Arbitrary)]
+enum Op {
+    Get,
+    Set(Body),
+    Push([f32; 3]),
+    Step(u8),
+    Remove,
+}
+
+/// Most bodies the target puts on one surface, so that long frames stay fast.
+const MAX_BODIES: usize = 4;
+
+/// The surface's snapshot bytes (empty for a handle that is not live).
+fn state(s: *mut SwSurface) -> Vec<u8> {
+    let mut size = 0;
+    // SAFETY: valid out-pointers and a buffer of the length passed.
+    unsafe {
+        if sw_surface_save(s, null_mut(), 0, &mut size) != SW_OK {
+            return Vec::new();
+        }
+        let mut bytes = vec![0u8; size];
+        assert_eq!(
+            sw_surface_save(s, bytes.as_mut_ptr(), size, &mut size),
+            SW_OK
+        );
+        bytes
+    }
+}
+
+/// Runs a floater call on `s`: a failure must leave the whole state as it was.
+fn unchanged_unless_ok(s: *mut SwSurface, call: impl FnOnce() -> SwStatus) -> SwStatus {
+    let before = state(s);
+    let status = call();
+    if status != SW_OK {
+        assert!(
+            state(s) == before,
+            "a failing call ({status}) changed the surface"
+        );
+    }
+    status
+}
+
+/// Adds `body` to `s` (unless it has `MAX_BODIES` already) and returns its id if that
+/// worked; `ids` collects every id with its surface.
+fn add(s: *mut SwSurface, body: &Body, ids: &mut Vec<(*mut SwSurface, u64)>) -> Option<u64> {
+    if floater_count(s) >= MAX_BODIES {
+        return None;
+    }
+    let f = body.floater();
+    let mut id = u64::MAX;
+    // SAFETY: valid pointers; the handle may be anything.
+    let status = unchanged_unless_ok(s, || unsafe { sw_surface_add_floater(s, &f, &mut id) });
+    if status != SW_OK {
+        assert_eq!(id, u64::MAX);
+        return None;
+    }
+    // Ids are never reused: each is above every earlier one of its surface.
+    let mut earlier = ids.iter().filter(|(on, _)| *on == s);
+    assert!(earlier.all(|&(_, e)| e < id), "id {id} reused");
+    ids.push((s, id));
+    let mut back = SwFloater::default();
+    // SAFETY: a valid out-pointer.
+    assert_eq!(unsafe { sw_surface_get_floater(s, id, &mut back) }, SW_OK);
+    assert_eq!(back.water_force, [0.0; 3]);
+    assert_eq!((back.mass, back.position), (f.mass, f.position));
+    Some(id)
+}
+
+fn remove(s: *mut SwSurface, id: u64) {
+    if unchanged_unless_ok(s, || sw_surface_remove_floater(s, id)) == SW_OK {
+        let mut back = SwFloater::default();
+        // SAFETY: a valid out-pointer.
+        let status = unsafe { sw_surface_get_floater(s, id, &mut back) };
+        assert_eq!(status, SW_ERROR_NO_SUCH_FLOATER);
+    }
+}
+
+fn get(s: *mut SwSurface, id: u64) {
+    let mut back = SwFloater::default();
+    // SAFETY: a valid out-pointer.
+    if unsafe { sw_surface_get_floater(s, id, &mut back) } == SW_OK {
+        assert!(finite(&back), "{back:?}");
+    }
+}
+
+fn set(s: *mut SwSurface, id: u64, body: &Body) {
+    let f = body.floater();
+    let mut before = SwFloater::default();
+    // SAFETY (both): valid pointers; the handle and id may be anything.
+    let had = unsafe { sw_surface_get_floater(s, id, &mut before) } == SW_OK;
+    if unchanged_unless_ok(s, || unsafe { sw_surface_set_floater(s, id, &f) }) == SW_OK {
+        assert!(had);
+        let mut back = SwFloater::default();
+        // SAFETY: a valid out-pointer.
+        assert_eq!(unsafe { sw_surface_get_floater(s, id, &mut back) }, SW_OK);
+        // The water force is output only: it keeps its value.
+        assert_eq!(back.water_force, before.water_force);
+        assert_eq!((back.velocity, back.push), (f.velocity, f.push));
+    }
+}
+
+fn push(s: *mut SwSurface, id: u64, [fx, fy, fz]: [f32; 3]) {
+    unchanged_unless_ok(s, || sw_surface_push_floater(s, id, fx, fy, fz));
+}
+
+fn floater_count(s: *mut SwSurface) -> usize {
+    let mut n = 0;
+    // SAFETY: a valid out-pointer.
+    if unsafe { sw_surface_floater_count(s, &mut n) } == SW_OK {
+        n
+    } else {
+        0
+    }
+}
+
+fn finite(f: &SwFloater) -> bool {
+    [f.radius, f.mass, f.drag]
+        .iter()
+        .chain(&f.half_extents)
+        .chain(&f.position)
+        .chain(&f.velocity)
+        .chain(&f.push)
+        .chain(&f.water_force)
+        .all(|v| v.is_finite())
 }
 
 /// A buffer of `len` elements followed by a canary that no call may touch.
@@ -93,6 +280,13 @@ fuzz_target!(|calls: Vec<Call>| {
         Handle::Live(_) | Handle::Null => null_mut(),
         Handle::MadeUp(v) => *v as *mut SwSurface,
     };
+    // Every id a surface returned, removed or not, with its surface.
+    let mut ids: Vec<(*mut SwSurface, u64)> = Vec::new();
+    let id_of = |id: &Id, ids: &[(*mut SwSurface, u64)]| match id {
+        Id::Known(i) if !ids.is_empty() => ids[*i as usize % ids.len()].1,
+        Id::Known(i) => *i as u64,
+        Id::MadeUp(v) => *v,
+    };
     for call in calls.iter().take(64) {
         // SAFETY (every call below): pointers are to live locals or buffers of at least
         // the length passed; handles may be anything, which is what is being tested.
@@ -103,6 +297,7 @@ fuzz_target!(|calls: Vec<Call>| {
                     rows,
                     floats,
                     boundary,
+                    absorbing_width,
                 } => {
                     let mut p = sw_params_default();
                     p.cols = (*cols % 40) as u32;
@@ -113,15 +308,45 @@ fuzz_target!(|calls: Vec<Call>| {
                     [p.rest_ratio, p.time_scale] = [f[5], f[6]];
                     [p.acceleration_x, p.acceleration_y, p.acceleration_z] = [f[7], f[8], f[9]];
                     p.boundary = *boundary;
+                    // Mostly widths that fit some grid, sometimes any number.
+                    p.absorbing_width = if absorbing_width >> 31 == 1 {
+                        *absorbing_width
+                    } else {
+                        absorbing_width % 24
+                    };
                     let mut s = null_mut();
                     if sw_surface_create(&p, &mut s) == SW_OK {
+                        // The parameters read back as given (the width is 32 unless the
+                        // boundary is absorbing), and build the same surface again.
+                        let mut back = sw_params_default();
+                        assert_eq!(sw_surface_params(s, &mut back), SW_OK);
+                        if p.boundary != SW_BOUNDARY_ABSORBING {
+                            p.absorbing_width = 32;
+                        }
+                        assert_eq!(format!("{back:?}"), format!("{p:?}"));
+                        let mut again = null_mut();
+                        assert_eq!(sw_surface_create(&back, &mut again), SW_OK);
+                        let mut back_again = sw_params_default();
+                        assert_eq!(sw_surface_params(again, &mut back_again), SW_OK);
+                        assert_eq!(format!("{back_again:?}"), format!("{p:?}"));
+                        sw_surface_destroy(again);
                         live.push(s);
                     } else {
                         assert!(s.is_null());
-                        // Defaults on a small grid always work.
+                        // Defaults on a small grid always work, with any boundary (an
+                        // absorbing frame as wide as the grid leaves room for).
                         let mut p = sw_params_default();
-                        p.cols = 2 + p.cols % 16;
-                        p.rows = 3;
+                        p.cols = 2 + *cols as u32 % 38;
+                        p.rows = 2 + *rows as u32 % 38;
+                        let room = (p.cols.min(p.rows) - 2) / 2;
+                        match *boundary {
+                            SW_BOUNDARY_FREE => p.boundary = SW_BOUNDARY_FREE,
+                            SW_BOUNDARY_ABSORBING if room >= 1 => {
+                                p.boundary = SW_BOUNDARY_ABSORBING;
+                                p.absorbing_width = 1 + absorbing_width % room;
+                            }
+                            _ => {}
+                        }
                         assert_eq!(sw_surface_create(&p, &mut s), SW_OK);
                         live.push(s);
                     }
@@ -275,6 +500,58 @@ fuzz_target!(|calls: Vec<Call>| {
                     let mut e = SwEnergy::default();
                     if sw_surface_energy(pick(h, &live, &dead), &mut e) == SW_OK {
                         assert!(!e.total.is_nan());
+                    }
+                }
+                Call::AddFloater(h, body) => {
+                    add(pick(h, &live, &dead), body, &mut ids);
+                }
+                Call::RemoveFloater(h, id) => remove(pick(h, &live, &dead), id_of(id, &ids)),
+                Call::GetFloater(h, id) => get(pick(h, &live, &dead), id_of(id, &ids)),
+                Call::SetFloater(h, id, body) => set(pick(h, &live, &dead), id_of(id, &ids), body),
+                Call::PushFloater(h, id, force) => {
+                    push(pick(h, &live, &dead), id_of(id, &ids), *force)
+                }
+                Call::Floating(h, body, ops) => {
+                    let s = pick(h, &live, &dead);
+                    let Some(id) = add(s, body, &mut ids) else {
+                        continue;
+                    };
+                    for op in ops.iter().take(8) {
+                        match op {
+                            Op::Get => get(s, id),
+                            Op::Set(body) => set(s, id, body),
+                            Op::Push(force) => push(s, id, *force),
+                            Op::Step(n) => {
+                                sw_surface_step(s, *n as u32 % 8);
+                            }
+                            Op::Remove => remove(s, id),
+                        }
+                    }
+                }
+                Call::FloaterIds(h, len) => {
+                    let s = pick(h, &live, &dead);
+                    let mut count = usize::MAX;
+                    let mut b = Buffer::new(*len as usize % 8, 0u64, u64::MAX - 1);
+                    let status = sw_surface_floater_ids(s, b.ptr(), b.len, &mut count);
+                    if status == SW_OK {
+                        assert_eq!(count, floater_count(s));
+                        // In the order they were added: increasing.
+                        assert!(b.data[..count].windows(2).all(|w| w[0] < w[1]));
+                    } else if status == SW_ERROR_BUFFER_TOO_SMALL {
+                        assert!(count > b.len);
+                    }
+                    b.check();
+                }
+                Call::Buoyancy(h, [gravity, density]) => {
+                    let s = pick(h, &live, &dead);
+                    let b = SwBuoyancy {
+                        gravity: *gravity,
+                        density: *density,
+                    };
+                    if unchanged_unless_ok(s, || sw_surface_set_buoyancy(s, &b)) == SW_OK {
+                        let mut back = SwBuoyancy::default();
+                        assert_eq!(sw_surface_get_buoyancy(s, &mut back), SW_OK);
+                        assert_eq!(back, b);
                     }
                 }
             }

@@ -48,14 +48,18 @@ impl Surface {
     /// out of range ([`Floater::validate`]) or when the water under the bodies would need
     /// a smaller timestep than `params().dt` ([`Surface::critical_dt`]).
     pub fn add_floater(&mut self, body: Floater) -> Result<FloaterId> {
-        body.validate()?;
         let body = Floater {
             water_force: Vec3::ZERO,
             ..body
         };
+        body.validate()?;
         params::check_dt(self.params.dt, self.limit_with(self.floaters.buoyancy))?;
         let id = FloaterId(self.floaters.next_id);
-        self.floaters.next_id += 1;
+        self.floaters.next_id = id.0.checked_add(1).ok_or(Error::InvalidParam {
+            name: "floater id",
+            value: id.0 as f64,
+            expected: "fewer than 2^64 − 1 floaters ever added to one surface",
+        })?;
         self.floaters.bodies.push((id, body));
         Ok(id)
     }
@@ -72,10 +76,15 @@ impl Surface {
         Ok(&self.floaters.bodies[k].1)
     }
 
-    /// Replaces a body's state (teleport it, change its mass or shape). Validated like
-    /// [`Surface::add_floater`]; on error nothing changes.
+    /// Replaces a body's state (teleport it, change its mass or shape); its read-only
+    /// [`Floater::water_force`] is kept. Validated like [`Surface::add_floater`]; on error
+    /// nothing changes.
     pub fn set_floater(&mut self, id: FloaterId, body: Floater) -> Result<()> {
         let k = self.floaters.index(id)?;
+        let body = Floater {
+            water_force: self.floaters.bodies[k].1.water_force,
+            ..body
+        };
         body.validate()?;
         self.floaters.bodies[k].1 = body;
         Ok(())
@@ -211,7 +220,16 @@ impl Surface {
             let velocity = floater::solve(&body, &scratch.under, gravity, dt, &mut scratch.forces);
             let force: Vec3 = scratch.forces.iter().sum();
             let position = body.position + dt * velocity;
-            if !(force.is_finite() && velocity.is_finite() && position.is_finite()) {
+            // The body must stay a valid body (finite, and within the ranges a snapshot
+            // accepts), or the step is refused.
+            let moved = Floater {
+                position,
+                velocity,
+                push: Vec3::ZERO,
+                water_force: force,
+                ..body
+            };
+            if moved.validate().is_err() {
                 return Err(Error::FloaterNonFinite {
                     step: self.steps(),
                     floater: id.0,

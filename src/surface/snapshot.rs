@@ -549,6 +549,7 @@ impl Snapshot {
             body.validate()
                 .map_err(|e| bad(format!("floater {}: {e}", id.0)))?;
             if previous.is_some_and(|p| p >= id.0) || id.0 >= self.next_floater_id {
+                // (So the next id is above 0 and every stored id below `u64::MAX`.)
                 return Err(bad(format!(
                     "floater {}: ids must increase and stay below the next id {}",
                     id.0, self.next_floater_id

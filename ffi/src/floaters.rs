@@ -1,0 +1,368 @@
+//! Floating bodies from C: spheres and boxes that ride the waves and push back into them
+//! (the library's `Floater`, whose docs explain the model). Units are the surface's: world
+//! units for lengths, the lattice's mass units, model time for velocities (world units per
+//! unit of model time) and forces.
+
+use crate::handle;
+use crate::status::{guard, Failure, Outcome, SwStatus};
+use crate::{need, out_ref, out_slice, read_into, SwSurface};
+use glam::Vec3;
+use springwater::{Buoyancy, Floater, FloaterId, Shape};
+
+/// The shape of a floating body (`SW_SHAPE_*`).
+pub type SwShape = i32;
+/// A ball of `SwFloater::radius`.
+pub const SW_SHAPE_SPHERE: SwShape = 0;
+/// A box aligned with the water's axes (bodies do not rotate) of `SwFloater::half_extents`.
+pub const SW_SHAPE_BOX: SwShape = 1;
+
+/// A floating body's id on its surface, never reused by that surface (also not after the
+/// body is removed, or across a snapshot).
+pub type SwFloaterId = u64;
+
+/// A floating body: `sw_floater_sphere()` and `sw_floater_box()` make one at rest with the
+/// default drag. Plain data: hand it to `sw_surface_add_floater`, read it back with
+/// `sw_surface_get_floater`.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SwFloater {
+    /// `SW_SHAPE_SPHERE` or `SW_SHAPE_BOX`.
+    pub shape: SwShape,
+    /// The sphere's radius, world units (> 0, at most 1e9). Ignored for a box, read back as
+    /// 0.
+    pub radius: f32,
+    /// The box's half size along x, y and z, world units (each > 0, at most 1e9). Ignored
+    /// for a sphere, read back as 0.
+    pub half_extents: [f32; 3],
+    /// Mass, in the lattice's mass units (> 0; a node has `SwParams::mass`).
+    pub mass: f32,
+    /// Drag rate per unit of model time (0 to 1e6): the drag is this times the mass of the
+    /// displaced water times the velocity relative to the water.
+    pub drag: f32,
+    /// Centre in the water's local space (the calm surface is y = 0), world units (each
+    /// component at most 1e15 in magnitude).
+    pub position: [f32; 3],
+    /// Velocity, world units per unit of model time (each component at most 1e9 in
+    /// magnitude).
+    pub velocity: [f32; 3],
+    /// External force (an engine, the wind, a player's push) for the next step only, cleared
+    /// by it; `sw_surface_push_floater` adds to it. Finite.
+    pub push: [f32; 3],
+    /// Read only: the force the water exerted on the body during its last step (buoyancy and
+    /// drag, without gravity and push); the water got exactly minus this. Ignored on input:
+    /// a body added starts at 0, a body set keeps its current value.
+    pub water_force: [f32; 3],
+}
+
+/// The world the bodies of a surface float in; `sw_buoyancy_default()` gives the defaults.
+#[repr(C)]
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct SwBuoyancy {
+    /// Gravity pulling bodies down (−y), world units per unit of model time² (0 to 1e6;
+    /// default 0.1).
+    pub gravity: f32,
+    /// Density of the water, mass units per cubic world unit (0 to 1e6; default 1: the
+    /// seed's node mass 4 per cell is a layer 4 cells deep).
+    pub density: f32,
+}
+
+/// A sphere of `radius` and `mass` centred at `(x, y, z)`, at rest, with the default drag
+/// (0.25). Not checked here: `sw_surface_add_floater` checks it.
+#[no_mangle]
+pub extern "C" fn sw_floater_sphere(radius: f32, mass: f32, x: f32, y: f32, z: f32) -> SwFloater {
+    c_floater(&Floater::sphere(radius, mass, [x, y, z]))
+}
+
+/// A box of half extents `(half_x, half_y, half_z)` and `mass` centred at `(x, y, z)`, at
+/// rest, with the default drag (0.25). Not checked here: `sw_surface_add_floater` checks
+/// it.
+#[no_mangle]
+pub extern "C" fn sw_floater_box(
+    half_x: f32,
+    half_y: f32,
+    half_z: f32,
+    mass: f32,
+    x: f32,
+    y: f32,
+    z: f32,
+) -> SwFloater {
+    c_floater(&Floater::cuboid([half_x, half_y, half_z], mass, [x, y, z]))
+}
+
+/// The default gravity and water density.
+#[no_mangle]
+pub extern "C" fn sw_buoyancy_default() -> SwBuoyancy {
+    c_buoyancy(Buoyancy::default())
+}
+
+/// Adds a floating body and writes its id to `id`. The body steps with every step and
+/// substep of the surface and is part of its snapshots. Refused (nothing changes) when a
+/// field is out of range or the shape code is unknown, or when the water under the bodies
+/// would need a smaller timestep than the surface's `dt` (a stiff waterline: large gravity
+/// times density).
+///
+/// # Safety
+///
+/// `floater` and `id` are NULL or valid pointers.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_add_floater(
+    surface: *mut SwSurface,
+    floater: *const SwFloater,
+    id: *mut SwFloaterId,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
+        let body = rust_floater(unsafe { floater.as_ref() })?;
+        let id = out_ref(id, "id")?;
+        *id = handle::with(surface, |w| Ok(w.surface.add_floater(body)?.0))?;
+        Ok(())
+    })
+}
+
+/// Removes a floating body; its id stays unused. An unknown id is
+/// `SW_ERROR_NO_SUCH_FLOATER`.
+#[no_mangle]
+pub extern "C" fn sw_surface_remove_floater(surface: *mut SwSurface, id: SwFloaterId) -> SwStatus {
+    guard(|| {
+        handle::with(surface, |w| {
+            w.surface.remove_floater(FloaterId(id))?;
+            Ok(())
+        })
+    })
+}
+
+/// Writes a floating body's current state to `out`. An unknown id is
+/// `SW_ERROR_NO_SUCH_FLOATER`.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_get_floater(
+    surface: *const SwSurface,
+    id: SwFloaterId,
+    out: *mut SwFloater,
+) -> SwStatus {
+    read_into(surface, out, |w| {
+        Ok(c_floater(w.surface.floater(FloaterId(id))?))
+    })
+}
+
+/// Replaces a floating body's state (teleport it, change its velocity, mass, drag or
+/// shape), checked like `sw_surface_add_floater`; `water_force` is ignored and keeps the
+/// body's current value. An unknown id is `SW_ERROR_NO_SUCH_FLOATER`. On error nothing
+/// changes.
+///
+/// # Safety
+///
+/// `floater` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_set_floater(
+    surface: *mut SwSurface,
+    id: SwFloaterId,
+    floater: *const SwFloater,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
+        let body = rust_floater(unsafe { floater.as_ref() })?;
+        handle::with(surface, |w| {
+            let id = FloaterId(id);
+            let water_force = w.surface.floater(id)?.water_force;
+            Ok(w.surface.set_floater(
+                id,
+                Floater {
+                    water_force,
+                    ..body
+                },
+            )?)
+        })
+    })
+}
+
+/// Adds the force `(fx, fy, fz)` to a floating body for the next step only (an engine, the
+/// wind, a player's push); pushes add up until that step. Refused (nothing changes) when a
+/// component, or the sum with what was pushed before, is not finite. An unknown id is
+/// `SW_ERROR_NO_SUCH_FLOATER`.
+#[no_mangle]
+pub extern "C" fn sw_surface_push_floater(
+    surface: *mut SwSurface,
+    id: SwFloaterId,
+    fx: f32,
+    fy: f32,
+    fz: f32,
+) -> SwStatus {
+    guard(|| {
+        handle::with(surface, |w| {
+            Ok(w.surface.push_floater(FloaterId(id), [fx, fy, fz])?)
+        })
+    })
+}
+
+/// Writes the number of floating bodies on the surface to `out`.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_floater_count(
+    surface: *const SwSurface,
+    out: *mut usize,
+) -> SwStatus {
+    read_into(surface, out, |w| Ok(w.surface.floaters().len()))
+}
+
+/// Copies the ids of the surface's floating bodies, in the order they were added (ids
+/// increase along it), to `ids` and writes their number to `count`. With `ids` NULL only
+/// `count` is written (ask the size first); a `len` smaller than the number of bodies is
+/// `SW_ERROR_BUFFER_TOO_SMALL`, with `count` still written.
+///
+/// # Safety
+///
+/// `ids` is NULL or points to `len` writable ids; `count` is NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_floater_ids(
+    surface: *const SwSurface,
+    ids: *mut SwFloaterId,
+    len: usize,
+    count: *mut usize,
+) -> SwStatus {
+    guard(|| {
+        let count = out_ref(count, "count")?;
+        handle::with(surface, |w| {
+            let bodies = w.surface.floaters();
+            *count = bodies.len();
+            if ids.is_null() {
+                return Ok(());
+            }
+            need(len, bodies.len(), "ids")?;
+            // SAFETY: the caller gives `len ≥ bodies.len()` ids.
+            let out = unsafe { out_slice(ids, bodies.len(), "ids") }?;
+            for (o, (id, _)) in out.iter_mut().zip(bodies) {
+                *o = id.0;
+            }
+            Ok(())
+        })
+    })
+}
+
+/// Writes the gravity and water density the surface's bodies float in to `out`.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_get_buoyancy(
+    surface: *const SwSurface,
+    out: *mut SwBuoyancy,
+) -> SwStatus {
+    read_into(surface, out, |w| Ok(c_buoyancy(w.surface.buoyancy())))
+}
+
+/// Sets the gravity and water density for every body of the surface. Refused (nothing
+/// changes) when a field is out of range, or when bodies float and the stiffer waterline
+/// would need a smaller timestep than the surface's `dt`.
+///
+/// # Safety
+///
+/// `buoyancy` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_set_buoyancy(
+    surface: *mut SwSurface,
+    buoyancy: *const SwBuoyancy,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
+        let b = unsafe { buoyancy.as_ref() }.ok_or_else(|| Failure::null("buoyancy"))?;
+        let b = Buoyancy {
+            gravity: b.gravity,
+            density: b.density,
+        };
+        handle::with(surface, |w| Ok(w.surface.set_buoyancy(b)?))
+    })
+}
+
+/// The one conversion of `Floater` to `SwFloater`; [`rust_floater`] is its inverse except
+/// for `water_force`, which is output only.
+fn c_floater(f: &Floater) -> SwFloater {
+    let (shape, radius, half_extents) = match f.shape {
+        Shape::Sphere { radius } => (SW_SHAPE_SPHERE, radius, [0.0; 3]),
+        Shape::Box { half_extents } => (SW_SHAPE_BOX, 0.0, half_extents.to_array()),
+    };
+    SwFloater {
+        shape,
+        radius,
+        half_extents,
+        mass: f.mass,
+        drag: f.drag,
+        position: f.position.to_array(),
+        velocity: f.velocity.to_array(),
+        push: f.push.to_array(),
+        water_force: f.water_force.to_array(),
+    }
+}
+
+/// The body `f` describes, with a zero water force; the library checks its fields when it
+/// takes it.
+fn rust_floater(f: Option<&SwFloater>) -> Outcome<Floater> {
+    let f = f.ok_or_else(|| Failure::null("floater"))?;
+    let shape = match f.shape {
+        SW_SHAPE_SPHERE => Shape::Sphere { radius: f.radius },
+        SW_SHAPE_BOX => Shape::Box {
+            half_extents: Vec3::from_array(f.half_extents),
+        },
+        other => {
+            return Err(Failure::invalid(format!(
+                "floater shape = {other} is invalid: use SW_SHAPE_SPHERE (0) or SW_SHAPE_BOX (1)"
+            )))
+        }
+    };
+    Ok(Floater {
+        shape,
+        mass: f.mass,
+        drag: f.drag,
+        position: Vec3::from_array(f.position),
+        velocity: Vec3::from_array(f.velocity),
+        push: Vec3::from_array(f.push),
+        water_force: Vec3::ZERO,
+    })
+}
+
+fn c_buoyancy(b: Buoyancy) -> SwBuoyancy {
+    SwBuoyancy {
+        gravity: b.gravity,
+        density: b.density,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn floaters_convert_both_ways_except_the_water_force() {
+        let mut ball = Floater::sphere(1.5, 2.0, [3.0, -0.5, 4.0]);
+        ball.velocity = Vec3::new(0.1, 0.2, -0.3);
+        ball.push = Vec3::new(1.0, 0.0, -1.0);
+        let boxy = Floater::cuboid([1.0, 0.5, 2.0], 3.0, [5.0, 0.0, 6.0]);
+        for f in [ball, boxy] {
+            let c = c_floater(&Floater {
+                water_force: Vec3::new(0.0, 9.0, 0.0),
+                ..f
+            });
+            assert_eq!(c.water_force, [0.0, 9.0, 0.0]);
+            assert_eq!(rust_floater(Some(&c)).unwrap(), f);
+        }
+        assert_eq!(c_floater(&ball).half_extents, [0.0; 3]);
+        assert_eq!(c_floater(&boxy).radius, 0.0);
+        assert_eq!(
+            sw_floater_sphere(1.5, 2.0, 3.0, -0.5, 4.0),
+            c_floater(&Floater::sphere(1.5, 2.0, [3.0, -0.5, 4.0]))
+        );
+        let bad = SwFloater {
+            shape: 2,
+            ..c_floater(&ball)
+        };
+        assert!(rust_floater(Some(&bad)).is_err());
+        assert!(rust_floater(None).is_err());
+    }
+}
