@@ -43,6 +43,9 @@ pub(crate) struct State {
     pub ext: Xyz,
     /// True when `ext` holds anything non-zero.
     pub ext_pending: bool,
+    /// Every node whose `ext` may be non-zero, while there are few of them (`None`: any
+    /// node may be). Lets a step clear a few forces without rewriting the whole buffer.
+    pub ext_nodes: Option<Vec<usize>>,
     /// Nodal mass `m`.
     pub mass: Floats,
     /// `1/m` for free nodes, `0` for pinned nodes: the integrator's only use of mass.
@@ -87,6 +90,7 @@ impl State {
             next_vel: zeros3(len),
             ext: zeros3(len),
             ext_pending: false,
+            ext_nodes: Some(Vec::new()),
             mass,
             inv_mass: Floats::zeros(len),
             viscosity,
@@ -131,10 +135,42 @@ impl State {
     /// Clears the external force buffer after it has been applied.
     pub fn clear_ext(&mut self) {
         if self.ext_pending {
-            for c in &mut self.ext {
-                c.fill(0.0);
+            match &mut self.ext_nodes {
+                Some(nodes) => {
+                    for &i in nodes.iter() {
+                        for c in &mut self.ext {
+                            c[i] = 0.0;
+                        }
+                    }
+                    nodes.clear();
+                }
+                None => {
+                    for c in &mut self.ext {
+                        c.fill(0.0);
+                    }
+                    self.ext_nodes = Some(Vec::new());
+                }
             }
             self.ext_pending = false;
         }
+    }
+
+    /// Notes that `ext[node]` was written.
+    pub fn touch_ext(&mut self, node: usize) {
+        self.ext_pending = true;
+        let limit = self.len() / 16;
+        if let Some(nodes) = &mut self.ext_nodes {
+            if nodes.len() < limit {
+                nodes.push(node);
+            } else {
+                self.ext_nodes = None;
+            }
+        }
+    }
+
+    /// Notes that `ext` was written anywhere.
+    pub fn touch_all_ext(&mut self) {
+        self.ext_pending = true;
+        self.ext_nodes = None;
     }
 }

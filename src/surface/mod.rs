@@ -620,13 +620,13 @@ impl Surface {
         for (k, f) in sum.into_iter().enumerate() {
             self.state.ext[k][node] = f;
         }
-        self.state.ext_pending = true;
+        self.state.touch_ext(node);
         Ok(())
     }
 
     /// Discards the pending external forces (for example after a step refused them).
     pub fn clear_forces(&mut self) {
-        self.state.ext_pending = true;
+        self.state.touch_all_ext();
         self.state.clear_ext();
     }
 
@@ -671,7 +671,7 @@ impl Surface {
         for (dst, src) in self.state.ext.iter_mut().zip(force) {
             dst[..n].copy_from_slice(src);
         }
-        self.state.ext_pending = true;
+        self.state.touch_all_ext();
         Ok(())
     }
 

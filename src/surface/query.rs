@@ -203,7 +203,9 @@ impl Surface {
                 self.state.ext[c][corners[k]] = f;
             }
         }
-        self.state.ext_pending = true;
+        for i in corners {
+            self.state.touch_ext(i);
+        }
         Ok(())
     }
 

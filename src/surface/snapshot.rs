@@ -700,7 +700,9 @@ impl Surface {
         fill3(&mut state.next_pos, &snap.positions);
         fill3(&mut state.vel, &snap.velocities);
         fill3(&mut state.ext, &snap.forces);
-        state.ext_pending = snap.forces_pending;
+        if snap.forces_pending {
+            state.touch_all_ext();
+        }
         state.mass[..n].copy_from_slice(&snap.mass);
         state.viscosity[..n].copy_from_slice(&snap.viscosity);
         state.pinned.copy_from_slice(&snap.pinned);
