@@ -9,9 +9,9 @@
 //!
 //! # The model, per step of `Δt`
 //!
-//! **Columns.** The body's footprint is cut into vertical columns about one grid cell
-//! wide (at most 8 × 8): a square lattice over the box's footprint, or over the sphere's
-//! disc keeping the columns whose centre lies inside it. A column at `(x, z)` spans the
+//! **Columns.** The body's footprint is cut into vertical columns at most one grid cell
+//! wide: a square lattice over the box's footprint, or over the sphere's disc keeping the
+//! columns whose centre lies inside it. Bodies are at most [`MAX_CELLS`] cells across. A column at `(x, z)` spans the
 //! body's thickness there, from `y − L/2` to `y + L/2` (`L = 2·sqrt(R² − ρ²)` for a
 //! sphere, `ρ` the column's distance from the centre; the box's height for a box). Column
 //! areas are scaled so that the columns' volume is exactly the body's.
@@ -182,6 +182,14 @@ impl Floater {
                 }
             }
         }
+        let volume = self.shape.volume();
+        if volume.is_nan() || volume < f32::MIN_POSITIVE {
+            return Err(Error::InvalidParam {
+                name: "floater volume",
+                value: volume as f64,
+                expected: "at least 1.2e-38 (smaller bodies underflow)",
+            });
+        }
         params::positive("floater mass", self.mass)?;
         if !(1.0 / self.mass).is_finite() {
             return Err(Error::InvalidParam {
@@ -191,16 +199,31 @@ impl Floater {
             });
         }
         params::non_negative("floater drag", self.drag)?;
-        bounded("floater drag", self.drag, MAX_RATE)?;
-        for (name, v, max) in [
-            ("floater position", self.position, params::MAX_EXTENT as f32),
-            ("floater velocity", self.velocity, MAX_SPEED),
-            ("floater push", self.push, f32::MAX),
-            ("floater water force", self.water_force, f32::MAX),
+        bounded("floater drag", self.drag, MAX_RATE, RATE)?;
+        for (name, v, max, expected) in [
+            (
+                "floater position",
+                self.position,
+                params::MAX_EXTENT as f32,
+                "components within the largest grid extent, 1e15",
+            ),
+            (
+                "floater velocity",
+                self.velocity,
+                MAX_SPEED,
+                "components of at most 1e9 (world units per model time)",
+            ),
+            ("floater push", self.push, f32::MAX, "finite components"),
+            (
+                "floater water force",
+                self.water_force,
+                f32::MAX,
+                "finite components",
+            ),
         ] {
             for c in v.to_array() {
                 params::finite(name, c)?;
-                bounded(name, c.abs(), max)?;
+                bounded(name, c.abs(), max, expected)?;
             }
         }
         Ok(())
@@ -214,21 +237,20 @@ const MAX_SPEED: f32 = 1e9;
 /// Largest drag rate, per unit of model time.
 const MAX_RATE: f32 = 1e6;
 
-fn bounded(name: &'static str, v: f32, max: f32) -> Result<()> {
+/// `v ≤ max`, else an error saying `expected`.
+fn bounded(name: &'static str, v: f32, max: f32, expected: &'static str) -> Result<()> {
     if v <= max {
         Ok(())
     } else {
         Err(Error::InvalidParam {
             name,
             value: v as f64,
-            expected: match max {
-                MAX_SPEED => "components of at most 1e9 (world units per model time)",
-                MAX_RATE => "at most 1e6 per unit of model time",
-                _ => "components within the largest grid extent, 1e15",
-            },
+            expected,
         })
     }
 }
+
+const RATE: &str = "at most 1e6 per unit of model time";
 
 /// The world the bodies float in: gravity and the water's density, for every body of a
 /// surface ([`Surface::set_buoyancy`]).
@@ -257,9 +279,9 @@ impl Buoyancy {
     /// Checks both fields: finite, ≥ 0 and at most 1e6.
     pub fn validate(&self) -> Result<()> {
         params::non_negative("gravity", self.gravity)?;
-        bounded("gravity", self.gravity, MAX_RATE)?;
+        bounded("gravity", self.gravity, MAX_RATE, RATE)?;
         params::non_negative("water density", self.density)?;
-        bounded("water density", self.density, MAX_RATE)
+        bounded("water density", self.density, MAX_RATE, "at most 1e6")
     }
 
     /// The stiffness `ρ_w g h²` a column of one cell adds to the nodes under it.
@@ -283,8 +305,32 @@ pub(crate) struct Column {
     pub length: f32,
 }
 
-/// Most columns per side of a body's footprint.
-const MAX_COLUMNS: usize = 8;
+/// Most columns per side of a body's footprint: columns stay at most one cell wide for
+/// bodies up to [`MAX_CELLS`] cells across.
+const MAX_COLUMNS: usize = 64;
+
+/// The widest footprint a body may have, in cells of the grid it floats on
+/// ([`Surface::add_floater`] refuses wider ones): a column wider than a cell would push a
+/// whole cell's buoyancy and drag into one node, which the water's timestep cannot carry.
+pub const MAX_CELLS: f32 = MAX_COLUMNS as f32;
+
+/// Checks that `shape` is at most [`MAX_CELLS`] cells of `spacing` across in x and z.
+pub(crate) fn check_footprint(shape: &Shape, spacing: f32) -> Result<()> {
+    let (x, z) = match *shape {
+        Shape::Sphere { radius } => (radius, radius),
+        Shape::Box { half_extents: e } => (e.x, e.z),
+    };
+    let widest = 2.0 * x.max(z);
+    if widest <= MAX_CELLS * spacing {
+        Ok(())
+    } else {
+        Err(Error::InvalidParam {
+            name: "floater size",
+            value: widest as f64,
+            expected: "a footprint at most 64 grid cells across (in x and z)",
+        })
+    }
+}
 
 /// The columns of `shape` for a grid of `spacing`, about one cell wide each.
 pub(crate) fn columns(shape: &Shape, spacing: f32, out: &mut Vec<Column>) {

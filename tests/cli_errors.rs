@@ -309,3 +309,57 @@ fn a_run_that_goes_non_finite_fails_in_one_line_and_leaves_no_outputs() {
     refused(&args, "non-finite");
     assert!(!snap.exists() && !csv.exists());
 }
+
+#[test]
+fn open_water_and_floater_flags_are_checked() {
+    refused(&["simulate", "--boundary", "absorbing:0"], "--boundary");
+    refused(
+        &["simulate", "--size", "40x40", "--boundary", "absorbing"],
+        "absorbing width",
+    );
+    refused(&["simulate", "--boundary", "absorbing:x"], "WIDTH");
+    refused(&["simulate", "--boundary", "absorbent"], "--boundary");
+    refused(&["simulate", "--floater", "1,2,3"], "--floater");
+    refused(&["simulate", "--floater", "10,10,0,2"], "floater mass");
+    refused(&["simulate", "--floater", "10,10,1,nan"], "--floater");
+    refused(&["render", "--floaters", "-1"], "--floaters");
+}
+
+#[test]
+fn simulate_prints_one_line_per_floater_in_the_order_given() {
+    let out = springwater(&[
+        "simulate",
+        "--size",
+        "80x80",
+        "--boundary",
+        "absorbing:16",
+        "--steps",
+        "200",
+        "--floater",
+        "40,40,8,2",
+        "--floater",
+        "20.5,30,1,1",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = String::from_utf8(out.stdout).unwrap();
+    let lines: Vec<&str> = text.lines().filter(|l| l.starts_with("floater ")).collect();
+    assert_eq!(lines.len(), 2, "{text}");
+    for (k, (line, x)) in lines.iter().zip([40.0f32, 20.5]).enumerate() {
+        let words: Vec<&str> = line.split(' ').collect();
+        assert_eq!(
+            words[..3],
+            ["floater", &*k.to_string(), "position"],
+            "{line}"
+        );
+        assert_eq!(words[6], "velocity", "{line}");
+        let v: Vec<f32> = [3, 4, 5, 7, 8, 9]
+            .map(|i| words[i].parse().unwrap())
+            .to_vec();
+        assert!((v[0] - x).abs() < 0.5, "{line}: the ball drifted");
+        assert!(v.iter().all(|c| c.is_finite()), "{line}");
+    }
+}

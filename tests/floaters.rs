@@ -382,24 +382,17 @@ fn bad_bodies_are_refused_and_change_nothing() {
 
 #[test]
 fn a_step_whose_bodies_blow_up_changes_nothing() {
-    // A fine grid leaves room for a dense, strongly pulled water; a box of the largest
-    // size then displaces more than f32 can weigh. The step is refused: bodies, water and
-    // pending forces untouched.
-    let mut s = Surface::new(Params {
-        spacing: 1e-6,
-        ..Params::with_size(32, 32)
-    })
-    .unwrap();
+    // A body pushed hard enough to leave every valid range in one step: the step is
+    // refused, and the water, its pending forces, the other body's reactions already
+    // written and every body are untouched.
+    let mut s = Surface::new(Params::with_size(32, 32)).unwrap();
     s.add_force(100, [0.0, 1.0, 0.0]).unwrap();
-    s.set_buoyancy(Buoyancy {
-        gravity: 1e6,
-        density: 1e5,
-    })
-    .unwrap();
-    s.add_floater(Floater::sphere(1e-6, 1e-12, [16e-6, 0.0, 16e-6]))
+    s.add_floater(Floater::sphere(2.0, 5.0, [16.0, 0.0, 16.0]))
         .unwrap();
-    s.add_floater(Floater::cuboid([1e9, 1e9, 1e9], 1.0, [0.0, 0.0, 0.0]))
+    let thrown = s
+        .add_floater(Floater::cuboid([1.0, 0.5, 1.0], 1.0, [8.0, 0.0, 8.0]))
         .unwrap();
+    s.push_floater(thrown, [0.0, -f32::MAX, 0.0]).unwrap();
     let before = s.to_bytes();
     let err = s.step().unwrap_err();
     assert!(
@@ -407,6 +400,48 @@ fn a_step_whose_bodies_blow_up_changes_nothing() {
         "{err}"
     );
     assert_eq!(s.to_bytes(), before);
+    // Without the push the same surface steps.
+    s.set_floater(
+        thrown,
+        Floater::cuboid([1.0, 0.5, 1.0], 1.0, [8.0, 0.0, 8.0]),
+    )
+    .unwrap();
+    s.step().unwrap();
+}
+
+#[test]
+fn bodies_wider_than_64_cells_are_refused() {
+    let mut s = Surface::new(Params::with_size(200, 200)).unwrap();
+    assert!(s
+        .add_floater(Floater::sphere(32.0, 1.0, [100.0, 0.0, 100.0]))
+        .is_ok());
+    let err = s.add_floater(Floater::sphere(32.5, 1.0, [100.0, 0.0, 100.0]));
+    assert!(
+        matches!(
+            err,
+            Err(Error::InvalidParam {
+                name: "floater size",
+                ..
+            })
+        ),
+        "{err:?}"
+    );
+    // Tall is fine: the limit is the footprint.
+    assert!(s
+        .add_floater(Floater::cuboid([2.0, 500.0, 2.0], 10.0, [50.0, 0.0, 50.0]))
+        .is_ok());
+}
+
+#[test]
+fn a_large_body_keeps_the_water_stable() {
+    // 64 cells across: columns of one cell, the water carries it at the seed's timestep.
+    let mut s = Surface::new(Params::with_size(128, 128)).unwrap();
+    let mut raft = Floater::sphere(16.0, 1.0, [64.0, 8.0, 64.0]);
+    raft.mass = 0.5 * raft.shape.volume();
+    raft.drag = 2.0;
+    s.add_floater(raft).unwrap();
+    s.step_n(2000).unwrap();
+    assert!(s.energy().total().is_finite());
 }
 
 #[test]

@@ -114,9 +114,24 @@ impl Default for BuoyancySettings {
     }
 }
 
-/// Which water and floater each body is.
+/// Which water and floater each body is, and the component values the plugin last wrote
+/// (so that a body the game did not touch is not converted back and forth every frame).
 #[derive(Resource, Debug, Default)]
-pub(crate) struct Bodies(HashMap<Entity, (Entity, FloaterId)>);
+pub(crate) struct Bodies(HashMap<Entity, Link>);
+
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Link {
+    water: Entity,
+    id: FloaterId,
+    written: Option<(Buoyant, Vec3)>,
+}
+
+impl Bodies {
+    /// Forgets the bodies of `water` (its surface started over without them).
+    pub(crate) fn forget_water(&mut self, water: Entity) {
+        self.0.retain(|_, link| link.water != water);
+    }
+}
 
 /// The world forces of the frame, per floater, applied before every substep.
 #[derive(Debug, Default)]
@@ -140,11 +155,11 @@ pub(crate) fn sync_bodies(
     mut waters: Query<(Entity, &mut WaterSurface, &GlobalTransform)>,
     mut errors: MessageWriter<WaterError>,
 ) {
-    registry.0.retain(|&body, &mut (water, id)| {
+    registry.0.retain(|&body, link| {
         let alive = bodies.contains(body);
         if !alive {
-            if let Ok((_, mut ws, _)) = waters.get_mut(water) {
-                let _ = ws.surface.remove_floater(id);
+            if let Ok((_, mut ws, _)) = waters.get_mut(link.water) {
+                let _ = ws.surface.remove_floater(link.id);
             }
         }
         alive
@@ -164,13 +179,13 @@ pub(crate) fn sync_bodies(
     }
     for (body, buoyant, transform) in &bodies {
         let centre = transform.translation;
-        let linked = registry.0.get(&body).copied().filter(|&(water, id)| {
+        let linked = registry.0.get(&body).copied().filter(|link| {
             waters
-                .get(water)
-                .is_ok_and(|(_, ws, _)| ws.surface.floater(id).is_ok())
+                .get(link.water)
+                .is_ok_and(|(_, ws, _)| ws.surface.floater(link.id).is_ok())
         });
         let water = match linked {
-            Some((water, _)) => water,
+            Some(link) => link.water,
             None => {
                 let under = waters.iter().find(|(_, ws, global)| {
                     let p = Space::new(global).local_point(centre);
@@ -189,12 +204,15 @@ pub(crate) fn sync_bodies(
         let ts = ws.surface.params().time_scale;
         let floater = buoyant.floater(centre, &space, ts);
         let done = match linked {
-            Some((_, id)) => ws.surface.set_floater(id, floater).map(|()| id),
+            // Untouched since the plugin wrote it: the library's state is the exact one.
+            Some(link) if link.written == Some((*buoyant, centre)) => Ok(link.id),
+            Some(link) => ws.surface.set_floater(link.id, floater).map(|()| link.id),
             None => ws.surface.add_floater(floater),
         };
         match done {
             Ok(id) => {
-                registry.0.insert(body, (water, id));
+                let written = linked.and_then(|link| link.written);
+                registry.0.insert(body, Link { water, id, written });
                 let push = space.local_vector(buoyant.force) / (ts * ts);
                 ws.pushes
                     .0
@@ -210,20 +228,24 @@ pub(crate) fn sync_bodies(
 
 /// Moves every body's `Transform` and `Buoyant` to where its water left it.
 pub(crate) fn write_bodies(
-    registry: Res<Bodies>,
+    mut registry: ResMut<Bodies>,
     mut bodies: Query<(Entity, &mut Buoyant, &mut Transform)>,
     waters: Query<(&WaterSurface, &GlobalTransform)>,
 ) {
     for (body, mut buoyant, mut transform) in &mut bodies {
-        let Some(&(water, id)) = registry.0.get(&body) else {
+        let Some(link) = registry.0.get_mut(&body) else {
             continue;
         };
-        let Ok((ws, global)) = waters.get(water) else {
+        let Ok((ws, global)) = waters.get(link.water) else {
             continue;
         };
-        let Ok(f) = ws.surface.floater(id) else {
+        let Ok(f) = ws.surface.floater(link.id) else {
             continue;
         };
+        if ws.substeps == 0 {
+            // Nothing stepped (paused, a zero frame, a failed step): the push waits.
+            continue;
+        }
         let space = Space::new(global);
         let ts = ws.surface.params().time_scale;
         let world = |v: springwater::glam::Vec3| space.world_vector(Vec3::from_array(v.to_array()));
@@ -231,5 +253,6 @@ pub(crate) fn write_bodies(
         buoyant.velocity = world(f.velocity) * ts;
         buoyant.water_force = world(f.water_force) * (ts * ts);
         buoyant.force = Vec3::ZERO;
+        link.written = Some((*buoyant, transform.translation));
     }
 }

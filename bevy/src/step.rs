@@ -49,6 +49,7 @@ fn make_surface(
 /// changed and rebuilds the LOD of one whose `LodParams` changed.
 pub(crate) fn create_surfaces(
     mut commands: Commands,
+    mut bodies: ResMut<crate::buoyancy::Bodies>,
     settings: Res<SpringwaterSettings>,
     mut meshes: ResMut<Assets<Mesh>>,
     new: Query<(Entity, Ref<Water>, Has<WaterFailed>), Without<WaterSurface>>,
@@ -81,6 +82,7 @@ pub(crate) fn create_surfaces(
                 Ok(fresh) => {
                     info!("springwater: parameters of {entity} changed, the surface starts over");
                     *surface = fresh;
+                    bodies.forget_water(entity);
                     commands.entity(entity).try_insert(bounds(water));
                 }
                 Err(e) => report(&mut errors, entity, "new water parameters refused", &e),

@@ -401,3 +401,47 @@ fn a_buoyant_body_is_the_librarys_floater_and_goes_with_its_entity() {
     run(&mut app, 1);
     assert!(floaters(&app).is_empty(), "despawning removes the floater");
 }
+
+#[test]
+fn bodies_come_back_one_each_when_the_surface_starts_over() {
+    let mut app = app(SpringwaterPlugin::default());
+    let water = app.world_mut().spawn(Water::with_size(65, 65)).id();
+    let settings = BuoyancySettings::default();
+    let spots = [(10.0, 12.0), (40.0, 30.0), (25.0, 50.0)];
+    let balls: Vec<Entity> = spots
+        .iter()
+        .map(|&(x, z)| {
+            app.world_mut()
+                .spawn((
+                    Buoyant::sphere(1.0, 0.5, &settings),
+                    Transform::from_xyz(x, 0.0, z),
+                ))
+                .id()
+        })
+        .collect();
+    run(&mut app, 30);
+    // New parameters: the surface starts over and must get every body back, once each,
+    // whatever order the bodies are visited in (moving the first body to another
+    // archetype puts it last).
+    #[derive(Component)]
+    struct Marker;
+    app.world_mut()
+        .get_mut::<Water>(water)
+        .unwrap()
+        .params
+        .viscosity = 0.1;
+    app.world_mut().entity_mut(balls[0]).insert(Marker);
+    run(&mut app, 30);
+    let ws = app.world().get::<WaterSurface>(water).unwrap();
+    let mut xs: Vec<f32> = ws.surface().floaters().map(|(_, f)| f.position.x).collect();
+    xs.sort_by(f32::total_cmp);
+    assert_eq!(xs.len(), 3, "{xs:?}");
+    for (&ball, &(x, _)) in balls.iter().zip(&spots) {
+        let t = app.world().get::<Transform>(ball).unwrap().translation;
+        assert!((t.x - x).abs() < 1.0, "{t} drifted from {x}");
+        assert!(
+            xs.iter().any(|&fx| fx == t.x),
+            "{t} has no floater of its own: {xs:?}"
+        );
+    }
+}

@@ -1,7 +1,7 @@
 //! The floating bodies of a [`Surface`]: adding, reading and pushing them, and the coupled
 //! step that moves them with the water (the model is explained in [`crate::floater`]).
 
-use super::Surface;
+use super::{Stepper, Surface};
 use crate::error::{Error, Result};
 use crate::floater::{self, Buoyancy, Column, ColumnForce, Floater, FloaterId};
 use crate::params;
@@ -53,6 +53,7 @@ impl Surface {
             ..body
         };
         body.validate()?;
+        floater::check_footprint(&body.shape, self.params.spacing)?;
         params::check_dt(self.params.dt, self.limit_with(self.floaters.buoyancy))?;
         let id = FloaterId(self.floaters.next_id);
         self.floaters.next_id = id.0.checked_add(1).ok_or(Error::InvalidParam {
@@ -86,6 +87,7 @@ impl Surface {
             ..body
         };
         body.validate()?;
+        floater::check_footprint(&body.shape, self.params.spacing)?;
         self.floaters.bodies[k].1 = body;
         Ok(())
     }
@@ -145,17 +147,16 @@ impl Surface {
     }
 
     /// One step of `dt` with the bodies: their reactions go into the external forces,
-    /// `water` steps the water, and the bodies move only if it succeeded. On any error
+    /// `stepper` steps the water, and the bodies move only if it succeeded. On any error
     /// the surface is unchanged, bodies and pending forces included.
-    pub(crate) fn floating_step(
-        &mut self,
-        dt: f32,
-        water: impl FnOnce(&mut Self) -> Result<()>,
-    ) -> Result<()> {
+    pub(crate) fn floating_step(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
         let pending = self.state.ext_pending;
+        let listed = self.state.ext_nodes.as_ref().map(Vec::len);
         let mut scratch = std::mem::take(&mut self.floaters.scratch);
         scratch.log.clear();
-        let coupled = self.couple(dt, &mut scratch).and_then(|()| water(self));
+        let coupled = self
+            .couple(dt, &mut scratch)
+            .and_then(|()| self.water_step(dt, stepper));
         match coupled {
             Ok(()) => {
                 for ((_, body), &(position, velocity, force)) in
@@ -175,6 +176,11 @@ impl Surface {
                     }
                 }
                 self.state.ext_pending = pending;
+                // The list of pushed nodes goes back too, unless the reactions overflowed
+                // it; `None` (clear every force) is then still correct.
+                if let (Some(len), Some(nodes)) = (listed, &mut self.state.ext_nodes) {
+                    nodes.truncate(len);
+                }
             }
         }
         self.floaters.scratch = scratch;
@@ -204,7 +210,7 @@ impl Surface {
                 };
                 let bottom = body.position.y - 0.5 * col.length;
                 let wet = (height - bottom).clamp(0.0, col.length);
-                let cap = 0.5 * room * col.area / (h * h);
+                let cap = 0.5 * room * (col.area / (h * h)).min(1.0);
                 scratch.under.push(ColumnForce {
                     at,
                     lift: density * gravity * wet * col.area,

@@ -281,7 +281,7 @@ impl Surface {
     /// transactional per step: if a step would make the state non-finite, the steps before
     /// it stay applied, that one is not, and its error is returned.
     pub fn step_n(&mut self, n: u64) -> Result<()> {
-        self.engine_steps(n, self.params.dt)
+        self.run_steps(n, self.params.dt)
     }
 
     /// Fixes how many steps one engine pass takes (`1..=8`, clamped; default 4). Results
@@ -303,15 +303,15 @@ impl Surface {
 
     fn step_dt(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
         if !self.floaters.bodies.is_empty() {
-            return self.floating_step(dt, |s| s.water_step(dt, stepper));
+            return self.floating_step(dt, stepper);
         }
         self.water_step(dt, stepper)
     }
 
     /// One step of the water alone.
-    fn water_step(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
+    pub(crate) fn water_step(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
         match stepper {
-            Stepper::Engine => self.engine_steps_here_or_host(1, dt),
+            Stepper::Engine => self.water_steps(1, dt),
             Stepper::Reference => {
                 let cfg = self.config(dt);
                 match forces::scalar::step(&mut self.state, &self.springs, &mut self.reference, cfg)
@@ -387,9 +387,9 @@ impl Surface {
         }
     }
 
-    /// `n` engine steps on the host's threads if they are set (see
-    /// [`Surface::set_thread_pool`], [`Surface::set_job_system`]), else where the caller is.
-    fn engine_steps(&mut self, n: u64, dt: f32) -> Result<()> {
+    /// `n` engine steps of the water and its bodies: with bodies one coupled step at a
+    /// time, without them [`Surface::water_steps`].
+    fn run_steps(&mut self, n: u64, dt: f32) -> Result<()> {
         if !self.floaters.bodies.is_empty() {
             // Bodies read the water between steps: one step at a time.
             for _ in 0..n {
@@ -397,11 +397,12 @@ impl Surface {
             }
             return Ok(());
         }
-        self.engine_steps_here_or_host(n, dt)
+        self.water_steps(n, dt)
     }
 
-    /// `n` steps of the water alone on the host's threads or the caller's.
-    fn engine_steps_here_or_host(&mut self, n: u64, dt: f32) -> Result<()> {
+    /// `n` engine steps of the water alone, on the host's threads if they are set (see
+    /// [`Surface::set_thread_pool`], [`Surface::set_job_system`]), else where the caller is.
+    fn water_steps(&mut self, n: u64, dt: f32) -> Result<()> {
         match self.host.clone() {
             #[cfg(feature = "parallel")]
             Some(Host::Pool(pool)) if pool.current_thread_index().is_none() => {
@@ -472,7 +473,7 @@ impl Surface {
     /// water before every substep.
     pub fn advance(&mut self, frame_seconds: f32) -> Result<usize> {
         let (substeps, dt) = self.split_frame(frame_seconds)?;
-        self.engine_steps(substeps as u64, dt)?;
+        self.run_steps(substeps as u64, dt)?;
         Ok(substeps)
     }
 
@@ -502,7 +503,7 @@ impl Surface {
         let (substeps, dt) = self.split_frame(frame_seconds)?;
         for _ in 0..substeps {
             disturbance.apply(self, dt)?;
-            self.engine_steps(1, dt)?;
+            self.run_steps(1, dt)?;
         }
         Ok(substeps)
     }

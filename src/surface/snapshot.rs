@@ -121,11 +121,22 @@ pub struct Snapshot {
     /// Coefficients per family (E, S, SE, SW), indexed by origin node.
     pub coef: [Vec<f32>; 4],
     /// Floating bodies with their ids, ids increasing.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub floaters: Vec<(FloaterId, Floater)>,
     /// The id the next added body gets (above every id in `floaters`).
+    #[cfg_attr(feature = "serde", serde(default))]
     pub next_floater_id: u64,
     /// Gravity and water density for the bodies.
+    #[cfg_attr(feature = "serde", serde(default))]
     pub buoyancy: Buoyancy,
+}
+
+/// The absorbing frame's width as stored (0 for the other boundaries), if it fits a `u32`.
+fn frame_width(boundary: Boundary) -> Option<u32> {
+    match boundary {
+        Boundary::Absorbing { width } => u32::try_from(width).ok(),
+        _ => Some(0),
+    }
 }
 
 /// Snapshot size in bytes for `nodes` nodes and `floaters` bodies in a format version's
@@ -168,12 +179,14 @@ impl Snapshot {
         let mut lengths = arrays.map(Vec::len).chain([self.pinned.len()]);
         match n {
             Some(n)
-                if lengths.all(|len| len == n) && u32::try_from(self.floaters.len()).is_ok() =>
+                if lengths.all(|len| len == n)
+                    && u32::try_from(self.floaters.len()).is_ok()
+                    && frame_width(self.params.boundary).is_some() =>
             {
                 Ok(self.encode())
             }
             _ => Err(bad(format!(
-                "cannot encode: the arrays do not all hold one value per node of a {}x{} grid",
+                "cannot encode: the arrays do not all hold one value per node of a {}x{} grid, or the frame width or floater count does not fit 32 bits",
                 self.params.cols, self.params.rows
             ))),
         }
@@ -207,10 +220,10 @@ impl Snapshot {
         ] {
             b.extend_from_slice(&v.to_le_bytes());
         }
-        let (boundary, width): (u32, usize) = match p.boundary {
-            Boundary::Pinned => (0, 0),
-            Boundary::Free => (1, 0),
-            Boundary::Absorbing { width } => (2, width),
+        let boundary: u32 = match p.boundary {
+            Boundary::Pinned => 0,
+            Boundary::Free => 1,
+            Boundary::Absorbing { .. } => 2,
         };
         b.extend_from_slice(&boundary.to_le_bytes());
         for v in p.acceleration {
@@ -222,8 +235,8 @@ impl Snapshot {
         b.extend_from_slice(&self.max_stiffness.to_le_bytes());
         b.extend_from_slice(&self.max_viscosity.to_le_bytes());
         b.extend_from_slice(&p.time_scale.to_le_bytes());
-        // Validation bounds the width by the grid, so it fits.
-        b.extend_from_slice(&(width as u32).to_le_bytes());
+        let width = frame_width(p.boundary).expect("checked by to_bytes or by validation");
+        b.extend_from_slice(&width.to_le_bytes());
         b.extend_from_slice(&(self.floaters.len() as u32).to_le_bytes());
         b.extend_from_slice(&self.next_floater_id.to_le_bytes());
         b.extend_from_slice(&self.buoyancy.gravity.to_le_bytes());
@@ -547,6 +560,7 @@ impl Snapshot {
         let mut previous = None;
         for (id, body) in &self.floaters {
             body.validate()
+                .and_then(|()| crate::floater::check_footprint(&body.shape, p.spacing))
                 .map_err(|e| bad(format!("floater {}: {e}", id.0)))?;
             if previous.is_some_and(|p| p >= id.0) || id.0 >= self.next_floater_id {
                 // (So the next id is above 0 and every stored id below `u64::MAX`.)
@@ -582,7 +596,7 @@ fn check_header(bytes: &[u8]) -> Result<usize> {
     }
     if bytes.len() < 12 {
         return Err(bad(format!(
-            "truncated: {} bytes, the header alone has {HEADER_V2}",
+            "truncated: {} bytes, shorter than any header ({HEADER_V2} bytes or more)",
             bytes.len()
         )));
     }
