@@ -439,9 +439,6 @@ fn bodies_come_back_one_each_when_the_surface_starts_over() {
     for (&ball, &(x, _)) in balls.iter().zip(&spots) {
         let t = app.world().get::<Transform>(ball).unwrap().translation;
         assert!((t.x - x).abs() < 1.0, "{t} drifted from {x}");
-        assert!(
-            xs.iter().any(|&fx| fx == t.x),
-            "{t} has no floater of its own: {xs:?}"
-        );
+        assert!(xs.contains(&t.x), "{t} has no floater of its own: {xs:?}");
     }
 }
