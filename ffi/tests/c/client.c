@@ -427,21 +427,22 @@ static void floating_bodies(void) {
     sw_surface_destroy(again);
     CHECK(none == NULL);
 
-    /* A step whose bodies would become non-finite is refused and changes nothing: a dense,
-     * strongly pulled water on a fine grid, and a box of the largest size. */
-    SwParams fine = sw_params_default();
-    fine.cols = 32;
-    fine.rows = 32;
-    fine.spacing = 1e-6f;
+    /* A step whose bodies would leave every valid range is refused and changes nothing:
+     * a body pushed with the largest float, beside a floating ball and a pending force. */
+    SwParams small = sw_params_default();
+    small.cols = 32;
+    small.rows = 32;
     SwSurface *blow = NULL;
-    OK(sw_surface_create(&fine, &blow));
-    OK(sw_surface_add_force_at(blow, 4e-6f, 3e-6f, 0.0f, 1.0f, 0.0f));
-    SwBuoyancy strong = {1e6f, 1e5f};
-    OK(sw_surface_set_buoyancy(blow, &strong));
-    SwFloater speck = sw_floater_sphere(1e-6f, 1e-12f, 16e-6f, 0.0f, 16e-6f);
-    SwFloater huge = sw_floater_box(1e9f, 1e9f, 1e9f, 1.0f, 0.0f, 0.0f, 0.0f);
-    OK(sw_surface_add_floater(blow, &speck, &id));
-    OK(sw_surface_add_floater(blow, &huge, &id));
+    OK(sw_surface_create(&small, &blow));
+    OK(sw_surface_add_force_at(blow, 4.0f, 3.0f, 0.0f, 1.0f, 0.0f));
+    SwFloater floating = sw_floater_sphere(2.0f, 5.0f, 16.0f, 0.0f, 16.0f);
+    SwFloater thrown = sw_floater_box(1.0f, 0.5f, 1.0f, 1.0f, 8.0f, 0.0f, 8.0f);
+    OK(sw_surface_add_floater(blow, &floating, &id));
+    OK(sw_surface_add_floater(blow, &thrown, &id));
+    OK(sw_surface_push_floater(blow, id, 0.0f, -FLT_MAX, 0.0f));
+    SwFloater too_wide = sw_floater_sphere(33.0f, 1.0f, 16.0f, 0.0f, 16.0f);
+    SwFloaterId unused = 0;
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_add_floater(blow, &too_wide, &unused));
     size_t blow_size = 0;
     uint8_t *blow_state = state_of(blow, &blow_size);
     FAILS(SW_ERROR_NON_FINITE, sw_surface_step(blow, 1));
