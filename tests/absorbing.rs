@@ -1,11 +1,12 @@
 //! The absorbing boundary: the ring test in the crate's real model (see
 //! `tests/common/ring.rs` and `docs/open-water.md`), its frame, its limits and its bits.
 
+mod common;
 #[path = "common/ring.rs"]
 mod ring;
 
 use ring::{reflection, Source};
-use springwater::{Boundary, Error, Params, SimdLevel, Stepper, Surface};
+use springwater::{Boundary, Error, Params, Surface};
 
 /// The undamped middle the ring test measures, in nodes per side.
 const MIDDLE: usize = 128;
@@ -132,40 +133,21 @@ fn absorbing_surfaces_snapshot_and_restore_bitwise() {
 
 #[test]
 fn the_absorbing_boundary_gives_the_same_bits_at_every_level_and_thread_count() {
-    let run = |level: Option<SimdLevel>, threads: usize, stepper: Stepper| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+    common::same_bits_everywhere(
+        || {
             let p = Params {
                 boundary: Boundary::Absorbing { width: 12 },
                 ..Params::with_size(70, 45)
             };
             let mut s = Surface::new(p).unwrap();
-            if let Some(level) = level {
-                s.set_simd_level(level);
-            }
             s.drop_at(20.0, 30.0, 1.5, 3.0).unwrap();
+            s
+        },
+        |s, stepper| {
             for _ in 0..50 {
                 s.step_with(stepper).unwrap();
             }
             s.step_n(37).unwrap();
-            s.to_bytes()
-        })
-    };
-    let reference = run(None, 1, Stepper::Reference);
-    for level in [
-        SimdLevel::Scalar,
-        SimdLevel::Sse2,
-        SimdLevel::Avx2,
-        SimdLevel::Avx512,
-    ] {
-        for threads in [1, 2] {
-            assert!(
-                run(Some(level), threads, Stepper::Engine) == reference,
-                "{level:?} on {threads} threads"
-            );
-        }
-    }
+        },
+    );
 }

@@ -1,10 +1,10 @@
 //! Floating bodies: action and reaction, settling, riding waves, wakes, stability at the
 //! critical timestep, snapshots, bits, and bad input.
 
+mod common;
+
 use glam::Vec3;
-use springwater::{
-    Boundary, Buoyancy, Error, Floater, FloaterId, Params, Shape, SimdLevel, Stepper, Surface,
-};
+use springwater::{Boundary, Buoyancy, Error, Floater, FloaterId, Params, Shape, Surface};
 
 /// A sphere of `radius` floating at `relative_density` of the water's, at rest at `at`.
 fn ball(s: &Surface, radius: f32, relative_density: f32, at: [f32; 3]) -> Floater {
@@ -262,38 +262,19 @@ fn many_bodies_stay_stable_at_099_of_the_critical_timestep() {
 
 #[test]
 fn bodies_step_with_the_same_bits_at_every_level_thread_count_and_stepper() {
-    let run = |level: Option<SimdLevel>, threads: usize, stepper: Stepper| {
-        let pool = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap();
-        pool.install(|| {
+    common::same_bits_everywhere(
+        || {
             let mut s = crowded(0.9);
-            if let Some(level) = level {
-                s.set_simd_level(level);
-            }
             s.drop_at(40.0, 40.0, 1.0, 3.0).unwrap();
+            s
+        },
+        |s, stepper| {
             for _ in 0..60 {
                 s.step_with(stepper).unwrap();
             }
             s.advance(0.1).unwrap();
-            s.to_bytes()
-        })
-    };
-    let reference = run(None, 1, Stepper::Reference);
-    for level in [
-        SimdLevel::Scalar,
-        SimdLevel::Sse2,
-        SimdLevel::Avx2,
-        SimdLevel::Avx512,
-    ] {
-        for threads in [1, 2] {
-            assert!(
-                run(Some(level), threads, Stepper::Engine) == reference,
-                "{level:?} on {threads} threads"
-            );
-        }
-    }
+        },
+    );
 }
 
 #[test]

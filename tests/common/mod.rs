@@ -74,3 +74,41 @@ pub fn every_stepping_path(setup: impl FnOnce(&mut Surface)) -> Surface {
     }
     s
 }
+
+/// Runs `run(stepper)` on a surface from `build` at every SIMD level (forced, clamped to
+/// the CPU) on 1 and 2 threads with the engine, and asserts that each ends with the same
+/// snapshot bytes as the scalar reference on 1 thread.
+pub fn same_bits_everywhere(
+    build: impl Fn() -> Surface + Sync,
+    run: impl Fn(&mut Surface, springwater::Stepper) + Sync,
+) {
+    use springwater::{SimdLevel, Stepper};
+    let bytes = |level: Option<SimdLevel>, threads: usize, stepper: Stepper| {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        pool.install(|| {
+            let mut s = build();
+            if let Some(level) = level {
+                s.set_simd_level(level);
+            }
+            run(&mut s, stepper);
+            s.to_bytes()
+        })
+    };
+    let reference = bytes(None, 1, Stepper::Reference);
+    for level in [
+        SimdLevel::Scalar,
+        SimdLevel::Sse2,
+        SimdLevel::Avx2,
+        SimdLevel::Avx512,
+    ] {
+        for threads in [1, 2] {
+            assert!(
+                bytes(Some(level), threads, Stepper::Engine) == reference,
+                "{level:?} on {threads} threads"
+            );
+        }
+    }
+}
