@@ -5,7 +5,7 @@
 
 use crate::handle;
 use crate::status::{guard, Failure, Outcome, SwStatus};
-use crate::{need, out_ref, out_slice, read_into, SwSurface};
+use crate::{out_ref, read_into, write_sized, SwSurface};
 use glam::Vec3;
 use springwater::{Buoyancy, Floater, FloaterId, Shape};
 
@@ -230,17 +230,14 @@ pub unsafe extern "C" fn sw_surface_floater_ids(
         let count = out_ref(count, "count")?;
         handle::with(surface, |w| {
             let bodies = w.surface.floaters();
-            *count = bodies.len();
-            if ids.is_null() {
-                return Ok(());
+            // SAFETY: `ids` is NULL or holds `len` ids.
+            unsafe {
+                write_sized(ids, len, count, bodies.len(), "ids", |out| {
+                    for (o, (id, _)) in out.iter_mut().zip(bodies) {
+                        *o = id.0;
+                    }
+                })
             }
-            need(len, bodies.len(), "ids")?;
-            // SAFETY: the caller gives `len ≥ bodies.len()` ids.
-            let out = unsafe { out_slice(ids, bodies.len(), "ids") }?;
-            for (o, (id, _)) in out.iter_mut().zip(bodies) {
-                *o = id.0;
-            }
-            Ok(())
         })
     })
 }

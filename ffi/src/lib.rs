@@ -664,15 +664,12 @@ pub unsafe extern "C" fn sw_surface_lod_indices(
         let count = out_ref(count, "count")?;
         handle::with(surface, |w| {
             let src = w.lod.indices();
-            *count = src.len();
-            if indices.is_null() {
-                return Ok(());
+            // SAFETY: `indices` is NULL or holds `len` indices.
+            unsafe {
+                write_sized(indices, len, count, src.len(), "indices", |out| {
+                    out.copy_from_slice(src)
+                })
             }
-            need(len, src.len(), "indices")?;
-            // SAFETY: the caller gives `len ≥ src.len()` indices.
-            let out = unsafe { out_slice(indices, src.len(), "indices") }?;
-            out.copy_from_slice(src);
-            Ok(())
         })
     })
 }
@@ -695,15 +692,12 @@ pub unsafe extern "C" fn sw_surface_save(
         let size = out_ref(size, "size")?;
         handle::with(surface, |w| {
             let bytes = w.surface.to_bytes();
-            *size = bytes.len();
-            if buf.is_null() {
-                return Ok(());
+            // SAFETY: `buf` is NULL or holds `len` bytes.
+            unsafe {
+                write_sized(buf, len, size, bytes.len(), "buf", |out| {
+                    out.copy_from_slice(&bytes)
+                })
             }
-            need(len, bytes.len(), "buf")?;
-            // SAFETY: the caller gives `len ≥ bytes.len()` bytes at `buf`.
-            let out = unsafe { out_slice(buf, bytes.len(), "buf") }?;
-            out.copy_from_slice(&bytes);
-            Ok(())
         })
     })
 }
@@ -988,6 +982,31 @@ unsafe fn in_slice<'a, T>(ptr: *const T, len: usize, what: &str) -> Outcome<&'a 
     too_long::<T>(len, what)?;
     // SAFETY: non-NULL, aligned, not too long for a slice; the caller gives `len` elements.
     Ok(unsafe { std::slice::from_raw_parts(ptr, len) })
+}
+
+/// A result of variable size, the C way: `*count = n`; a NULL `ptr` only asks for the
+/// size, otherwise `len` must hold `n` elements and `fill` writes them.
+///
+/// # Safety
+///
+/// `ptr` is NULL or points to `len` writable elements.
+unsafe fn write_sized<T>(
+    ptr: *mut T,
+    len: usize,
+    count: &mut usize,
+    n: usize,
+    what: &str,
+    fill: impl FnOnce(&mut [T]),
+) -> Outcome {
+    *count = n;
+    if ptr.is_null() {
+        return Ok(());
+    }
+    need(len, n, what)?;
+    // SAFETY: the caller gives `len ≥ n` elements at `ptr`.
+    let out = unsafe { out_slice(ptr, n, what) }?;
+    fill(out);
+    Ok(())
 }
 
 /// `len` writable elements at `ptr`. NULL is allowed for `len` 0.
