@@ -41,7 +41,10 @@
 //! # Ok::<(), springwater::Error>(())
 //! ```
 
+use std::ops::Range;
+
 use crate::error::{Error, Result};
+use crate::jobs::{for_each_range, Disjoint, Runner};
 use crate::mesh::Normals;
 use crate::refraction::Refraction;
 use crate::view::MeshView;
@@ -124,7 +127,7 @@ pub fn interleave(
         n: [&normals.x, &normals.y, &normals.z],
         uv: [&uv.u, &uv.v],
     };
-    split(src, out);
+    split(view.runner(), src, out);
     Ok(())
 }
 
@@ -136,77 +139,69 @@ struct Source<'a> {
     uv: [&'a [f32]; 2],
 }
 
-impl<'a> Source<'a> {
+impl Source<'_> {
     fn len(&self) -> usize {
         self.p[0].len()
     }
 
-    fn split_at(self, mid: usize) -> (Self, Self) {
-        let cut3 = |s: [&'a [f32]; 3]| {
-            let parts = s.map(|c| c.split_at(mid));
-            (parts.map(|p| p.0), parts.map(|p| p.1))
-        };
-        let (p0, p1) = cut3(self.p);
-        let (n0, n1) = cut3(self.n);
-        let uv = self.uv.map(|c| c.split_at(mid));
-        (
-            Self {
-                p: p0,
-                n: n0,
-                uv: uv.map(|p| p.0),
-            },
-            Self {
-                p: p1,
-                n: n1,
-                uv: uv.map(|p| p.1),
-            },
-        )
-    }
-}
-
-fn split_opt<T>(b: Option<&mut [T]>, mid: usize) -> (Option<&mut [T]>, Option<&mut [T]>) {
-    match b {
-        Some(b) => {
-            let (lo, hi) = b.split_at_mut(mid);
-            (Some(lo), Some(hi))
+    /// The nodes `r`.
+    fn range(&self, r: Range<usize>) -> Self {
+        Self {
+            p: self.p.map(|c| &c[r.clone()]),
+            n: self.n.map(|c| &c[r.clone()]),
+            uv: self.uv.map(|c| &c[r.clone()]),
         }
-        None => (None, None),
     }
 }
 
-/// Halves the work until it is one block, running the halves on the rayon pool with the
-/// `parallel` feature. Every element is written by the same code either way.
-fn split(src: Source<'_>, out: VertexBuffers<'_>) {
-    let len = src.len();
-    if len <= BLOCK {
-        fill(src, out);
-        return;
+/// The output buffers, for the tasks to take their nodes of.
+struct Parts<'a> {
+    positions: Option<Disjoint<'a, [f32; 3]>>,
+    normals: Option<Disjoint<'a, [f32; 3]>>,
+    uvs: Option<Disjoint<'a, [f32; 2]>>,
+    vertices: Option<Disjoint<'a, Vertex>>,
+}
+
+impl<'a> Parts<'a> {
+    fn new(out: VertexBuffers<'a>) -> Self {
+        Self {
+            positions: out.positions.map(Disjoint::new),
+            normals: out.normals.map(Disjoint::new),
+            uvs: out.uvs.map(Disjoint::new),
+            vertices: out.vertices.map(Disjoint::new),
+        }
     }
-    let mid = len / 2;
-    let (s0, s1) = src.split_at(mid);
-    let (p0, p1) = split_opt(out.positions, mid);
-    let (n0, n1) = split_opt(out.normals, mid);
-    let (u0, u1) = split_opt(out.uvs, mid);
-    let (v0, v1) = split_opt(out.vertices, mid);
-    let lo = VertexBuffers {
-        positions: p0,
-        normals: n0,
-        uvs: u0,
-        vertices: v0,
-    };
-    let hi = VertexBuffers {
-        positions: p1,
-        normals: n1,
-        uvs: u1,
-        vertices: v1,
-    };
-    #[cfg(feature = "parallel")]
-    rayon::join(|| split(s0, lo), || split(s1, hi));
-    #[cfg(not(feature = "parallel"))]
-    {
-        split(s0, lo);
-        split(s1, hi);
+
+    /// The nodes `r` of every buffer.
+    ///
+    /// # Safety
+    ///
+    /// No other task may hold nodes overlapping `r` at the same time.
+    unsafe fn range(&self, r: Range<usize>) -> VertexBuffers<'a> {
+        // SAFETY: the caller holds these nodes alone.
+        unsafe {
+            VertexBuffers {
+                positions: self.positions.as_ref().map(|d| d.part(r.clone())),
+                normals: self.normals.as_ref().map(|d| d.part(r.clone())),
+                uvs: self.uvs.as_ref().map(|d| d.part(r.clone())),
+                vertices: self.vertices.as_ref().map(|d| d.part(r.clone())),
+            }
+        }
     }
+}
+
+/// Every node, in tasks of whole blocks run by the view's runner, each block filled while
+/// its inputs are in cache. Every element is written by the same code on any thread.
+fn split(runner: Runner<'_>, src: Source<'_>, out: VertexBuffers<'_>) {
+    let parts = Parts::new(out);
+    for_each_range(runner, src.len(), BLOCK, BLOCK, &|range| {
+        for start in range.clone().step_by(BLOCK) {
+            let block = start..(start + BLOCK).min(range.end);
+            // SAFETY: `for_each_range` runs each range once and ranges do not overlap;
+            // the blocks of one range do not overlap either.
+            fill(src.range(block.clone()), unsafe { parts.range(block) });
+        }
+    });
 }
 
 /// One block: each requested buffer in turn, while the block's inputs are in cache.

@@ -8,10 +8,15 @@
 //! that stepped the surface, and never from inside a task, so a job system that cannot
 //! wait from a worker thread works too.
 //!
+//! The render-side stages read a surface through its [`MeshView`](crate::MeshView), which
+//! carries the same host: [`for_each_range`] cuts their outputs into tasks for it.
+//!
 //! The bits do not depend on where the tasks run: every band computes the same values
 //! whichever thread runs it and in whichever order, so a host's job system, rayon's pool
 //! and a single thread give the same state.
 
+use std::ops::Range;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Arc;
 
 /// A host's job system that runs the engine's colour batches on its own threads.
@@ -83,14 +88,41 @@ impl std::fmt::Debug for Host {
     }
 }
 
-/// How the engine runs one colour's tasks.
+/// How a batch of independent tasks runs: one colour of the engine, or a render-side
+/// stage's parts.
 #[derive(Clone, Copy)]
 pub(crate) enum Runner<'a> {
     /// On the rayon pool the caller is in (the global one unless inside `install`), or
     /// in order on the calling thread without the `parallel` feature.
     Here,
+    /// On a host's rayon pool.
+    #[cfg(feature = "parallel")]
+    Pool(&'a rayon::ThreadPool),
     /// Through a host's job system.
     Jobs(&'a dyn JobSystem),
+}
+
+impl std::fmt::Debug for Runner<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Runner::Here => write!(f, "Here"),
+            #[cfg(feature = "parallel")]
+            Runner::Pool(pool) => write!(f, "Pool({} threads)", pool.current_num_threads()),
+            Runner::Jobs(jobs) => write!(f, "Jobs({} workers)", jobs.workers()),
+        }
+    }
+}
+
+impl<'a> Runner<'a> {
+    /// Where a surface's batches run: its host's threads, else where the caller is.
+    pub fn of(host: Option<&'a Host>) -> Self {
+        match host {
+            #[cfg(feature = "parallel")]
+            Some(Host::Pool(pool)) => Runner::Pool(pool),
+            Some(Host::Jobs(jobs)) => Runner::Jobs(&**jobs),
+            None => Runner::Here,
+        }
+    }
 }
 
 impl Runner<'_> {
@@ -101,6 +133,8 @@ impl Runner<'_> {
             Runner::Here => rayon::current_num_threads(),
             #[cfg(not(feature = "parallel"))]
             Runner::Here => 1,
+            #[cfg(feature = "parallel")]
+            Runner::Pool(pool) => pool.current_num_threads(),
             Runner::Jobs(jobs) => jobs.workers().max(1),
         }
     }
@@ -117,7 +151,101 @@ impl Runner<'_> {
             }
             #[cfg(not(feature = "parallel"))]
             (Runner::Here, _) => (0..count).for_each(task),
+            #[cfg(feature = "parallel")]
+            (Runner::Pool(pool), _) => pool.install(|| Runner::Here.run(count, task)),
             (Runner::Jobs(jobs), _) => jobs.run(count, task),
         }
+    }
+}
+
+/// Runs `task(range)` over `0..len` cut into ranges of whole `unit`s (the last may be
+/// shorter), each at least `min_len` long, through `runner`: as many as that allows on
+/// rayon (whose work stealing balances them), about four per worker for a job system
+/// (whose tasks may each cost a hand-over).
+///
+/// Every range runs exactly once, whatever the runner does: a range is claimed before it
+/// runs, so a job system that repeats a task runs it once, and a range a job system
+/// skipped runs on the calling thread after the batch. Tasks may therefore write disjoint
+/// parts of one buffer ([`Disjoint`]) by their range.
+pub(crate) fn for_each_range(
+    runner: Runner<'_>,
+    len: usize,
+    unit: usize,
+    min_len: usize,
+    task: &(dyn Fn(Range<usize>) + Sync),
+) {
+    let unit = unit.max(1);
+    let units = len.div_ceil(unit);
+    let per_worker = match runner {
+        Runner::Jobs(jobs) => units.div_ceil(4 * jobs.workers().max(1)),
+        _ => 1,
+    };
+    let per = min_len.div_ceil(unit).max(per_worker).max(1);
+    let count = units.div_ceil(per);
+    let range = |i: usize| i * per * unit..((i + 1) * per * unit).min(len);
+    if count <= 1 {
+        if len > 0 {
+            task(0..len);
+        }
+        return;
+    }
+    let claims: Vec<AtomicBool> = (0..count).map(|_| AtomicBool::new(false)).collect();
+    let claim = |i: usize| {
+        claims
+            .get(i)
+            .is_some_and(|c| !c.swap(true, Ordering::AcqRel))
+    };
+    runner.run(count, &|i| {
+        if claim(i) {
+            task(range(i))
+        }
+    });
+    for i in 0..count {
+        if claim(i) {
+            task(range(i));
+        }
+    }
+}
+
+/// A mutable slice that tasks running at once take disjoint parts of: which part a task
+/// takes follows from its index (the engine's bands, [`for_each_range`]'s ranges), and a
+/// claim makes sure each index runs at most once, whatever the job system does, so no
+/// part is ever taken twice.
+pub(crate) struct Disjoint<'a, T> {
+    ptr: *mut T,
+    len: usize,
+    _borrow: std::marker::PhantomData<&'a mut [T]>,
+}
+
+// SAFETY: a `Disjoint` is a `&mut [T]` handed out in non-overlapping parts; sending or
+// sharing it across threads is sending those parts, which needs `T: Send`.
+unsafe impl<T: Send> Send for Disjoint<'_, T> {}
+// SAFETY: as above; shared access only ever produces non-overlapping `&mut` parts.
+unsafe impl<T: Send> Sync for Disjoint<'_, T> {}
+
+impl<'a, T> Disjoint<'a, T> {
+    pub fn new(s: &'a mut [T]) -> Self {
+        Self {
+            ptr: s.as_mut_ptr(),
+            len: s.len(),
+            _borrow: std::marker::PhantomData,
+        }
+    }
+
+    /// The whole slice's length.
+    pub fn len(&self) -> usize {
+        self.len
+    }
+
+    /// `self[range]`, mutable.
+    ///
+    /// # Safety
+    ///
+    /// No other part overlapping `range` may be alive while this one is.
+    pub unsafe fn part(&self, range: Range<usize>) -> &'a mut [T] {
+        assert!(range.start <= range.end && range.end <= self.len);
+        // SAFETY: in bounds (checked above) of a slice borrowed mutably for `'a`; the
+        // caller guarantees no overlapping part is alive.
+        unsafe { std::slice::from_raw_parts_mut(self.ptr.add(range.start), range.len()) }
     }
 }

@@ -167,7 +167,8 @@ pub fn refract(
     check_normals(view, normals)?;
     let n = view.grid().len();
     resize(out, n);
-    crate::mesh::for_each_chunk3(
+    crate::mesh::for_each_chunk(
+        view.runner(),
         [&mut out.u, &mut out.v, &mut out.fresnel],
         CHUNK,
         |chunk, out| {
@@ -214,7 +215,8 @@ pub fn normals_and_refraction(
     resize(out, n);
     let rows_per_task = (CHUNK / cols).max(1);
     let (nx, ny, nz) = (&mut normals.x, &mut normals.y, &mut normals.z);
-    crate::mesh::for_each_chunk6(
+    crate::mesh::for_each_chunk(
+        view.runner(),
         [nx, ny, nz, &mut out.u, &mut out.v, &mut out.fresnel],
         rows_per_task * cols,
         |chunk, [nx, ny, nz, u, v, f]| {

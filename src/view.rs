@@ -5,6 +5,7 @@
 
 use crate::error::{Error, Result};
 use crate::grid::Grid;
+use crate::jobs::Runner;
 use crate::simd::SimdLevel;
 
 /// A borrowed view of a surface's positions and grid shape: no copy.
@@ -19,6 +20,8 @@ pub struct MeshView<'a> {
     y: &'a [f32],
     z: &'a [f32],
     simd: SimdLevel,
+    /// Where the stages' parts run: the surface's host threads, else rayon's pool.
+    runner: Runner<'a>,
 }
 
 impl<'a> MeshView<'a> {
@@ -49,6 +52,7 @@ impl<'a> MeshView<'a> {
             y,
             z,
             simd: SimdLevel::detect(),
+            runner: Runner::Here,
         })
     }
 
@@ -57,6 +61,17 @@ impl<'a> MeshView<'a> {
     pub fn with_simd_level(mut self, level: SimdLevel) -> Self {
         self.simd = level.clamped();
         self
+    }
+
+    /// The same view, its stages' parts run by `runner` (the surface's host).
+    pub(crate) fn with_runner(mut self, runner: Runner<'a>) -> Self {
+        self.runner = runner;
+        self
+    }
+
+    /// Where the render-side stages run their parts on this view.
+    pub(crate) fn runner(&self) -> Runner<'a> {
+        self.runner
     }
 
     /// The SIMD level the render-side stages run on this view: the widest the CPU has

@@ -185,3 +185,77 @@ fn the_bands_spread_over_the_hosts_threads() {
     s.step_n(8).unwrap();
     assert!(jobs.1.lock().unwrap().len() >= 2);
 }
+
+/// The render-side stages on a surface's view (normals, refraction, interleaving) run
+/// their parts through the surface's job system, and give rayon's bits whatever the job
+/// system does: a part it skipped runs on the calling thread, a part it repeated runs
+/// once.
+#[test]
+fn the_render_side_stages_run_on_the_job_system_with_the_same_bits() {
+    use springwater::buffers::{interleave, Vertex, VertexBuffers};
+    use springwater::mesh::{compute_normals, Normals};
+    use springwater::refraction::{normals_and_refraction, refract, Refraction, RefractionParams};
+
+    /// What every stage writes, as bits.
+    fn stages(s: &Surface) -> Vec<u32> {
+        let view = s.mesh_view();
+        let eye = springwater::glam::Vec3::new(40.0, 30.0, -20.0);
+        let params = RefractionParams::default();
+        let (mut normals, mut uv) = (Normals::new(), Refraction::default());
+        let (mut n2, mut uv2) = (Normals::new(), Refraction::default());
+        compute_normals(&view, &mut normals);
+        refract(&view, &normals, eye, &params, &mut uv).unwrap();
+        normals_and_refraction(&view, eye, &params, &mut n2, &mut uv2).unwrap();
+        let mut vertices = vec![Vertex::default(); s.len()];
+        let mut positions = vec![[0.0f32; 3]; s.len()];
+        interleave(
+            &view,
+            &normals,
+            &uv,
+            VertexBuffers {
+                vertices: Some(&mut vertices),
+                positions: Some(&mut positions),
+                ..Default::default()
+            },
+        )
+        .unwrap();
+        let floats = [
+            &normals.x,
+            &normals.y,
+            &normals.z,
+            &uv.u,
+            &uv.v,
+            &uv.fresnel,
+        ]
+        .into_iter()
+        .chain([&n2.x, &n2.y, &n2.z, &uv2.u, &uv2.v, &uv2.fresnel])
+        .flat_map(|c| c.iter().copied());
+        let packed = bytemuck::cast_slice::<Vertex, f32>(&vertices)
+            .iter()
+            .copied();
+        let flat = positions.iter().flatten().copied();
+        floats.chain(packed).chain(flat).map(f32::to_bits).collect()
+    }
+
+    let mut s = Surface::new(Params::with_size(131, 257)).unwrap();
+    s.drop_at(60.0, 100.0, 1.5, 4.0).unwrap();
+    s.step_n(12).unwrap();
+    let default = stages(&s);
+    let scoped = Arc::new(Scoped {
+        threads: 3,
+        batches: AtomicUsize::new(0),
+    });
+    let cases: [(&str, Arc<dyn JobSystem>); 5] = [
+        ("four scoped threads", scoped.clone()),
+        ("backwards on one thread", Arc::new(Backwards)),
+        ("skipping the last task", Arc::new(Broken::SkipsLast)),
+        ("running tasks twice", Arc::new(Broken::RunsTwice)),
+        ("calling past the end", Arc::new(Broken::PastTheEnd)),
+    ];
+    for (name, jobs) in cases {
+        s.set_job_system(Some(jobs));
+        assert!(stages(&s) == default, "{name}: the stages' output differs");
+    }
+    // normals, refract, the fused pass and interleave: one batch each.
+    assert_eq!(scoped.batches.load(Ordering::Relaxed), 4);
+}

@@ -1,15 +1,22 @@
 //! What the plugin costs per frame around the step itself, headless.
 //!
-//! `cargo run --release -p springwater-bevy --example frame_cost [frames]`
+//! `cargo run --release -p springwater-bevy --example frame_cost [frames] [compute-threads]`
 //!
-//! Runs a rained-on pool of 128² and of 512² nodes in a MinimalPlugins app with a fixed
-//! 1/60 s clock and times the plugin's three sets with marker systems between them:
-//! SyncInputs (surface creation, messages, buoyancy), Step (springwater's `advance_with`),
-//! Writeback (normals + refraction, LOD, mesh write in place). Means over the frames after
-//! a warm-up; one run, so noisy on a shared machine.
+//! Runs a rained-on pool of 128² and of 512² nodes with one floating ball in a
+//! MinimalPlugins app with a fixed 1/60 s clock (one step per frame) and times the
+//! plugin's three sets with marker systems between them: SyncInputs (parameter changes,
+//! messages, buoyancy), Step (springwater's `advance_with`), Writeback (normals +
+//! refraction, LOD, mesh write in place). Means over the frames after a warm-up; one run,
+//! so noisy on a shared machine. Bevy's task pools are made once per process: by
+//! default with Bevy's default options (on two cores the compute pool has one thread),
+//! else with a compute pool of `compute-threads` threads.
+//!
+//! The library's own render-side stages are then timed alone on the final state, on the
+//! same pool, to tell the plugin's glue (LOD check, mesh write) from them.
 
 use std::time::{Duration, Instant};
 
+use bevy::app::{TaskPoolOptions, TaskPoolPlugin, TaskPoolThreadAssignmentPolicy};
 use bevy::asset::AssetPlugin;
 use bevy::mesh::MeshPlugin;
 use bevy::prelude::*;
@@ -38,10 +45,19 @@ fn mark<const PHASE: usize>(mut marks: ResMut<Marks>) {
     marks.last = Some(now);
 }
 
-fn measure(size: usize, frames: u32) -> ([Duration; 3], [Duration; 2]) {
+fn measure(size: usize, frames: u32, compute: Option<usize>) -> ([Duration; 3], [Duration; 2]) {
+    let mut options = TaskPoolOptions::default();
+    if let Some(threads) = compute {
+        options.compute = TaskPoolThreadAssignmentPolicy {
+            min_threads: threads,
+            ..options.compute
+        };
+    }
     let mut app = App::new();
     app.add_plugins((
-        MinimalPlugins,
+        MinimalPlugins.set(TaskPoolPlugin {
+            task_pool_options: options,
+        }),
         AssetPlugin::default(),
         MeshPlugin,
         TransformPlugin,
@@ -122,13 +138,23 @@ fn measure(size: usize, frames: u32) -> ([Duration; 3], [Duration; 2]) {
 }
 
 fn main() {
-    let frames: u32 = std::env::args()
-        .nth(1)
-        .and_then(|a| a.parse().ok())
-        .unwrap_or(200);
-    println!("size   sync-inputs        step  write-back | alone: normals+refraction  interleave   mean per frame, {frames} frames");
+    let arg = |i: usize| std::env::args().nth(i).and_then(|a| a.parse::<u32>().ok());
+    let frames = arg(1).unwrap_or(200);
+    let compute = arg(2).map(|n| n as usize);
+    let mut pool = String::new();
+    println!("size   sync-inputs        step  write-back | alone: normals+refraction  interleave");
     for size in [128, 512] {
-        let ([sync, step, write], [stages, inter]) = measure(size, frames);
-        println!("{size:>3}²  {sync:>11.1?} {step:>11.1?} {write:>11.1?}  {stages:>21.1?} {inter:>11.1?}");
+        let ([sync, step, write], [stages, inter]) = measure(size, frames, compute);
+        println!("{size:>3}²  {sync:>11.1?} {step:>11.1?} {write:>11.1?}  {stages:>25.1?} {inter:>11.1?}");
+        pool = format!(
+            "{} thread(s)",
+            bevy::tasks::ComputeTaskPool::get().thread_num()
+        );
     }
+    let default = if compute.is_none() {
+        " (Bevy's default)"
+    } else {
+        ""
+    };
+    println!("mean per frame over {frames} frames; compute pool of {pool}{default}");
 }

@@ -36,18 +36,23 @@
 //!
 //! [`SpringwaterPlugin`] adds its systems to one schedule (`PostUpdate` by default, before
 //! transform propagation; or a fixed-timestep schedule with
-//! [`SpringwaterPlugin::in_fixed_schedule`]), in three chained sets, [`WaterSystems`]:
+//! [`SpringwaterPlugin::in_fixed_schedule`]), in three chained sets, [`WaterSystems`]. A
+//! new [`Water`] gets its [`springwater::Surface`] and mesh before that, from an observer,
+//! in the command flush that adds the component (a water whose parameters were refused is
+//! tried again in `PreUpdate` once they change). The sets make no structural change, so
+//! none of their systems needs a command flush after it (an exclusive system: a hand-over
+//! to the main thread and back).
 //!
-//! 1. [`WaterSystems::SyncInputs`]: creates the [`springwater::Surface`] and the mesh of
-//!    every new [`Water`], restarts surfaces whose `Params` changed, applies [`WaterDrop`]
+//! 1. [`WaterSystems::SyncInputs`]: restarts surfaces whose `Params` changed, applies
+//!    [`WaterDrop`]
 //!    and [`WaterForce`] messages, hands every [`Buoyant`] body's state to its water
 //!    (springwater's floating bodies, which step with the water and push back on it).
 //! 2. [`WaterSystems::Step`]: [`springwater::Surface::advance`] (or `advance_with` a
 //!    [`WaterDisturbance`]) by the schedule's `Time` delta, on Bevy's compute task pool
 //!    ([`TaskPoolJobs`]).
 //! 3. [`WaterSystems::Writeback`]: normals and refraction from the eye (a [`WaterViewer`],
-//!    else the active camera), the LOD, and the mesh attributes written in place; the
-//!    bodies' `Transform`s and velocities from their water.
+//!    else the active camera), the LOD, and the mesh attributes written in place, on the
+//!    same pool; the bodies' `Transform`s and velocities from their water.
 //!
 //! Game systems that read the water ([`WaterQuery`]) see the state of the last frame's
 //! step; drops and forces land before the next one. The eye and the water's
@@ -66,7 +71,7 @@ mod query;
 mod step;
 mod water;
 
-use bevy::app::{App, FixedPostUpdate, Plugin, PostUpdate};
+use bevy::app::{App, FixedPostUpdate, Plugin, PostUpdate, PreUpdate};
 use bevy::ecs::intern::Interned;
 use bevy::ecs::prelude::*;
 use bevy::ecs::schedule::ScheduleLabel;
@@ -183,19 +188,24 @@ impl Plugin for SpringwaterPlugin {
                 WaterSystems::Writeback.before(TransformSystems::Propagate),
             );
         }
-        app.add_systems(
-            schedule,
-            (
+        // No system of the sets has commands, so none needs a command flush after it: a
+        // new water gets its surface from an observer, a refused one is retried in
+        // `PreUpdate` (see the crate docs).
+        app.add_observer(step::create_surface)
+            .add_systems(PreUpdate, step::retry_refused)
+            .add_systems(
+                schedule,
                 (
-                    step::create_surfaces,
-                    step::apply_messages,
-                    buoyancy::sync_bodies,
-                )
-                    .chain()
-                    .in_set(WaterSystems::SyncInputs),
-                step::step_surfaces.in_set(WaterSystems::Step),
-                (mesh::write_meshes, buoyancy::write_bodies).in_set(WaterSystems::Writeback),
-            ),
-        );
+                    (
+                        step::update_surfaces,
+                        step::apply_messages,
+                        buoyancy::sync_bodies,
+                    )
+                        .chain()
+                        .in_set(WaterSystems::SyncInputs),
+                    step::step_surfaces.in_set(WaterSystems::Step),
+                    (mesh::write_meshes, buoyancy::write_bodies).in_set(WaterSystems::Writeback),
+                ),
+            );
     }
 }

@@ -28,8 +28,8 @@ pub struct WaterSample {
 /// Why a water query gave no answer.
 #[derive(Debug, Clone, PartialEq)]
 pub enum WaterQueryError {
-    /// The entity is not a water with a surface (yet: surfaces are created in
-    /// [`WaterSystems::SyncInputs`](crate::WaterSystems::SyncInputs)).
+    /// The entity is not a water with a surface (its parameters were refused, or it is
+    /// not a water).
     NoSurface(Entity),
     /// springwater refused the query (a point outside the footprint, a non-finite value).
     Surface(String),

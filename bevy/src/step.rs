@@ -3,6 +3,7 @@
 use std::sync::Arc;
 
 use bevy::asset::Assets;
+use bevy::camera::primitives::Aabb;
 use bevy::ecs::prelude::*;
 use bevy::log::{error, info};
 use bevy::mesh::{Mesh, Mesh3d};
@@ -16,10 +17,10 @@ use crate::water::{
 };
 use crate::SpringwaterSettings;
 
-/// Set on a [`Water`] whose parameters were refused, so that the error is reported once
-/// per change of the component rather than every frame.
+/// Set on a [`Water`] whose parameters were refused, holding them, so that the error is
+/// reported once per change of the component rather than every frame.
 #[derive(Component)]
-pub(crate) struct WaterFailed;
+pub(crate) struct WaterFailed(Water);
 
 pub(crate) fn report(
     errors: &mut MessageWriter<WaterError>,
@@ -45,45 +46,96 @@ fn make_surface(
     Ok(surface)
 }
 
-/// Creates the surface and mesh of every new water; restarts a surface whose `Params`
-/// changed and rebuilds the LOD of one whose `LodParams` changed.
-pub(crate) fn create_surfaces(
-    mut commands: Commands,
-    mut bodies: ResMut<crate::buoyancy::Bodies>,
-    settings: Res<SpringwaterSettings>,
-    mut meshes: ResMut<Assets<Mesh>>,
-    new: Query<(Entity, Ref<Water>, Has<WaterFailed>), Without<WaterSurface>>,
-    mut changed: Query<(Entity, &Water, &mut WaterSurface), Changed<Water>>,
-    mut errors: MessageWriter<WaterError>,
+/// Gives `entity` a surface and mesh for `water`, or marks it refused.
+fn install(
+    commands: &mut Commands,
+    entity: Entity,
+    water: &Water,
+    settings: &SpringwaterSettings,
+    meshes: &mut Assets<Mesh>,
+    errors: &mut MessageWriter<WaterError>,
 ) {
-    for (entity, water, failed) in &new {
-        if failed && !water.is_changed() {
-            continue;
+    match make_surface(water, settings) {
+        Ok(surface) => {
+            let handle = meshes.add(new_mesh(&surface));
+            commands.entity(entity).remove::<WaterFailed>().try_insert((
+                Mesh3d(handle),
+                bounds(water),
+                bevy::camera::visibility::NoAutoAabb,
+                surface,
+            ));
         }
-        match make_surface(&water, &settings) {
-            Ok(surface) => {
-                let handle = meshes.add(new_mesh(&surface));
-                commands.entity(entity).remove::<WaterFailed>().try_insert((
-                    Mesh3d(handle),
-                    bounds(&water),
-                    bevy::camera::visibility::NoAutoAabb,
-                    surface,
-                ));
-            }
-            Err(e) => {
-                report(&mut errors, entity, "water parameters refused", &e);
-                commands.entity(entity).try_insert(WaterFailed);
-            }
+        Err(e) => {
+            report(errors, entity, "water parameters refused", &e);
+            commands
+                .entity(entity)
+                .try_insert(WaterFailed(water.clone()));
         }
     }
-    for (entity, water, mut surface) in &mut changed {
+}
+
+/// Creates the surface and mesh of a water as soon as its [`Water`] is added (an observer:
+/// the components arrive in the same command flush), so that the frame's systems never
+/// wait for a command flush.
+pub(crate) fn create_surface(
+    add: On<Add, Water>,
+    mut commands: Commands,
+    settings: Res<SpringwaterSettings>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    waters: Query<&Water, Without<WaterSurface>>,
+    mut errors: MessageWriter<WaterError>,
+) {
+    if let Ok(water) = waters.get(add.entity) {
+        install(
+            &mut commands,
+            add.entity,
+            water,
+            &settings,
+            &mut meshes,
+            &mut errors,
+        );
+    }
+}
+
+/// Tries again a water whose parameters were refused, once they changed (and creates the
+/// surface of one added before the plugin). Runs in `PreUpdate`, away from the plugin's
+/// sets, so that its commands need no flush among them; it steps in the same frame.
+pub(crate) fn retry_refused(
+    mut commands: Commands,
+    settings: Res<SpringwaterSettings>,
+    mut meshes: ResMut<Assets<Mesh>>,
+    waters: Query<(Entity, &Water, Option<&WaterFailed>), Without<WaterSurface>>,
+    mut errors: MessageWriter<WaterError>,
+) {
+    for (entity, water, failed) in &waters {
+        if failed.is_none_or(|f| f.0 != *water) {
+            install(
+                &mut commands,
+                entity,
+                water,
+                &settings,
+                &mut meshes,
+                &mut errors,
+            );
+        }
+    }
+}
+
+/// Restarts the surface of a water whose `Params` changed and rebuilds the LOD of one
+/// whose `LodParams` changed, in place; keeps the bounding box in step.
+pub(crate) fn update_surfaces(
+    mut bodies: ResMut<crate::buoyancy::Bodies>,
+    settings: Res<SpringwaterSettings>,
+    mut changed: Query<(Entity, &Water, &mut WaterSurface, Option<&mut Aabb>), Changed<Water>>,
+    mut errors: MessageWriter<WaterError>,
+) {
+    for (entity, water, mut surface, aabb) in &mut changed {
         if *surface.surface.params() != water.params {
             match make_surface(water, &settings) {
                 Ok(fresh) => {
                     info!("springwater: parameters of {entity} changed, the surface starts over");
                     *surface = fresh;
                     bodies.forget_water(entity);
-                    commands.entity(entity).try_insert(bounds(water));
                 }
                 Err(e) => report(&mut errors, entity, "new water parameters refused", &e),
             }
@@ -91,6 +143,12 @@ pub(crate) fn create_surfaces(
             match springwater::mesh::LodMesh::new(water.lod) {
                 Ok(lod) => surface.lod = lod,
                 Err(e) => report(&mut errors, entity, "LOD parameters refused", &e),
+            }
+        }
+        if let Some(mut aabb) = aabb {
+            let fresh = bounds(water);
+            if *aabb != fresh {
+                *aabb = fresh;
             }
         }
     }

@@ -12,7 +12,8 @@ use springwater::{Params, Surface};
 
 /// A water surface. Spawn it with a [`Transform`]; the plugin creates its
 /// [`springwater::Surface`] ([`WaterSurface`]) and its mesh ([`Mesh3d`](bevy::mesh::Mesh3d))
-/// in the next run of [`WaterSystems::SyncInputs`](crate::WaterSystems::SyncInputs).
+/// as soon as the component is added (the same command flush), or sends a [`WaterError`]
+/// and tries again when the parameters change.
 ///
 /// The water's local space is springwater's: node `(col, row)` rests at
 /// `(col·spacing, 0, row·spacing)`, y up, so the pool covers `[0, (cols−1)·spacing] ×

@@ -15,13 +15,19 @@ use springwater_bevy::prelude::*;
 use springwater_bevy::TaskPoolJobs;
 
 fn app(plugin: SpringwaterPlugin) -> App {
+    let mut app = bare_app();
+    app.add_plugins(plugin);
+    app
+}
+
+/// The app of the tests without the plugin.
+fn bare_app() -> App {
     let mut app = App::new();
     app.add_plugins((
         MinimalPlugins,
         AssetPlugin::default(),
         MeshPlugin,
         TransformPlugin,
-        plugin,
     ))
     .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f32(
         1.0 / 60.0,
@@ -246,6 +252,42 @@ fn bad_parameters_are_reported_not_panicked() {
     let all: Vec<_> = cursor.read(errors).collect();
     assert_eq!(all.len(), 1, "reported once: {all:?}");
     assert_eq!(all[0].water, water);
+    // Fixed in place, the water gets its surface and steps in the next frame.
+    app.world_mut().get_mut::<Water>(water).unwrap().params.dt = 0.4;
+    run(&mut app, 1);
+    let ws = app.world().get::<WaterSurface>(water).expect("a surface");
+    assert_eq!(ws.surface().steps(), 1);
+    assert!(app.world().get::<Mesh3d>(water).is_some());
+}
+
+/// A new water has its surface as soon as the command that spawned it is applied, and the
+/// plugin's sets run without a command flush among them (each flush is a hand-over to the
+/// main thread and back, every frame).
+#[test]
+fn surfaces_appear_on_spawn_and_the_sets_need_no_command_flush() {
+    use bevy::ecs::schedule::{ApplyDeferred, Schedules};
+    let mut app = app(SpringwaterPlugin::default());
+    app.world_mut().commands().spawn(Water::with_size(17, 17));
+    app.world_mut().flush();
+    let mut waters = app.world_mut().query::<(&Water, &WaterSurface, &Mesh3d)>();
+    assert_eq!(waters.iter(app.world()).count(), 1);
+
+    // The same app without the plugin has as many command flushes in `PostUpdate`.
+    let flushes = |app: &mut App| {
+        run(app, 1);
+        let schedules = app.world().resource::<Schedules>();
+        schedules
+            .get(PostUpdate)
+            .unwrap()
+            .systems()
+            .unwrap()
+            .filter(|(_, system)| system.system_type() == std::any::TypeId::of::<ApplyDeferred>())
+            .count()
+    };
+    let with = flushes(&mut app);
+    let without = flushes(&mut bare_app());
+
+    assert_eq!(with, without, "command flushes in PostUpdate");
 }
 
 #[test]

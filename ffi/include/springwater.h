@@ -619,10 +619,10 @@ SwStatus sw_surface_get_buoyancy(const struct SwSurface *surface, struct SwBuoya
 // `buoyancy` is NULL or a valid pointer.
 SwStatus sw_surface_set_buoyancy(struct SwSurface *surface, const struct SwBuoyancy *buoyancy);
 
-// Runs the surface's steps on the host's job system (`jobs`), or on the library's
-// built-in thread pool again when `jobs` is NULL. The job system is copied; its
-// `user_context` must stay valid until the surface is destroyed or another job system
-// is set.
+// Runs the surface's steps and its normals, refraction and vertex buffers on the host's job
+// system (`jobs`), or on the library's built-in thread pool again when `jobs` is NULL. The
+// job system is copied; its `user_context` must stay valid until the surface is destroyed
+// or another job system is set.
 //
 // # Safety
 //

@@ -117,10 +117,10 @@ impl springwater::JobSystem for HostJobs {
     }
 }
 
-/// Runs the surface's steps on the host's job system (`jobs`), or on the library's
-/// built-in thread pool again when `jobs` is NULL. The job system is copied; its
-/// `user_context` must stay valid until the surface is destroyed or another job system
-/// is set.
+/// Runs the surface's steps and its normals, refraction and vertex buffers on the host's job
+/// system (`jobs`), or on the library's built-in thread pool again when `jobs` is NULL. The
+/// job system is copied; its `user_context` must stay valid until the surface is destroyed
+/// or another job system is set.
 ///
 /// # Safety
 ///

@@ -51,71 +51,35 @@ pub(crate) mod normals;
 
 pub use lod::{LodMesh, LodParams};
 pub(crate) use normals::normals_row;
+
+use crate::jobs::{for_each_range, Disjoint, Runner};
 pub use normals::{compute_normals, Normals};
 
-/// Runs `f(chunk_index, [x, y, z])` on matching chunks of `len` elements of three equally
-/// long buffers: on the rayon pool with the `parallel` feature, in order without it. Each
-/// chunk is computed by the same code either way, so results do not depend on threads.
-pub(crate) fn for_each_chunk3<F>(out: [&mut [f32]; 3], len: usize, f: F)
-where
-    F: Fn(usize, [&mut [f32]; 3]) + Sync + Send,
+/// Runs `f(chunk_index, bufs[chunk])` on matching chunks of `len` elements of `K` equally
+/// long buffers, the chunks grouped into tasks of a few thousand elements run by `runner`
+/// ([`for_each_range`]). Each chunk is computed by the same code on any thread, so results
+/// do not depend on threads.
+pub(crate) fn for_each_chunk<const K: usize, F>(
+    runner: Runner<'_>,
+    out: [&mut [f32]; K],
+    len: usize,
+    f: F,
+) where
+    F: Fn(usize, [&mut [f32]; K]) + Sync + Send,
 {
-    let [x, y, z] = out;
+    let n = out[0].len();
+    debug_assert!(out.iter().all(|b| b.len() == n));
     let len = len.max(1);
-    #[cfg(feature = "parallel")]
-    {
-        use rayon::prelude::*;
-        // Keep tasks at a few thousand nodes or more.
-        let min_chunks = (4096 / len).max(1);
-        x.par_chunks_mut(len)
-            .zip(y.par_chunks_mut(len))
-            .zip(z.par_chunks_mut(len))
-            .with_min_len(min_chunks)
-            .enumerate()
-            .for_each(|(i, ((x, y), z))| f(i, [x, y, z]));
-    }
-    #[cfg(not(feature = "parallel"))]
-    for (i, ((x, y), z)) in x
-        .chunks_mut(len)
-        .zip(y.chunks_mut(len))
-        .zip(z.chunks_mut(len))
-        .enumerate()
-    {
-        f(i, [x, y, z]);
-    }
-}
-
-/// [`for_each_chunk3`] over six buffers.
-pub(crate) fn for_each_chunk6<F>(out: [&mut [f32]; 6], len: usize, f: F)
-where
-    F: Fn(usize, [&mut [f32]; 6]) + Sync + Send,
-{
-    let [a, b, c, d, e, g] = out;
-    let len = len.max(1);
-    #[cfg(feature = "parallel")]
-    {
-        use rayon::prelude::*;
-        let min_chunks = (4096 / len).max(1);
-        a.par_chunks_mut(len)
-            .zip(b.par_chunks_mut(len))
-            .zip(c.par_chunks_mut(len))
-            .zip(d.par_chunks_mut(len))
-            .zip(e.par_chunks_mut(len))
-            .zip(g.par_chunks_mut(len))
-            .with_min_len(min_chunks)
-            .enumerate()
-            .for_each(|(i, (((((a, b), c), d), e), g))| f(i, [a, b, c, d, e, g]));
-    }
-    #[cfg(not(feature = "parallel"))]
-    for (i, (((((a, b), c), d), e), g)) in a
-        .chunks_mut(len)
-        .zip(b.chunks_mut(len))
-        .zip(c.chunks_mut(len))
-        .zip(d.chunks_mut(len))
-        .zip(e.chunks_mut(len))
-        .zip(g.chunks_mut(len))
-        .enumerate()
-    {
-        f(i, [a, b, c, d, e, g]);
-    }
+    let parts = out.map(Disjoint::new);
+    for_each_range(runner, n, len, 4096, &|range| {
+        for start in range.clone().step_by(len) {
+            let chunk = start..(start + len).min(range.end);
+            // SAFETY: `for_each_range` runs each range once and ranges do not overlap;
+            // the chunks of one range do not overlap either.
+            f(
+                start / len,
+                parts.each_ref().map(|p| unsafe { p.part(chunk.clone()) }),
+            );
+        }
+    });
 }

@@ -91,9 +91,12 @@ impl Normals {
 pub fn compute_normals(view: &MeshView<'_>, out: &mut Normals) {
     out.resize(view.grid().len());
     let cols = view.cols();
-    super::for_each_chunk3([&mut out.x, &mut out.y, &mut out.z], cols, |row, out| {
-        normals_row(view, row, out)
-    });
+    super::for_each_chunk(
+        view.runner(),
+        [&mut out.x, &mut out.y, &mut out.z],
+        cols,
+        |row, out| normals_row(view, row, out),
+    );
 }
 
 /// The scalar twin of [`compute_normals`]: one [`MeshView::node_normal`] per node. Same results,

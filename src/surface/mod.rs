@@ -254,6 +254,7 @@ impl Surface {
         MeshView::new(self.grid(), self.params.spacing, x, y, z)
             .expect("the surface's own buffers match its grid")
             .with_simd_level(self.simd)
+            .with_runner(Runner::of(self.host.as_ref()))
     }
 
     /// Advances one step of `params().dt` with the engine. See [`Surface::step_with`].
@@ -334,8 +335,7 @@ impl Surface {
     /// any number of threads. Clones of the surface share the pool.
     ///
     /// The render-side stages ([`crate::mesh`], [`crate::refraction`],
-    /// [`crate::buffers`]) use whichever pool they are called in: call them inside
-    /// `pool.install(|| …)` to keep them on the host's pool too.
+    /// [`crate::buffers`]) on this surface's [`Surface::mesh_view`] run on the same pool.
     ///
     /// ```
     /// use std::sync::Arc;
@@ -373,8 +373,13 @@ impl Surface {
     /// pool, whatever threads and order the job system uses. Clones of the surface share
     /// the job system; setting one replaces a pool set with `set_thread_pool`.
     ///
+    /// The render-side stages ([`crate::mesh`], [`crate::refraction`],
+    /// [`crate::buffers`]) on this surface's [`Surface::mesh_view`] run their parts through
+    /// the same job system.
+    ///
     /// If the job system returns without running every task it was given, the step fails
-    /// with [`Error::JobSystem`] and the surface is unchanged.
+    /// with [`Error::JobSystem`] and the surface is unchanged (a render-side stage runs
+    /// the skipped parts itself, on the calling thread).
     pub fn set_job_system(&mut self, jobs: Option<Arc<dyn JobSystem>>) {
         self.host = jobs.map(Host::Jobs);
     }
@@ -832,12 +837,7 @@ impl Surface {
     #[cfg(feature = "internals")]
     #[doc(hidden)]
     pub fn bands(&self) -> impl Iterator<Item = crate::springs::Band> {
-        let workers = match &self.host {
-            Some(Host::Jobs(jobs)) => Runner::Jobs(&**jobs).workers(),
-            #[cfg(feature = "parallel")]
-            Some(Host::Pool(pool)) => pool.current_num_threads(),
-            None => Runner::Here.workers(),
-        };
+        let workers = Runner::of(self.host.as_ref()).workers();
         let tiling = self
             .workspace
             .tiling(self.params.rows, self.workspace.pass_steps, workers);

@@ -9,7 +9,10 @@
 //! integrate itself.
 //!
 //! Bands of one colour write disjoint rows, so each task takes `&mut` slices of its own
-//! rows of the back buffer and of its own handoff slots ([`Disjoint`]): no atomics on the
+//! rows of the back buffer and of its own handoff slots ([`Disjoint`]): band `b` owns the
+//! back-buffer rows `cut(b, levels) .. cut(b + 1, levels)` (cuts never decrease, so no two
+//! bands share a row) and, if it is even, the handoff slots `b` and `b + 1` (the next even
+//! band's are `b + 2` and `b + 3`); [`Claims`] run each band at most once. No atomics on the
 //! state, no locks. Each colour's bands are one batch of independent tasks for a
 //! [`Runner`]: rayon's pool, or the host's job system ([`crate::JobSystem`]). A step
 //! allocates nothing: handoffs live in the [`Workspace`], and each worker thread keeps its
@@ -22,7 +25,7 @@
 use super::row::{advance_row, down_springs, Inputs, Level, RowOut};
 use super::scratch::{with_scratch, Scratch};
 use super::{Handoff, StepConfig, Workspace, MAX_PASS_STEPS, STREAM_MIN_NODES};
-use crate::jobs::Runner;
+use crate::jobs::{Disjoint, Runner};
 use crate::simd::Vector;
 use crate::springs::{Springs, Tiling};
 use crate::state::{State, Xyz};
@@ -42,47 +45,6 @@ impl Rows<'_> {
         let at = (r - self.first_row) * self.cols;
         let cols = self.cols;
         self.out.each_mut().map(|s| &mut s[at..at + cols])
-    }
-}
-
-/// A mutable slice that the tasks of one colour, running at once, take disjoint parts of.
-///
-/// Which part a task takes follows from its band: band `b` owns the back-buffer rows
-/// `cut(b, levels) .. cut(b + 1, levels)` (cuts never decrease, so no two bands share a
-/// row) and, if it is even, the handoff slots `b` and `b + 1` (the next even band's are
-/// `b + 2` and `b + 3`). [`Claims`] make sure each band runs at most once per colour,
-/// whatever the job system does, so no part is ever taken twice.
-struct Disjoint<'a, T> {
-    ptr: *mut T,
-    len: usize,
-    _borrow: std::marker::PhantomData<&'a mut [T]>,
-}
-
-// SAFETY: a `Disjoint` is a `&mut [T]` handed out in non-overlapping parts; sending or
-// sharing it across threads is sending those parts, which needs `T: Send`.
-unsafe impl<T: Send> Send for Disjoint<'_, T> {}
-// SAFETY: as above; shared access only ever produces non-overlapping `&mut` parts.
-unsafe impl<T: Send> Sync for Disjoint<'_, T> {}
-
-impl<'a, T> Disjoint<'a, T> {
-    fn new(s: &'a mut [T]) -> Self {
-        Self {
-            ptr: s.as_mut_ptr(),
-            len: s.len(),
-            _borrow: std::marker::PhantomData,
-        }
-    }
-
-    /// `self[range]`, mutable.
-    ///
-    /// # Safety
-    ///
-    /// No other part overlapping `range` may be alive while this one is.
-    unsafe fn part(&self, range: Range<usize>) -> &'a mut [T] {
-        assert!(range.start <= range.end && range.end <= self.len);
-        // SAFETY: in bounds (checked above) of a slice borrowed mutably for `'a`; the
-        // caller guarantees no overlapping part is alive.
-        unsafe { std::slice::from_raw_parts_mut(self.ptr.add(range.start), range.len()) }
     }
 }
 
@@ -201,7 +163,7 @@ pub(super) fn pass_with<V: Vector>(
         let mut rows = unsafe { back.rows(t.rows_at(b, levels)) };
         // SAFETY: slots `b` and `b + 1` belong to even band `b` alone (the next even band's
         // are `b + 2` and `b + 3`), and `b` runs once.
-        let mine = unsafe { slots.part(b.min(slots.len)..(b + 2).min(slots.len)) };
+        let mine = unsafe { slots.part(b.min(slots.len())..(b + 2).min(slots.len())) };
         let mut mine = mine.iter_mut();
         let above = mine.next().filter(|_| b > 0);
         let below = mine.next();
