@@ -55,6 +55,17 @@ pub(crate) fn integrate(
     (x + v1 * dt, v1)
 }
 
+/// `x`, or +0 when it is smaller in magnitude than [`super::CALM`] (NaN stays NaN): the
+/// rule for new heights and vertical velocities.
+#[inline(always)]
+pub(crate) fn calm(x: f32) -> f32 {
+    if x.abs() < super::CALM {
+        0.0
+    } else {
+        x
+    }
+}
+
 /// Per-family spring force buffers of the reference step, allocated on first use.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Scratch {
@@ -121,6 +132,8 @@ pub(crate) fn step(
                 accel,
                 cfg.dt,
             );
+            // Vertical: calm water is exactly calm (see the module docs of `forces`).
+            let (x, v) = if k == 1 { (calm(x), calm(v)) } else { (x, v) };
             state.next_pos[k][i] = x;
             state.next_vel[k][i] = v;
             finite &= x.is_finite() && v.is_finite();

@@ -730,6 +730,9 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             new[axis] = h0[axis] + v1 * c.dt;
             new[axis + 3] = v1;
         }
+        // Vertical: calm water is exactly calm, as in `scalar::calm`.
+        new[1] = calm(new[1], c.calm);
+        new[4] = calm(new[4], c.calm);
         *e_west = e;
         new
     }
@@ -741,6 +744,7 @@ struct Consts<V: Vector> {
     uniform: Option<[(V, V); 4]>,
     dt: V,
     g: [V; 3],
+    calm: V,
 }
 
 impl<V: Vector> Consts<V> {
@@ -755,6 +759,7 @@ impl<V: Vector> Consts<V> {
             },
             dt: V::splat(k.dt),
             g: [V::splat(k.g[0]), V::splat(k.g[1]), V::splat(k.g[2])],
+            calm: V::splat(crate::forces::CALM),
         }
     }
 }
@@ -767,6 +772,13 @@ impl<V: Vector> Consts<V> {
 #[inline(always)]
 fn splat2<V: Vector>((c, r): (f32, f32)) -> (V, V) {
     (V::splat(c), V::splat(r))
+}
+
+/// `x`, or +0 in the lanes where it is smaller in magnitude than `limit` (NaN stays):
+/// [`super::super::scalar::calm`] in lanes.
+#[inline(always)]
+fn calm<V: Vector>(x: V, limit: V) -> V {
+    V::select(x.abs().lt(limit), V::zero(), x)
 }
 
 /// [`Vector::east`] of each axis.
