@@ -1,11 +1,12 @@
 //! Per-node cost of the render stages (normals, refraction, LOD rebuilds, the packed
-//! vertex buffer) against one step, as the best of 30 interleaved
+//! vertex buffer alone and fused with the stages, `fill_frame`) against one step, as the
+//! best of 30 interleaved
 //! runs: a robust ratio on a shared machine, where criterion's means drift.
 //!
 //! `cargo run --release --example render_cost -- [SIZE] [THREADS]` (513, 1).
 
 use glam::Vec3;
-use springwater::buffers::{interleave, Vertex, VertexBuffers};
+use springwater::buffers::{fill_frame, interleave, Vertex, VertexBuffers};
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use springwater::refraction::{normals_and_refraction, refract, Refraction, RefractionParams};
 use springwater::{Params, Surface};
@@ -29,7 +30,7 @@ fn main() {
         .build()
         .unwrap();
     pool.install(|| {
-        let mut best = [f64::MAX; 7];
+        let mut best = [f64::MAX; 8];
         let mut vertices = vec![Vertex::default(); n * n];
         let mut lod = LodMesh::new(LodParams::default()).unwrap();
         let mut flip = false;
@@ -58,6 +59,13 @@ fn main() {
             };
             interleave(&view, &nm, &uv, out).unwrap();
             best[6] = best[6].min(t.elapsed().as_secs_f64());
+            let t = Instant::now();
+            let out = VertexBuffers {
+                vertices: Some(&mut vertices),
+                ..Default::default()
+            };
+            fill_frame(&view, eye, &p, &mut nm, &mut uv, out).unwrap();
+            best[7] = best[7].min(t.elapsed().as_secs_f64());
             // A rebuild: the eye moves three patches between updates.
             flip = !flip;
             let at = eye + Vec3::new(if flip { 48.0 } else { 0.0 }, 0.0, 0.0);
@@ -75,8 +83,9 @@ fn main() {
         let nn = (n * n) as f64;
         println!(
             "{n}x{n} {threads} thread(s), best of 30, ns/node: step {:.2} normals {:.2} refract {:.2} \
-             fused {:.2} lod {:.3} lod_full {:.2} vertices {:.2} | ratios to a step: normals+refract \
-             {:.2} fused {:.2} lod {:.3} lod_full {:.2} vertices {:.3}",
+             fused {:.2} lod {:.3} lod_full {:.2} vertices {:.2} fill_frame {:.2} | ratios to a step: \
+             normals+refract {:.2} fused {:.2} lod {:.3} lod_full {:.2} vertices {:.3} \
+             fill_frame-fused {:.3}",
             best[0] / nn * 1e9,
             best[1] / nn * 1e9,
             best[2] / nn * 1e9,
@@ -84,11 +93,13 @@ fn main() {
             best[3] / nn * 1e9,
             best[4] / nn * 1e9,
             best[6] / nn * 1e9,
+            best[7] / nn * 1e9,
             (best[1] + best[2]) / best[0],
             best[5] / best[0],
             best[3] / best[0],
             best[4] / best[0],
             best[6] / best[0],
+            (best[7] - best[5]) / best[0],
         );
     });
 }

@@ -93,35 +93,13 @@ pub fn interleave(
     out: VertexBuffers<'_>,
 ) -> Result<()> {
     let n = view.grid().len();
-    let check = |what, got: usize| {
-        if got == n {
-            Ok(())
-        } else {
-            Err(Error::LengthMismatch {
-                what,
-                got,
-                expected: n,
-            })
-        }
-    };
     for c in [&normals.x, &normals.y, &normals.z] {
-        check("normals", c.len())?;
+        same_length(n, "normals", c.len())?;
     }
     for c in [&uv.u, &uv.v] {
-        check("refraction coordinates", c.len())?;
+        same_length(n, "refraction coordinates", c.len())?;
     }
-    if let Some(b) = &out.positions {
-        check("position buffer", b.len())?;
-    }
-    if let Some(b) = &out.normals {
-        check("normal buffer", b.len())?;
-    }
-    if let Some(b) = &out.uvs {
-        check("uv buffer", b.len())?;
-    }
-    if let Some(b) = &out.vertices {
-        check("vertex buffer", b.len())?;
-    }
+    check(n, &out)?;
     let src = Source {
         p: [view.x(), view.y(), view.z()],
         n: [&normals.x, &normals.y, &normals.z],
@@ -131,12 +109,80 @@ pub fn interleave(
     Ok(())
 }
 
+/// The render-side stages and the vertex buffers in one pass:
+/// [`normals_and_refraction`](crate::refraction::normals_and_refraction), then
+/// [`interleave`], block by block, so that each block's normals and texture coordinates
+/// go out to `out` while they are in cache. The same bits as the two calls; `normals`
+/// and `uv` hold the stages' structure-of-arrays results as well.
+///
+/// ```
+/// use springwater::buffers::{fill_frame, Vertex, VertexBuffers};
+/// use springwater::refraction::{Refraction, RefractionParams};
+/// use springwater::mesh::Normals;
+/// use springwater::{Params, Surface};
+///
+/// let mut water = Surface::new(Params::with_size(65, 49))?;
+/// water.drop_at(32.0, 24.0, 1.0, 3.0)?;
+/// let (mut normals, mut uv) = (Normals::new(), Refraction::default());
+/// let mut vertices = vec![Vertex::default(); water.len()];
+/// water.advance(1.0 / 60.0)?;
+/// let eye = glam::Vec3::new(32.0, 20.0, -10.0);
+/// fill_frame(&water.mesh_view(), eye, &RefractionParams::default(), &mut normals, &mut uv,
+///     VertexBuffers { vertices: Some(&mut vertices), ..Default::default() })?;
+/// assert_eq!(vertices[100].normal, [normals.x[100], normals.y[100], normals.z[100]]);
+/// # Ok::<(), springwater::Error>(())
+/// ```
+///
+/// Errors, with nothing written: those of `normals_and_refraction`, and
+/// [`Error::LengthMismatch`] when a buffer of `out` does not hold one element per node.
+pub fn fill_frame(
+    view: &MeshView<'_>,
+    eye: glam::Vec3,
+    params: &crate::refraction::RefractionParams,
+    normals: &mut Normals,
+    uv: &mut Refraction,
+    out: VertexBuffers<'_>,
+) -> Result<()> {
+    check(view.grid().len(), &out)?;
+    crate::refraction::fused(view, eye, params, normals, uv, Some(&Parts::new(out)))
+}
+
+/// `Ok` when a buffer of `got` elements holds one per node of `n`.
+fn same_length(n: usize, what: &'static str, got: usize) -> Result<()> {
+    if got == n {
+        Ok(())
+    } else {
+        Err(Error::LengthMismatch {
+            what,
+            got,
+            expected: n,
+        })
+    }
+}
+
+/// `Ok` when every buffer of `out` holds one element per node of `n`.
+fn check(n: usize, out: &VertexBuffers<'_>) -> Result<()> {
+    if let Some(b) = &out.positions {
+        same_length(n, "position buffer", b.len())?;
+    }
+    if let Some(b) = &out.normals {
+        same_length(n, "normal buffer", b.len())?;
+    }
+    if let Some(b) = &out.uvs {
+        same_length(n, "uv buffer", b.len())?;
+    }
+    if let Some(b) = &out.vertices {
+        same_length(n, "vertex buffer", b.len())?;
+    }
+    Ok(())
+}
+
 /// The structure-of-arrays inputs, all of one length.
 #[derive(Clone, Copy)]
-struct Source<'a> {
-    p: [&'a [f32]; 3],
-    n: [&'a [f32]; 3],
-    uv: [&'a [f32]; 2],
+pub(crate) struct Source<'a> {
+    pub p: [&'a [f32]; 3],
+    pub n: [&'a [f32]; 3],
+    pub uv: [&'a [f32]; 2],
 }
 
 impl Source<'_> {
@@ -155,7 +201,7 @@ impl Source<'_> {
 }
 
 /// The output buffers, for the tasks to take their nodes of.
-struct Parts<'a> {
+pub(crate) struct Parts<'a> {
     positions: Option<Disjoint<'a, [f32; 3]>>,
     normals: Option<Disjoint<'a, [f32; 3]>>,
     uvs: Option<Disjoint<'a, [f32; 2]>>,
@@ -177,7 +223,7 @@ impl<'a> Parts<'a> {
     /// # Safety
     ///
     /// No other task may hold nodes overlapping `r` at the same time.
-    unsafe fn range(&self, r: Range<usize>) -> VertexBuffers<'a> {
+    pub(crate) unsafe fn range(&self, r: Range<usize>) -> VertexBuffers<'a> {
         // SAFETY: the caller holds these nodes alone.
         unsafe {
             VertexBuffers {
@@ -207,7 +253,7 @@ fn split(runner: Runner<'_>, src: Source<'_>, out: VertexBuffers<'_>) {
 /// One block: each requested buffer in turn, while the block's inputs are in cache.
 /// Zipped iterators over slices of one length: no bounds checks, and the compiler
 /// vectorises the gathers into interleaved stores.
-fn fill(src: Source<'_>, out: VertexBuffers<'_>) {
+pub(crate) fn fill(src: Source<'_>, out: VertexBuffers<'_>) {
     let [x, y, z] = src.p;
     let [nx, ny, nz] = src.n;
     let [u, v] = src.uv;

@@ -209,6 +209,20 @@ pub fn normals_and_refraction(
     normals: &mut Normals,
     out: &mut Refraction,
 ) -> Result<()> {
+    fused(view, eye, params, normals, out, None)
+}
+
+/// [`normals_and_refraction`], each task's block then copied into `vertices` (checked by
+/// the caller: one element per node) while it is in cache
+/// ([`crate::buffers::fill_frame`]).
+pub(crate) fn fused(
+    view: &MeshView<'_>,
+    eye: Vec3,
+    params: &RefractionParams,
+    normals: &mut Normals,
+    out: &mut Refraction,
+    vertices: Option<&crate::buffers::Parts<'_>>,
+) -> Result<()> {
     let k = Refractor::new(view, eye, params)?;
     let (n, cols) = (view.grid().len(), view.cols());
     normals.resize(n);
@@ -228,7 +242,19 @@ pub fn normals_and_refraction(
             for (r, ((x, y), z)) in rows.enumerate() {
                 crate::mesh::normals_row(view, first_row + r, [x, y, z]);
             }
-            k.chunk(view, [nx, ny, nz], first_row * cols, [u, v, f]);
+            let first = first_row * cols;
+            k.chunk(view, [nx, ny, nz], first, [u, v, f]);
+            if let Some(parts) = vertices {
+                let nodes = first..first + nx.len();
+                let src = crate::buffers::Source {
+                    p: [view.x(), view.y(), view.z()].map(|c| &c[nodes.clone()]),
+                    n: [&*nx, &*ny, &*nz],
+                    uv: [&*u, &*v],
+                };
+                // SAFETY: the chunks of one call are disjoint node ranges, each run once
+                // (`for_each_chunk`), so no other task holds these nodes.
+                crate::buffers::fill(src, unsafe { parts.range(nodes) });
+            }
         },
     );
     Ok(())

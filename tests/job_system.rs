@@ -192,7 +192,7 @@ fn the_bands_spread_over_the_hosts_threads() {
 /// once.
 #[test]
 fn the_render_side_stages_run_on_the_job_system_with_the_same_bits() {
-    use springwater::buffers::{interleave, Vertex, VertexBuffers};
+    use springwater::buffers::{fill_frame, interleave, Vertex, VertexBuffers};
     use springwater::mesh::{compute_normals, Normals};
     use springwater::refraction::{normals_and_refraction, refract, Refraction, RefractionParams};
 
@@ -219,6 +219,14 @@ fn the_render_side_stages_run_on_the_job_system_with_the_same_bits() {
             },
         )
         .unwrap();
+        let mut fused = vec![Vertex::default(); s.len()];
+        let (mut n3, mut uv3) = (Normals::new(), Refraction::default());
+        let out = VertexBuffers {
+            vertices: Some(&mut fused),
+            ..Default::default()
+        };
+        fill_frame(&view, eye, &params, &mut n3, &mut uv3, out).unwrap();
+        assert!(fused == vertices);
         let floats = [
             &normals.x,
             &normals.y,
@@ -256,6 +264,6 @@ fn the_render_side_stages_run_on_the_job_system_with_the_same_bits() {
         s.set_job_system(Some(jobs));
         assert!(stages(&s) == default, "{name}: the stages' output differs");
     }
-    // normals, refract, the fused pass and interleave: one batch each.
-    assert_eq!(scoped.batches.load(Ordering::Relaxed), 4);
+    // normals, refract, the fused pass, interleave and fill_frame: one batch each.
+    assert_eq!(scoped.batches.load(Ordering::Relaxed), 5);
 }

@@ -28,6 +28,18 @@ use springwater::mesh::Normals;
 use springwater::refraction::{normals_and_refraction, Refraction};
 use springwater_bevy::prelude::*;
 
+/// Every task on the calling thread, in order.
+struct Inline;
+
+impl springwater::JobSystem for Inline {
+    fn workers(&self) -> usize {
+        1
+    }
+    fn run(&self, count: usize, task: &(dyn Fn(usize) + Sync)) {
+        (0..count).for_each(task);
+    }
+}
+
 #[derive(Resource, Default)]
 struct Marks {
     last: Option<Instant>,
@@ -45,7 +57,7 @@ fn mark<const PHASE: usize>(mut marks: ResMut<Marks>) {
     marks.last = Some(now);
 }
 
-fn measure(size: usize, frames: u32, compute: Option<usize>) -> ([Duration; 3], [Duration; 2]) {
+fn measure(size: usize, frames: u32, compute: Option<usize>) -> ([Duration; 3], [Duration; 3]) {
     let mut options = TaskPoolOptions::default();
     if let Some(threads) = compute {
         options.compute = TaskPoolThreadAssignmentPolicy {
@@ -134,7 +146,16 @@ fn measure(size: usize, frames: u32, compute: Option<usize>) -> ([Duration; 3], 
         interleave(&view, &normals, &uv, out).expect("interleave");
     }
     let interleaving = start.elapsed() / frames;
-    (sets, [stages, interleaving])
+    // The same surface (its body, its pending state) stepped alone on one thread, without
+    // its rain: what the physics costs, against the plugin's Step set on one compute thread.
+    let mut alone = ws.surface().clone();
+    alone.set_job_system(Some(std::sync::Arc::new(Inline)));
+    let start = Instant::now();
+    for _ in 0..frames {
+        alone.step().expect("step");
+    }
+    let step_alone = start.elapsed() / frames;
+    (sets, [stages, interleaving, step_alone])
 }
 
 fn main() {
@@ -142,10 +163,10 @@ fn main() {
     let frames = arg(1).unwrap_or(200);
     let compute = arg(2).map(|n| n as usize);
     let mut pool = String::new();
-    println!("size   sync-inputs        step  write-back | alone: normals+refraction  interleave");
+    println!("size   sync-inputs        step  write-back | alone: normals+refraction  interleave  step on 1 thread");
     for size in [128, 512] {
-        let ([sync, step, write], [stages, inter]) = measure(size, frames, compute);
-        println!("{size:>3}²  {sync:>11.1?} {step:>11.1?} {write:>11.1?}  {stages:>25.1?} {inter:>11.1?}");
+        let ([sync, step, write], [stages, inter, alone]) = measure(size, frames, compute);
+        println!("{size:>3}²  {sync:>11.1?} {step:>11.1?} {write:>11.1?}  {stages:>25.1?} {inter:>11.1?} {alone:>17.1?}");
         pool = format!(
             "{} thread(s)",
             bevy::tasks::ComputeTaskPool::get().thread_num()

@@ -10,8 +10,10 @@ use bevy::mesh::{
     Indices, Mesh, Mesh3d, MeshVertexAttribute, PrimitiveTopology, VertexAttributeValues,
 };
 use bevy::transform::components::GlobalTransform;
-use springwater::buffers::{interleave, VertexBuffers};
-use springwater::refraction::normals_and_refraction;
+use springwater::buffers::{fill_frame, VertexBuffers};
+use springwater::mesh::Normals;
+use springwater::refraction::{Refraction, RefractionParams};
+use springwater::Surface;
 
 use crate::step::report;
 use crate::water::{Space, Water, WaterError, WaterSurface, WaterViewer};
@@ -101,11 +103,18 @@ fn f32x2(v: &mut VertexAttributeValues) -> Option<&mut Vec<[f32; 2]>> {
     }
 }
 
-/// Writes one water's mesh: positions, normals and UVs in place (the vectors keep their
-/// allocations), the indices only when `indices` is given.
-fn write_mesh(mesh: &mut Mesh, ws: &WaterSurface, indices: Option<&[u32]>) -> Result<(), String> {
-    let view = ws.surface.mesh_view();
-    let n = view.grid().len();
+/// Writes one water's mesh: normals and refraction from `eye` (springwater's
+/// `fill_frame`, which also fills the attributes in the same pass), positions, normals and
+/// UVs in place (the vectors keep their allocations), the indices only when `indices` is
+/// given.
+fn write_mesh(
+    mesh: &mut Mesh,
+    surface: &Surface,
+    (normal_scratch, uv_scratch): (&mut Normals, &mut Refraction),
+    (eye, refraction): (Vec3, &RefractionParams),
+    indices: Option<&[u32]>,
+) -> Result<(), String> {
+    let n = surface.len();
     let mut positions = take(mesh, Mesh::ATTRIBUTE_POSITION, f32x3)?;
     let mut normals = take(mesh, Mesh::ATTRIBUTE_NORMAL, f32x3)?;
     let mut uvs = take(mesh, Mesh::ATTRIBUTE_UV_0, f32x2)?;
@@ -113,10 +122,12 @@ fn write_mesh(mesh: &mut Mesh, ws: &WaterSurface, indices: Option<&[u32]>) -> Re
     positions.resize(n, [0.0; 3]);
     normals.resize(n, [0.0; 3]);
     uvs.resize(n, [0.0; 2]);
-    let written = interleave(
-        &view,
-        &ws.normals,
-        &ws.uv,
+    let written = fill_frame(
+        &surface.mesh_view(),
+        eye.to_array().into(),
+        refraction,
+        normal_scratch,
+        uv_scratch,
         VertexBuffers {
             positions: Some(&mut positions),
             normals: Some(&mut normals),
@@ -124,7 +135,7 @@ fn write_mesh(mesh: &mut Mesh, ws: &WaterSurface, indices: Option<&[u32]>) -> Re
             vertices: None,
         },
     );
-    // Put the vectors back even if interleaving failed (then they hold last frame's data).
+    // Put the vectors back even if that failed (then they hold last frame's data).
     let put = mesh
         .try_insert_attribute(Mesh::ATTRIBUTE_POSITION, positions)
         .and_then(|()| mesh.try_insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals))
@@ -161,23 +172,20 @@ pub(crate) fn write_meshes(
             Some(e) => Space::new(global).local_point(e),
             None => default_eye(ws),
         };
-        let view = ws.surface.mesh_view();
-        if let Err(e) = normals_and_refraction(
-            &view,
-            local_eye.to_array().into(),
-            &water.refraction,
-            &mut ws.normals,
-            &mut ws.uv,
-        ) {
-            report(&mut errors, entity, "refraction failed", &e);
-            continue;
-        }
-        let lod_changed = ws.lod.update(&view, local_eye.to_array().into());
+        let WaterSurface {
+            surface,
+            lod,
+            normals,
+            uv,
+            ..
+        } = ws;
+        let lod_changed = lod.update(&surface.mesh_view(), local_eye.to_array().into());
         let Some(mut mesh) = meshes.get_mut(&mesh3d.0) else {
             continue;
         };
-        let indices = lod_changed.then(|| ws.lod.indices());
-        if let Err(e) = write_mesh(&mut mesh, ws, indices) {
+        let indices = lod_changed.then(|| lod.indices());
+        let frame = (local_eye, &water.refraction);
+        if let Err(e) = write_mesh(&mut mesh, surface, (normals, uv), frame, indices) {
             report(&mut errors, entity, "mesh write failed", &e);
         }
     }

@@ -43,9 +43,9 @@ pub use jobs::{sw_surface_set_job_system, SwEnqueueTaskFn, SwFinishTaskFn, SwJob
 pub use status::*;
 
 use handle::Water;
-use springwater::buffers::{interleave, Vertex, VertexBuffers};
+use springwater::buffers::{fill_frame, Vertex, VertexBuffers};
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
-use springwater::refraction::{normals_and_refraction, refract, Refraction, RefractionParams};
+use springwater::refraction::{refract, Refraction, RefractionParams};
 use springwater::{Boundary, Params, SimdLevel, Surface};
 use std::ffi::c_char;
 
@@ -578,12 +578,18 @@ pub unsafe extern "C" fn sw_surface_write_vertices(
             // (checked at compile time above).
             let out = unsafe { out_slice(vertices.cast::<Vertex>(), n, "vertices") }?;
             let view = w.surface.mesh_view();
-            normals_and_refraction(&view, eye, &params, &mut w.normals, &mut w.uv)?;
             let buffers = VertexBuffers {
                 vertices: Some(out),
                 ..Default::default()
             };
-            Ok(interleave(&view, &w.normals, &w.uv, buffers)?)
+            Ok(fill_frame(
+                &view,
+                eye,
+                &params,
+                &mut w.normals,
+                &mut w.uv,
+                buffers,
+            )?)
         })
     })
 }
