@@ -9,7 +9,10 @@
 //! wait from a worker thread works too.
 //!
 //! The render-side stages read a surface through its [`MeshView`](crate::MeshView), which
-//! carries the same host: [`for_each_range`] cuts their outputs into tasks for it.
+//! carries the same host: [`for_each_range`] cuts their outputs into tasks for it, and
+//! calls [`JobSystem::run`] once per stage from the thread that called the stage (never
+//! from inside a task either). A stage called from inside one of the host's own jobs
+//! therefore needs a job system that can wait there.
 //!
 //! The bits do not depend on where the tasks run: every band computes the same values
 //! whichever thread runs it and in whichever order, so a host's job system, rayon's pool
@@ -163,10 +166,13 @@ impl Runner<'_> {
 /// rayon (whose work stealing balances them), about four per worker for a job system
 /// (whose tasks may each cost a hand-over).
 ///
-/// Every range runs exactly once, whatever the runner does: a range is claimed before it
-/// runs, so a job system that repeats a task runs it once, and a range a job system
-/// skipped runs on the calling thread after the batch. Tasks may therefore write disjoint
-/// parts of one buffer ([`Disjoint`]) by their range.
+/// Every range runs exactly once, whatever indices the runner passes: a range is claimed
+/// before it runs, so a job system that repeats a task runs it once, one that invents
+/// indices runs nothing for them, and a range a job system skipped runs on the calling
+/// thread after the batch. Tasks may therefore write disjoint parts of one buffer
+/// ([`Disjoint`]) by their range. What this relies on is [`JobSystem::run`]'s contract
+/// that no call of the task outlives `run`: safe Rust cannot break it (the task is
+/// borrowed for the call), a C host must keep it (`finish_task` waits for every item).
 pub(crate) fn for_each_range(
     runner: Runner<'_>,
     len: usize,

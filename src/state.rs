@@ -52,7 +52,8 @@ pub(crate) struct State {
     pub inv_mass: Floats,
     /// Viscosity `γ`.
     pub viscosity: Floats,
-    /// Pinned nodes never move.
+    /// Pinned nodes never move (but for the calm rule of [`crate::forces`]: a pinned
+    /// height below 1e-18 becomes +0).
     pub pinned: Vec<bool>,
 }
 

@@ -24,6 +24,11 @@ pub struct MeshView<'a> {
     runner: Runner<'a>,
 }
 
+// The view only reads the surface's buffers (its host is borrowed to hand work to):
+// nothing of it is left half-changed by a panic, as for the plain slices it holds.
+impl std::panic::UnwindSafe for MeshView<'_> {}
+impl std::panic::RefUnwindSafe for MeshView<'_> {}
+
 impl<'a> MeshView<'a> {
     /// A view of `x`, `y`, `z` (one value per node, row-major) on `grid` with rest
     /// spacing `spacing`. The slices must have `grid.len()` elements and the grid at

@@ -114,6 +114,18 @@ fn write_mesh(
     (eye, refraction): (Vec3, &RefractionParams),
     indices: Option<&[u32]>,
 ) -> Result<(), String> {
+    // The indices first: the LOD has moved on, whatever happens to the attributes.
+    if let Some(indices) = indices {
+        match mesh.try_indices_mut() {
+            Ok(Indices::U32(v)) => {
+                v.clear();
+                v.extend_from_slice(indices);
+            }
+            _ => mesh
+                .try_insert_indices(Indices::U32(indices.to_vec()))
+                .map_err(|e| e.to_string())?,
+        }
+    }
     let n = surface.len();
     let mut positions = take(mesh, Mesh::ATTRIBUTE_POSITION, f32x3)?;
     let mut normals = take(mesh, Mesh::ATTRIBUTE_NORMAL, f32x3)?;
@@ -141,19 +153,7 @@ fn write_mesh(
         .and_then(|()| mesh.try_insert_attribute(Mesh::ATTRIBUTE_NORMAL, normals))
         .and_then(|()| mesh.try_insert_attribute(Mesh::ATTRIBUTE_UV_0, uvs));
     written.map_err(|e| e.to_string())?;
-    put.map_err(|e| e.to_string())?;
-    if let Some(indices) = indices {
-        match mesh.try_indices_mut() {
-            Ok(Indices::U32(v)) => {
-                v.clear();
-                v.extend_from_slice(indices);
-            }
-            _ => mesh
-                .try_insert_indices(Indices::U32(indices.to_vec()))
-                .map_err(|e| e.to_string())?,
-        }
-    }
-    Ok(())
+    put.map_err(|e| e.to_string())
 }
 
 /// Normals, refraction, LOD and the mesh write of every water, from the eye in each

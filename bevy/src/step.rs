@@ -4,7 +4,9 @@ use std::sync::Arc;
 
 use bevy::asset::Assets;
 use bevy::camera::primitives::Aabb;
+use bevy::ecs::change_detection::Tick;
 use bevy::ecs::prelude::*;
+use bevy::ecs::system::SystemChangeTick;
 use bevy::log::{error, info};
 use bevy::mesh::{Mesh, Mesh3d};
 use bevy::time::Time;
@@ -17,10 +19,10 @@ use crate::water::{
 };
 use crate::SpringwaterSettings;
 
-/// Set on a [`Water`] whose parameters were refused, holding them, so that the error is
-/// reported once per change of the component rather than every frame.
+/// Set on a [`Water`] whose parameters were refused, with the tick of the refusal, so that
+/// the error is reported once per change of the component rather than every frame.
 #[derive(Component)]
-pub(crate) struct WaterFailed(Water);
+pub(crate) struct WaterFailed(Tick);
 
 pub(crate) fn report(
     errors: &mut MessageWriter<WaterError>,
@@ -49,11 +51,11 @@ fn make_surface(
 /// Gives `entity` a surface and mesh for `water`, or marks it refused.
 fn install(
     commands: &mut Commands,
-    entity: Entity,
-    water: &Water,
+    (entity, water): (Entity, &Water),
     settings: &SpringwaterSettings,
     meshes: &mut Assets<Mesh>,
     errors: &mut MessageWriter<WaterError>,
+    now: Tick,
 ) {
     match make_surface(water, settings) {
         Ok(surface) => {
@@ -67,9 +69,7 @@ fn install(
         }
         Err(e) => {
             report(errors, entity, "water parameters refused", &e);
-            commands
-                .entity(entity)
-                .try_insert(WaterFailed(water.clone()));
+            commands.entity(entity).try_insert(WaterFailed(now));
         }
     }
 }
@@ -84,38 +84,49 @@ pub(crate) fn create_surface(
     mut meshes: ResMut<Assets<Mesh>>,
     waters: Query<&Water, Without<WaterSurface>>,
     mut errors: MessageWriter<WaterError>,
+    ticks: SystemChangeTick,
 ) {
     if let Ok(water) = waters.get(add.entity) {
+        let water = (add.entity, water);
+        let now = ticks.this_run();
         install(
             &mut commands,
-            add.entity,
             water,
             &settings,
             &mut meshes,
             &mut errors,
+            now,
         );
     }
 }
 
+/// A water with no surface: refused (with the tick), or added before the plugin.
+type WithoutSurface = (Entity, Ref<'static, Water>, Option<&'static WaterFailed>);
+
 /// Tries again a water whose parameters were refused, once they changed (and creates the
 /// surface of one added before the plugin). Runs in `PreUpdate`, away from the plugin's
-/// sets, so that its commands need no flush among them; it steps in the same frame.
+/// sets, so that its commands need no flush among them: a water fixed in `Update` gets
+/// its surface in the next frame's `PreUpdate` and steps in that frame.
 pub(crate) fn retry_refused(
     mut commands: Commands,
     settings: Res<SpringwaterSettings>,
     mut meshes: ResMut<Assets<Mesh>>,
-    waters: Query<(Entity, &Water, Option<&WaterFailed>), Without<WaterSurface>>,
+    waters: Query<WithoutSurface, Without<WaterSurface>>,
     mut errors: MessageWriter<WaterError>,
+    ticks: SystemChangeTick,
 ) {
+    let now = ticks.this_run();
     for (entity, water, failed) in &waters {
-        if failed.is_none_or(|f| f.0 != *water) {
+        // Changed since it was refused (a tick, not a comparison: NaN never equals itself).
+        if failed.is_none_or(|f| water.last_changed().is_newer_than(f.0, now)) {
+            let water = (entity, &*water);
             install(
                 &mut commands,
-                entity,
                 water,
                 &settings,
                 &mut meshes,
                 &mut errors,
+                now,
             );
         }
     }
@@ -145,7 +156,8 @@ pub(crate) fn update_surfaces(
                 Err(e) => report(&mut errors, entity, "LOD parameters refused", &e),
             }
         }
-        if let Some(mut aabb) = aabb {
+        // The box follows the surface: not when new parameters were refused.
+        if let Some(mut aabb) = aabb.filter(|_| *surface.surface.params() == water.params) {
             let fresh = bounds(water);
             if *aabb != fresh {
                 *aabb = fresh;

@@ -5,6 +5,7 @@ use std::sync::Arc;
 use std::time::Duration;
 
 use bevy::asset::AssetPlugin;
+use bevy::camera::primitives::Aabb;
 use bevy::mesh::{Indices, Mesh, Mesh3d, MeshPlugin, VertexAttributeValues};
 use bevy::prelude::*;
 use bevy::tasks::{ComputeTaskPool, TaskPoolBuilder};
@@ -258,6 +259,34 @@ fn bad_parameters_are_reported_not_panicked() {
     let ws = app.world().get::<WaterSurface>(water).expect("a surface");
     assert_eq!(ws.surface().steps(), 1);
     assert!(app.world().get::<Mesh3d>(water).is_some());
+
+    // Refused new parameters leave the surface and its bounding box as they were.
+    let aabb = *app.world().get::<Aabb>(water).unwrap();
+    let mut bigger = Params::with_size(65, 65);
+    bigger.dt = 10.0;
+    app.world_mut().get_mut::<Water>(water).unwrap().params = bigger;
+    run(&mut app, 2);
+    assert_eq!(*app.world().get::<Aabb>(water).unwrap(), aabb);
+    assert_eq!(
+        app.world()
+            .get::<WaterSurface>(water)
+            .unwrap()
+            .surface()
+            .len(),
+        33 * 33
+    );
+
+    // A NaN (which never equals itself) is reported once too, not every frame.
+    let mut nan = Params::with_size(17, 17);
+    nan.spacing = f32::NAN;
+    let other = app.world_mut().spawn(Water::new(nan)).id();
+    let mut about_other = 0;
+    for _ in 0..4 {
+        run(&mut app, 1);
+        let errors = app.world().resource::<Messages<WaterError>>();
+        about_other += cursor.read(errors).filter(|e| e.water == other).count();
+    }
+    assert_eq!(about_other, 1);
 }
 
 /// A new water has its surface as soon as the command that spawned it is applied, and the

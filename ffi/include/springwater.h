@@ -189,9 +189,14 @@ typedef void (*SwFinishTaskFn)(void *user_task, void *user_context);
 //
 // Each engine pass calls `enqueue_task` twice (one task per colour of bands; each item is
 // a band of rows, independent of the others) and `finish_task` after each, from the
-// thread that called the stepping function, never from inside a task. The results are
-// bitwise the same as on the built-in pool. A job system that returns without running
-// every item makes the step fail with `SW_ERROR_JOB_SYSTEM`, changing nothing.
+// thread that called the stepping function, never from inside a task. The normals,
+// refraction and vertex-buffer functions call them once each, from the thread that
+// called them (which may be one of the host's workers, if the host calls from a job:
+// `finish_task` must then be able to wait there). The results are bitwise the same as on
+// the built-in pool. A job system that returns without running every item makes a step
+// fail with `SW_ERROR_JOB_SYSTEM`, changing nothing; the other functions run the items
+// it skipped themselves, on the calling thread. `finish_task` must not return before
+// every item it was given has returned.
 typedef struct SwJobSystem {
   // Workers that run items at once (1 to 4096): the engine cuts about four bands per
   // worker.

@@ -35,9 +35,14 @@ pub type SwFinishTaskFn =
 ///
 /// Each engine pass calls `enqueue_task` twice (one task per colour of bands; each item is
 /// a band of rows, independent of the others) and `finish_task` after each, from the
-/// thread that called the stepping function, never from inside a task. The results are
-/// bitwise the same as on the built-in pool. A job system that returns without running
-/// every item makes the step fail with `SW_ERROR_JOB_SYSTEM`, changing nothing.
+/// thread that called the stepping function, never from inside a task. The normals,
+/// refraction and vertex-buffer functions call them once each, from the thread that
+/// called them (which may be one of the host's workers, if the host calls from a job:
+/// `finish_task` must then be able to wait there). The results are bitwise the same as on
+/// the built-in pool. A job system that returns without running every item makes a step
+/// fail with `SW_ERROR_JOB_SYSTEM`, changing nothing; the other functions run the items
+/// it skipped themselves, on the calling thread. `finish_task` must not return before
+/// every item it was given has returned.
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct SwJobSystem {

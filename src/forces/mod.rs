@@ -16,7 +16,8 @@
 //! a = (F_springs + f_ext − γ v) / m + g      v ← v + a Δt      x ← x + v Δt
 //! ```
 //!
-//! Pinned nodes have `1/m = 0` and no `g`, so they never move.
+//! Pinned nodes have `1/m = 0` and no `g`, so they never move (but for the calm rule
+//! below: a pinned height smaller than 1e-18 reads +0 after a step).
 //!
 //! # Calm water is exactly calm
 //!
@@ -24,7 +25,9 @@
 //! positions' units) is stored as +0. Left alone, a calm pool's ripples decay
 //! exponentially through magnitudes where the arithmetic meets subnormal numbers: first
 //! the squared vertical offset of a spring (heights of 1e-19 to 1e-23), then the heights
-//! and velocities themselves (below 1.2e-38). Many x86 cores take a microcode assist of
+//! and velocities themselves (below 1.2e-38). With the rule, no height or velocity is ever
+//! subnormal, and a subnormal square is left to the rare spring whose two heights, both
+//! above 1e-18, differ by less than 1e-19. Many x86 cores take a microcode assist of
 //! about a hundred cycles for each such operation: a 256² pool left to settle stepped up
 //! to eight times slower after 15,000 steps, for motion of a billionth of a billionth of
 //! a grid step. Both implementations apply the same rule to the same values, so they
