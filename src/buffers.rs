@@ -240,13 +240,9 @@ impl<'a> Parts<'a> {
 /// its inputs are in cache. Every element is written by the same code on any thread.
 fn split(runner: Runner<'_>, src: Source<'_>, out: VertexBuffers<'_>) {
     let parts = Parts::new(out);
-    for_each_range(runner, src.len(), BLOCK, BLOCK, &|range| {
-        for start in range.clone().step_by(BLOCK) {
-            let block = start..(start + BLOCK).min(range.end);
-            // SAFETY: `for_each_range` runs each range once and ranges do not overlap;
-            // the blocks of one range do not overlap either.
-            fill(src.range(block.clone()), unsafe { parts.range(block) });
-        }
+    for_each_range(runner, src.len(), BLOCK, BLOCK, &|block| {
+        // SAFETY: `for_each_range` runs each block once and blocks do not overlap.
+        fill(src.range(block.clone()), unsafe { parts.range(block) });
     });
 }
 

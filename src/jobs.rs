@@ -83,11 +83,7 @@ pub(crate) enum Host {
 
 impl std::fmt::Debug for Host {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            #[cfg(feature = "parallel")]
-            Host::Pool(pool) => write!(f, "Pool({} threads)", pool.current_num_threads()),
-            Host::Jobs(jobs) => write!(f, "Jobs({} workers)", jobs.workers()),
-        }
+        Runner::of(Some(self)).fmt(f)
     }
 }
 
@@ -161,16 +157,16 @@ impl Runner<'_> {
     }
 }
 
-/// Runs `task(range)` over `0..len` cut into ranges of whole `unit`s (the last may be
-/// shorter), each at least `min_len` long, through `runner`: as many as that allows on
-/// rayon (whose work stealing balances them), about four per worker for a job system
-/// (whose tasks may each cost a hand-over).
+/// Runs `task(unit)` for every unit of `0..len` cut into `unit`-long ranges (the last may
+/// be shorter), the units grouped into tasks at least `min_len` long run by `runner`: as
+/// many tasks as that allows on rayon (whose work stealing balances them), about four per
+/// worker for a job system (whose tasks may each cost a hand-over).
 ///
-/// Every range runs exactly once, whatever indices the runner passes: a range is claimed
+/// Every unit runs exactly once, whatever indices the runner passes: a task is claimed
 /// before it runs, so a job system that repeats a task runs it once, one that invents
-/// indices runs nothing for them, and a range a job system skipped runs on the calling
+/// indices runs nothing for them, and a task a job system skipped runs on the calling
 /// thread after the batch. Tasks may therefore write disjoint parts of one buffer
-/// ([`Disjoint`]) by their range. What this relies on is [`JobSystem::run`]'s contract
+/// ([`Disjoint`]) by their unit. What this relies on is [`JobSystem::run`]'s contract
 /// that no call of the task outlives `run`: safe Rust cannot break it (the task is
 /// borrowed for the call), a C host must keep it (`finish_task` waits for every item).
 pub(crate) fn for_each_range(
@@ -183,16 +179,19 @@ pub(crate) fn for_each_range(
     let unit = unit.max(1);
     let units = len.div_ceil(unit);
     let per_worker = match runner {
-        Runner::Jobs(jobs) => units.div_ceil(4 * jobs.workers().max(1)),
+        Runner::Jobs(_) => units.div_ceil(4 * runner.workers()),
         _ => 1,
     };
     let per = min_len.div_ceil(unit).max(per_worker).max(1);
     let count = units.div_ceil(per);
-    let range = |i: usize| i * per * unit..((i + 1) * per * unit).min(len);
-    if count <= 1 {
-        if len > 0 {
-            task(0..len);
+    // Task `i`: its units, one after the other.
+    let run = |i: usize| {
+        for first in (i * per..((i + 1) * per).min(units)).map(|u| u * unit) {
+            task(first..(first + unit).min(len));
         }
+    };
+    if count <= 1 {
+        (0..count).for_each(run);
         return;
     }
     let claims: Vec<AtomicBool> = (0..count).map(|_| AtomicBool::new(false)).collect();
@@ -203,12 +202,12 @@ pub(crate) fn for_each_range(
     };
     runner.run(count, &|i| {
         if claim(i) {
-            task(range(i))
+            run(i)
         }
     });
     for i in 0..count {
         if claim(i) {
-            task(range(i));
+            run(i);
         }
     }
 }

@@ -6,7 +6,7 @@ use bevy::asset::Assets;
 use bevy::camera::primitives::Aabb;
 use bevy::ecs::change_detection::Tick;
 use bevy::ecs::prelude::*;
-use bevy::ecs::system::SystemChangeTick;
+use bevy::ecs::system::{SystemChangeTick, SystemParam};
 use bevy::log::{error, info};
 use bevy::mesh::{Mesh, Mesh3d};
 use bevy::time::Time;
@@ -48,28 +48,38 @@ fn make_surface(
     Ok(surface)
 }
 
-/// Gives `entity` a surface and mesh for `water`, or marks it refused.
-fn install(
-    commands: &mut Commands,
-    (entity, water): (Entity, &Water),
-    settings: &SpringwaterSettings,
-    meshes: &mut Assets<Mesh>,
-    errors: &mut MessageWriter<WaterError>,
-    now: Tick,
-) {
-    match make_surface(water, settings) {
-        Ok(surface) => {
-            let handle = meshes.add(new_mesh(&surface));
-            commands.entity(entity).remove::<WaterFailed>().try_insert((
-                Mesh3d(handle),
-                bounds(water),
-                bevy::camera::visibility::NoAutoAabb,
-                surface,
-            ));
-        }
-        Err(e) => {
-            report(errors, entity, "water parameters refused", &e);
-            commands.entity(entity).try_insert(WaterFailed(now));
+/// What giving a water its surface takes: [`Installer::install`].
+#[derive(SystemParam)]
+pub(crate) struct Installer<'w, 's> {
+    commands: Commands<'w, 's>,
+    settings: Res<'w, SpringwaterSettings>,
+    meshes: ResMut<'w, Assets<Mesh>>,
+    errors: MessageWriter<'w, WaterError>,
+    ticks: SystemChangeTick,
+}
+
+impl Installer<'_, '_> {
+    /// Gives `entity` a surface and mesh for `water`, or marks it refused (with this run's
+    /// tick).
+    fn install(&mut self, entity: Entity, water: &Water) {
+        match make_surface(water, &self.settings) {
+            Ok(surface) => {
+                let handle = self.meshes.add(new_mesh(&surface));
+                self.commands
+                    .entity(entity)
+                    .remove::<WaterFailed>()
+                    .try_insert((
+                        Mesh3d(handle),
+                        bounds(water),
+                        bevy::camera::visibility::NoAutoAabb,
+                        surface,
+                    ));
+            }
+            Err(e) => {
+                report(&mut self.errors, entity, "water parameters refused", &e);
+                let now = self.ticks.this_run();
+                self.commands.entity(entity).try_insert(WaterFailed(now));
+            }
         }
     }
 }
@@ -79,24 +89,11 @@ fn install(
 /// wait for a command flush.
 pub(crate) fn create_surface(
     add: On<Add, Water>,
-    mut commands: Commands,
-    settings: Res<SpringwaterSettings>,
-    mut meshes: ResMut<Assets<Mesh>>,
     waters: Query<&Water, Without<WaterSurface>>,
-    mut errors: MessageWriter<WaterError>,
-    ticks: SystemChangeTick,
+    mut installer: Installer,
 ) {
     if let Ok(water) = waters.get(add.entity) {
-        let water = (add.entity, water);
-        let now = ticks.this_run();
-        install(
-            &mut commands,
-            water,
-            &settings,
-            &mut meshes,
-            &mut errors,
-            now,
-        );
+        installer.install(add.entity, water);
     }
 }
 
@@ -108,26 +105,14 @@ type WithoutSurface = (Entity, Ref<'static, Water>, Option<&'static WaterFailed>
 /// sets, so that its commands need no flush among them: a water fixed in `Update` gets
 /// its surface in the next frame's `PreUpdate` and steps in that frame.
 pub(crate) fn retry_refused(
-    mut commands: Commands,
-    settings: Res<SpringwaterSettings>,
-    mut meshes: ResMut<Assets<Mesh>>,
     waters: Query<WithoutSurface, Without<WaterSurface>>,
-    mut errors: MessageWriter<WaterError>,
-    ticks: SystemChangeTick,
+    mut installer: Installer,
 ) {
-    let now = ticks.this_run();
+    let now = installer.ticks.this_run();
     for (entity, water, failed) in &waters {
         // Changed since it was refused (a tick, not a comparison: NaN never equals itself).
         if failed.is_none_or(|f| water.last_changed().is_newer_than(f.0, now)) {
-            let water = (entity, &*water);
-            install(
-                &mut commands,
-                water,
-                &settings,
-                &mut meshes,
-                &mut errors,
-                now,
-            );
+            installer.install(entity, &water);
         }
     }
 }

@@ -71,15 +71,9 @@ pub(crate) fn for_each_chunk<const K: usize, F>(
     debug_assert!(out.iter().all(|b| b.len() == n));
     let len = len.max(1);
     let parts = out.map(Disjoint::new);
-    for_each_range(runner, n, len, 4096, &|range| {
-        for start in range.clone().step_by(len) {
-            let chunk = start..(start + len).min(range.end);
-            // SAFETY: `for_each_range` runs each range once and ranges do not overlap;
-            // the chunks of one range do not overlap either.
-            f(
-                start / len,
-                parts.each_ref().map(|p| unsafe { p.part(chunk.clone()) }),
-            );
-        }
+    for_each_range(runner, n, len, 4096, &|chunk| {
+        // SAFETY: `for_each_range` runs each chunk once and chunks do not overlap.
+        let bufs = parts.each_ref().map(|p| unsafe { p.part(chunk.clone()) });
+        f(chunk.start / len, bufs);
     });
 }
