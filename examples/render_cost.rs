@@ -64,7 +64,7 @@ fn main() {
                 vertices: Some(&mut vertices),
                 ..Default::default()
             };
-            fill_frame(&view, eye, &p, &mut nm, &mut uv, out).unwrap();
+            fill_frame(&view, eye, &p, out).unwrap();
             best[7] = best[7].min(t.elapsed().as_secs_f64());
             // A rebuild: the eye moves three patches between updates.
             flip = !flip;

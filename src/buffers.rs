@@ -10,6 +10,10 @@
 //! * packed [`Vertex`]es (`#[repr(C)]`, [`bytemuck::Pod`]: `bytemuck::cast_slice` gives the
 //!   bytes), 32 bytes each: position, normal, uv.
 //!
+//! [`fill_frame`] goes from the positions to those buffers directly: it computes the
+//! normals and refraction coordinates block by block in a small per-thread scratch and
+//! writes each block out while it is in cache, for a renderer that only uploads vertices.
+//!
 //! Every buffer is the caller's, one element per node in row-major order (the order the
 //! LOD index buffer indexes), and is checked before anything is written: a buffer of the
 //! wrong length is an error and no buffer is touched. The values are copied bit for bit.
@@ -46,7 +50,7 @@ use std::ops::Range;
 use crate::error::{Error, Result};
 use crate::jobs::{for_each_range, Disjoint, Runner};
 use crate::mesh::Normals;
-use crate::refraction::Refraction;
+use crate::refraction::{Refraction, RefractionParams, Refractor};
 use crate::view::MeshView;
 
 /// One node's vertex, packed for a GPU vertex buffer: 8 `f32`, 32 bytes, no padding.
@@ -109,42 +113,91 @@ pub fn interleave(
     Ok(())
 }
 
-/// The render-side stages and the vertex buffers in one pass:
-/// [`normals_and_refraction`](crate::refraction::normals_and_refraction), then
-/// [`interleave`], block by block, so that each block's normals and texture coordinates
-/// go out to `out` while they are in cache. The same bits as the two calls; `normals`
-/// and `uv` hold the stages' structure-of-arrays results as well.
+/// The render-side stages straight into the vertex buffers, in one pass: each task
+/// computes the normals and refraction coordinates of a block of rows into its thread's
+/// scratch (a few tens of kilobytes, kept in cache and reused), then writes that block of
+/// `out`. The same bits as [`normals_and_refraction`](crate::refraction::normals_and_refraction)
+/// followed by [`interleave`], without the two structure-of-arrays results ever going to
+/// memory: what a renderer that uploads vertices needs, at little more than the cost of
+/// the stages (docs/performance.md has the figures). Call the two functions instead when
+/// you want the [`Normals`] and [`Refraction`] slices as well.
 ///
 /// ```
 /// use springwater::buffers::{fill_frame, Vertex, VertexBuffers};
-/// use springwater::refraction::{Refraction, RefractionParams};
-/// use springwater::mesh::Normals;
+/// use springwater::refraction::RefractionParams;
 /// use springwater::{Params, Surface};
 ///
 /// let mut water = Surface::new(Params::with_size(65, 49))?;
 /// water.drop_at(32.0, 24.0, 1.0, 3.0)?;
-/// let (mut normals, mut uv) = (Normals::new(), Refraction::default());
-/// let mut vertices = vec![Vertex::default(); water.len()];
+/// let mut vertices = vec![Vertex::default(); water.len()];     // kept between frames
 /// water.advance(1.0 / 60.0)?;
 /// let eye = glam::Vec3::new(32.0, 20.0, -10.0);
-/// fill_frame(&water.mesh_view(), eye, &RefractionParams::default(), &mut normals, &mut uv,
+/// fill_frame(&water.mesh_view(), eye, &RefractionParams::default(),
 ///     VertexBuffers { vertices: Some(&mut vertices), ..Default::default() })?;
-/// assert_eq!(vertices[100].normal, [normals.x[100], normals.y[100], normals.z[100]]);
+/// let n = water.normal_at(32.0, 24.0).expect("on the surface");
+/// assert!((vertices[24 * 65 + 32].normal[1] - n.y).abs() < 1e-5);
 /// # Ok::<(), springwater::Error>(())
 /// ```
 ///
-/// Errors, with nothing written: those of `normals_and_refraction`, and
+/// Errors, with nothing written: those of
+/// [`refract`](crate::refraction::refract) for the eye and `params`, and
 /// [`Error::LengthMismatch`] when a buffer of `out` does not hold one element per node.
 pub fn fill_frame(
     view: &MeshView<'_>,
     eye: glam::Vec3,
-    params: &crate::refraction::RefractionParams,
-    normals: &mut Normals,
-    uv: &mut Refraction,
+    params: &RefractionParams,
     out: VertexBuffers<'_>,
 ) -> Result<()> {
-    check(view.grid().len(), &out)?;
-    crate::refraction::fused(view, eye, params, normals, uv, Some(&Parts::new(out)))
+    let k = Refractor::new(view, eye, params)?;
+    let (n, cols) = (view.grid().len(), view.cols());
+    check(n, &out)?;
+    let parts = Parts::new(out);
+    let rows_per_block = (FRAME_BLOCK / cols).max(1);
+    for_each_range(view.runner(), n, rows_per_block * cols, BLOCK, &|nodes| {
+        with_scratch(nodes.len(), |[nx, ny, nz, u, v, fresnel]| {
+            k.rows(view, nodes.start / cols, [nx, ny, nz], [u, v, fresnel]);
+            let src = Source {
+                p: [view.x(), view.y(), view.z()].map(|c| &c[nodes.clone()]),
+                n: [&*nx, &*ny, &*nz],
+                uv: [&*u, &*v],
+            };
+            // SAFETY: `for_each_range` runs each block once and blocks do not overlap.
+            fill(src, unsafe { parts.range(nodes) });
+        })
+    });
+    Ok(())
+}
+
+/// Nodes per block of [`fill_frame`] (whole rows, at least one): its six scratch arrays,
+/// 24 KiB, stay in the first-level cache between being written and being read.
+const FRAME_BLOCK: usize = 1024;
+
+/// Scratch floats a thread keeps between calls (blocks of longer rows use a fresh buffer).
+const SCRATCH_KEPT: usize = 6 * 16 * FRAME_BLOCK;
+
+thread_local! {
+    /// This thread's scratch for [`fill_frame`]'s blocks, reused from call to call.
+    static SCRATCH: std::cell::RefCell<Vec<f32>> = const { std::cell::RefCell::new(Vec::new()) };
+}
+
+/// Runs `f` on six scratch arrays of `len` floats each (their contents are whatever the
+/// last block left: `f` writes before it reads).
+fn with_scratch<R>(len: usize, f: impl FnOnce([&mut [f32]; 6]) -> R) -> R {
+    SCRATCH.with(|cell| {
+        let mut fresh = Vec::new();
+        // A block that runs while this thread's scratch is in use (a job system that runs
+        // tasks inside tasks) gets its own.
+        let mut kept = cell.try_borrow_mut();
+        let buf = match (&mut kept, 6 * len <= SCRATCH_KEPT) {
+            (Ok(kept), true) => &mut **kept,
+            _ => &mut fresh,
+        };
+        if buf.len() < 6 * len {
+            buf.resize(6 * len, 0.0);
+        }
+        let mut arrays = buf[..6 * len].chunks_exact_mut(len.max(1));
+        f(std::array::from_fn(|_| arrays.next().unwrap_or_default()))
+    })
 }
 
 /// `Ok` when a buffer of `got` elements holds one per node of `n`.
@@ -179,10 +232,10 @@ fn check(n: usize, out: &VertexBuffers<'_>) -> Result<()> {
 
 /// The structure-of-arrays inputs, all of one length.
 #[derive(Clone, Copy)]
-pub(crate) struct Source<'a> {
-    pub p: [&'a [f32]; 3],
-    pub n: [&'a [f32]; 3],
-    pub uv: [&'a [f32]; 2],
+struct Source<'a> {
+    p: [&'a [f32]; 3],
+    n: [&'a [f32]; 3],
+    uv: [&'a [f32]; 2],
 }
 
 impl Source<'_> {
@@ -201,7 +254,7 @@ impl Source<'_> {
 }
 
 /// The output buffers, for the tasks to take their nodes of.
-pub(crate) struct Parts<'a> {
+struct Parts<'a> {
     positions: Option<Disjoint<'a, [f32; 3]>>,
     normals: Option<Disjoint<'a, [f32; 3]>>,
     uvs: Option<Disjoint<'a, [f32; 2]>>,
@@ -223,7 +276,7 @@ impl<'a> Parts<'a> {
     /// # Safety
     ///
     /// No other task may hold nodes overlapping `r` at the same time.
-    pub(crate) unsafe fn range(&self, r: Range<usize>) -> VertexBuffers<'a> {
+    unsafe fn range(&self, r: Range<usize>) -> VertexBuffers<'a> {
         // SAFETY: the caller holds these nodes alone.
         unsafe {
             VertexBuffers {
@@ -249,7 +302,7 @@ fn split(runner: Runner<'_>, src: Source<'_>, out: VertexBuffers<'_>) {
 /// One block: each requested buffer in turn, while the block's inputs are in cache.
 /// Zipped iterators over slices of one length: no bounds checks, and the compiler
 /// vectorises the gathers into interleaved stores.
-pub(crate) fn fill(src: Source<'_>, out: VertexBuffers<'_>) {
+fn fill(src: Source<'_>, out: VertexBuffers<'_>) {
     let [x, y, z] = src.p;
     let [nx, ny, nz] = src.n;
     let [u, v] = src.uv;

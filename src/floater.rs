@@ -59,6 +59,8 @@
 
 use crate::error::{Error, Result};
 use crate::params;
+#[cfg(doc)]
+use crate::Surface;
 use glam::Vec3;
 
 /// The shape of a [`Floater`].

@@ -209,19 +209,17 @@ pub fn normals_and_refraction(
     normals: &mut Normals,
     out: &mut Refraction,
 ) -> Result<()> {
-    fused(view, eye, params, normals, out, None)
+    fused(view, eye, params, normals, out)
 }
 
-/// [`normals_and_refraction`], each task's block then copied into `vertices` (checked by
-/// the caller: one element per node) while it is in cache
-/// ([`crate::buffers::fill_frame`]).
-pub(crate) fn fused(
+/// [`normals_and_refraction`]'s pass: each task computes the normals of a block of rows
+/// and refracts those nodes while they are in cache.
+fn fused(
     view: &MeshView<'_>,
     eye: Vec3,
     params: &RefractionParams,
     normals: &mut Normals,
     out: &mut Refraction,
-    vertices: Option<&crate::buffers::Parts<'_>>,
 ) -> Result<()> {
     let k = Refractor::new(view, eye, params)?;
     let (n, cols) = (view.grid().len(), view.cols());
@@ -233,29 +231,7 @@ pub(crate) fn fused(
         view.runner(),
         [nx, ny, nz, &mut out.u, &mut out.v, &mut out.fresnel],
         rows_per_task * cols,
-        |chunk, [nx, ny, nz, u, v, f]| {
-            let first_row = chunk * rows_per_task;
-            let rows = nx
-                .chunks_mut(cols)
-                .zip(ny.chunks_mut(cols))
-                .zip(nz.chunks_mut(cols));
-            for (r, ((x, y), z)) in rows.enumerate() {
-                crate::mesh::normals_row(view, first_row + r, [x, y, z]);
-            }
-            let first = first_row * cols;
-            k.chunk(view, [nx, ny, nz], first, [u, v, f]);
-            if let Some(parts) = vertices {
-                let nodes = first..first + nx.len();
-                let src = crate::buffers::Source {
-                    p: [view.x(), view.y(), view.z()].map(|c| &c[nodes.clone()]),
-                    n: [&*nx, &*ny, &*nz],
-                    uv: [&*u, &*v],
-                };
-                // SAFETY: the chunks of one call are disjoint node ranges, each run once
-                // (`for_each_chunk`), so no other task holds these nodes.
-                crate::buffers::fill(src, unsafe { parts.range(nodes) });
-            }
-        },
+        |chunk, [nx, ny, nz, u, v, f]| k.rows(view, chunk * rows_per_task, [nx, ny, nz], [u, v, f]),
     );
     Ok(())
 }
@@ -297,14 +273,15 @@ fn check_normals(view: &MeshView<'_>, normals: &Normals) -> Result<()> {
 }
 
 /// Checked inputs and per-call constants of the lane kernel.
-struct Refractor {
+pub(crate) struct Refractor {
     eye: Vec3,
     params: RefractionParams,
     extent: [f32; 2],
 }
 
 impl Refractor {
-    fn new(view: &MeshView<'_>, eye: Vec3, params: &RefractionParams) -> Result<Self> {
+    /// Checks the eye and `params`.
+    pub(crate) fn new(view: &MeshView<'_>, eye: Vec3, params: &RefractionParams) -> Result<Self> {
         params.validate()?;
         for (name, c) in [("eye x", eye.x), ("eye y", eye.y), ("eye z", eye.z)] {
             crate::params::finite(name, c)?;
@@ -314,6 +291,28 @@ impl Refractor {
             params: *params,
             extent: view.extent(),
         })
+    }
+
+    /// The whole rows from `first_row` that `normals` (one value per node) holds: their
+    /// normals into `normals`, then their texture coordinates and Fresnel into `out` (same
+    /// length), while the normals are in cache.
+    pub(crate) fn rows(
+        &self,
+        view: &MeshView<'_>,
+        first_row: usize,
+        normals: [&mut [f32]; 3],
+        out: [&mut [f32]; 3],
+    ) {
+        let cols = view.cols();
+        let [nx, ny, nz] = normals;
+        let rows = nx
+            .chunks_mut(cols)
+            .zip(ny.chunks_mut(cols))
+            .zip(nz.chunks_mut(cols));
+        for (r, ((x, y), z)) in rows.enumerate() {
+            crate::mesh::normals_row(view, first_row + r, [x, y, z]);
+        }
+        self.chunk(view, [&*nx, &*ny, &*nz], first_row * cols, out);
     }
 
     /// Nodes `start .. start + out[0].len()`, whose normals are `normals` (same length):

@@ -157,13 +157,14 @@ fn wrong_lengths_are_refused_and_nothing_is_written() {
     assert!(view.write_positions(&mut vec![[0.0; 3]; n + 3]).is_err());
 }
 
-/// `fill_frame` (the stages and the buffers in one pass) gives the bits of
-/// `normals_and_refraction` followed by `interleave`, on grids whose rows split into the
-/// stage's blocks unevenly; bad input is refused with nothing written.
+/// `fill_frame` (the stages and the buffers in one pass, through per-thread scratch) gives
+/// the bits of `normals_and_refraction` followed by `interleave`, on grids whose rows split
+/// into its blocks unevenly (one row longer than a block, blocks of hundreds of rows);
+/// bad input is refused with nothing written.
 #[test]
 fn fill_frame_equals_the_stages_then_interleave() {
     use springwater::buffers::fill_frame;
-    for (cols, rows) in [(9, 7), (67, 45), (130, 70), (1031, 9)] {
+    for (cols, rows) in [(9, 7), (67, 45), (130, 70), (1031, 9), (3, 2000)] {
         let (s, normals, uv) = scene(cols, rows);
         let n = s.len();
         let view = s.mesh_view();
@@ -171,6 +172,7 @@ fn fill_frame_equals_the_stages_then_interleave() {
         let params = RefractionParams::default();
         let mut expected = vec![Vertex::default(); n];
         let mut expected_uv = vec![[0.0f32; 2]; n];
+        let mut expected_normals = vec![[0.0f32; 3]; n];
         interleave(
             &view,
             &normals,
@@ -178,44 +180,54 @@ fn fill_frame_equals_the_stages_then_interleave() {
             VertexBuffers {
                 vertices: Some(&mut expected),
                 uvs: Some(&mut expected_uv),
+                normals: Some(&mut expected_normals),
                 ..Default::default()
             },
         )
         .unwrap();
-        let (mut n2, mut uv2) = (Normals::new(), Refraction::default());
         let mut got = vec![Vertex::default(); n];
         let mut got_uv = vec![[0.0f32; 2]; n];
+        let mut got_normals = vec![[0.0f32; 3]; n];
+        let mut got_positions = vec![[0.0f32; 3]; n];
         let out = VertexBuffers {
             vertices: Some(&mut got),
             uvs: Some(&mut got_uv),
-            ..Default::default()
+            normals: Some(&mut got_normals),
+            positions: Some(&mut got_positions),
         };
-        fill_frame(&view, eye, &params, &mut n2, &mut uv2, out).unwrap();
+        fill_frame(&view, eye, &params, out).unwrap();
         let as_bits = |v: &[Vertex]| bits(bytemuck::cast_slice(v));
         assert!(
             as_bits(&got) == as_bits(&expected),
             "{cols}x{rows}: vertices"
         );
+        let flat = |v: &[[f32; 3]]| bits(v.as_flattened());
         assert!(got_uv == expected_uv, "{cols}x{rows}: uvs");
-        assert!(bits(&n2.x) == bits(&normals.x) && bits(&uv2.fresnel) == bits(&uv.fresnel));
+        assert!(
+            flat(&got_normals) == flat(&expected_normals),
+            "{cols}x{rows}: normals"
+        );
+        let positions: Vec<[f32; 3]> = (0..n).map(|i| view.position(i).to_array()).collect();
+        assert!(
+            flat(&got_positions) == flat(&positions),
+            "{cols}x{rows}: positions"
+        );
 
         // A short buffer or a bad eye: an error, and nothing written anywhere.
         let mut short = vec![Vertex::default(); n - 1];
         let mut fresh = vec![Vertex::default(); n];
-        let (mut n3, mut uv3) = (Normals::new(), Refraction::default());
         let out = VertexBuffers {
             vertices: Some(&mut short),
             ..Default::default()
         };
-        let e = fill_frame(&view, eye, &params, &mut n3, &mut uv3, out).unwrap_err();
+        let e = fill_frame(&view, eye, &params, out).unwrap_err();
         assert!(matches!(e, Error::LengthMismatch { .. }), "{e}");
         let out = VertexBuffers {
             vertices: Some(&mut fresh),
             ..Default::default()
         };
         let bad_eye = Vec3::new(f32::NAN, 1.0, 1.0);
-        assert!(fill_frame(&view, bad_eye, &params, &mut n3, &mut uv3, out).is_err());
+        assert!(fill_frame(&view, bad_eye, &params, out).is_err());
         assert!(short.iter().chain(&fresh).all(|v| *v == Vertex::default()));
-        assert!(n3.is_empty() && uv3.is_empty());
     }
 }

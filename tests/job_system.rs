@@ -220,12 +220,11 @@ fn the_render_side_stages_run_on_the_job_system_with_the_same_bits() {
         )
         .unwrap();
         let mut fused = vec![Vertex::default(); s.len()];
-        let (mut n3, mut uv3) = (Normals::new(), Refraction::default());
         let out = VertexBuffers {
             vertices: Some(&mut fused),
             ..Default::default()
         };
-        fill_frame(&view, eye, &params, &mut n3, &mut uv3, out).unwrap();
+        fill_frame(&view, eye, &params, out).unwrap();
         assert!(fused == vertices);
         let floats = [
             &normals.x,

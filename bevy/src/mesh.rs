@@ -11,8 +11,7 @@ use bevy::mesh::{
 };
 use bevy::transform::components::GlobalTransform;
 use springwater::buffers::{fill_frame, VertexBuffers};
-use springwater::mesh::Normals;
-use springwater::refraction::{Refraction, RefractionParams};
+use springwater::refraction::RefractionParams;
 use springwater::Surface;
 
 use crate::step::report;
@@ -103,14 +102,12 @@ fn f32x2(v: &mut VertexAttributeValues) -> Option<&mut Vec<[f32; 2]>> {
     }
 }
 
-/// Writes one water's mesh: normals and refraction from `eye` (springwater's
-/// `fill_frame`, which also fills the attributes in the same pass), positions, normals and
-/// UVs in place (the vectors keep their allocations), the indices only when `indices` is
-/// given.
+/// Writes one water's mesh: positions, and normals and refraction coordinates seen from
+/// `eye`, straight into the attributes in one pass (springwater's `fill_frame`), in place
+/// (the vectors keep their allocations); the indices only when `indices` is given.
 fn write_mesh(
     mesh: &mut Mesh,
     surface: &Surface,
-    (normal_scratch, uv_scratch): (&mut Normals, &mut Refraction),
     (eye, refraction): (Vec3, &RefractionParams),
     indices: Option<&[u32]>,
 ) -> Result<(), String> {
@@ -138,8 +135,6 @@ fn write_mesh(
         &surface.mesh_view(),
         eye.to_array().into(),
         refraction,
-        normal_scratch,
-        uv_scratch,
         VertexBuffers {
             positions: Some(&mut positions),
             normals: Some(&mut normals),
@@ -172,20 +167,14 @@ pub(crate) fn write_meshes(
             Some(e) => Space::new(global).local_point(e),
             None => default_eye(ws),
         };
-        let WaterSurface {
-            surface,
-            lod,
-            normals,
-            uv,
-            ..
-        } = ws;
+        let WaterSurface { surface, lod, .. } = ws;
         let lod_changed = lod.update(&surface.mesh_view(), local_eye.to_array().into());
         let Some(mut mesh) = meshes.get_mut(&mesh3d.0) else {
             continue;
         };
         let indices = lod_changed.then(|| lod.indices());
         let frame = (local_eye, &water.refraction);
-        if let Err(e) = write_mesh(&mut mesh, surface, (normals, uv), frame, indices) {
+        if let Err(e) = write_mesh(&mut mesh, surface, frame, indices) {
             report(&mut errors, entity, "mesh write failed", &e);
         }
     }

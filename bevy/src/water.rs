@@ -6,8 +6,8 @@ use bevy::ecs::prelude::*;
 use bevy::math::{Affine3A, Vec3};
 use bevy::transform::components::{GlobalTransform, Transform};
 use springwater::disturb::Disturbance;
-use springwater::mesh::{LodMesh, LodParams, Normals};
-use springwater::refraction::{Refraction, RefractionParams};
+use springwater::mesh::{LodMesh, LodParams};
+use springwater::refraction::RefractionParams;
 use springwater::{Params, Surface};
 
 /// A water surface. Spawn it with a [`Transform`]; the plugin creates its
@@ -83,8 +83,6 @@ impl Water {
 pub struct WaterSurface {
     pub(crate) surface: Surface,
     pub(crate) lod: LodMesh,
-    pub(crate) normals: Normals,
-    pub(crate) uv: Refraction,
     pub(crate) substeps: usize,
     /// The frame's forces on floating bodies, applied before every substep.
     pub(crate) pushes: crate::buoyancy::Pushes,
@@ -95,8 +93,6 @@ impl WaterSurface {
         Ok(Self {
             surface: Surface::new(water.params)?,
             lod: LodMesh::new(water.lod)?,
-            normals: Normals::new(),
-            uv: Refraction::default(),
             substeps: 0,
             pushes: Default::default(),
         })

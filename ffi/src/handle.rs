@@ -5,7 +5,6 @@
 
 use crate::status::{Failure, Outcome, SW_ERROR_BUSY, SW_ERROR_INTERNAL, SW_ERROR_INVALID_HANDLE};
 use springwater::mesh::{LodMesh, Normals};
-use springwater::refraction::Refraction;
 use springwater::Surface;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -22,7 +21,6 @@ pub(crate) struct Water {
     pub surface: Surface,
     pub lod: LodMesh,
     pub normals: Normals,
-    pub uv: Refraction,
     pub queries: Queries,
 }
 
@@ -110,7 +108,6 @@ mod tests {
             surface,
             lod: LodMesh::new(Default::default()).unwrap(),
             normals: Normals::new(),
-            uv: Refraction::default(),
             queries: Queries::default(),
         }
     }

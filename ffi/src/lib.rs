@@ -45,7 +45,7 @@ pub use status::*;
 use handle::Water;
 use springwater::buffers::{fill_frame, Vertex, VertexBuffers};
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
-use springwater::refraction::{refract, Refraction, RefractionParams};
+use springwater::refraction::RefractionParams;
 use springwater::{Boundary, Params, SimdLevel, Surface};
 use std::ffi::c_char;
 
@@ -543,13 +543,11 @@ pub unsafe extern "C" fn sw_surface_write_refraction_uvs(
             need(len, n * 2, "uv")?;
             // SAFETY: the caller gives `len ≥ 2n` floats at `uv`.
             let out = unsafe { out_slice(uv.cast::<[f32; 2]>(), n, "uv") }?;
-            let view = w.surface.mesh_view();
-            compute_normals(&view, &mut w.normals);
-            refract(&view, &w.normals, eye, &params, &mut w.uv)?;
-            for (o, (u, v)) in out.iter_mut().zip(w.uv.u.iter().zip(&w.uv.v)) {
-                *o = [*u, *v];
-            }
-            Ok(())
+            let buffers = VertexBuffers {
+                uvs: Some(out),
+                ..Default::default()
+            };
+            Ok(fill_frame(&w.surface.mesh_view(), eye, &params, buffers)?)
         })
     })
 }
@@ -582,14 +580,7 @@ pub unsafe extern "C" fn sw_surface_write_vertices(
                 vertices: Some(out),
                 ..Default::default()
             };
-            Ok(fill_frame(
-                &view,
-                eye,
-                &params,
-                &mut w.normals,
-                &mut w.uv,
-                buffers,
-            )?)
+            Ok(fill_frame(&view, eye, &params, buffers)?)
         })
     })
 }
@@ -814,7 +805,6 @@ impl Water {
             surface,
             lod: LodMesh::new(LodParams::default()).expect("the default LOD parameters are valid"),
             normals: Normals::new(),
-            uv: Refraction::default(),
             queries: Default::default(),
         }
     }
