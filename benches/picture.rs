@@ -16,7 +16,7 @@ fn picture(c: &mut Criterion) {
     for (n, w, h) in [(128usize, 400u32, 300u32), (256, 800, 600)] {
         let id = format!("{n}x{n}_{w}x{h}");
         let mut water = Surface::new(Params::with_size(n, n)).unwrap();
-        let mut rain = Rain::new(1.0, 1);
+        let mut rain = Rain::new(24.0, 1);
         for _ in 0..60 {
             let dt = water.params().dt;
             rain.apply(&mut water, dt).unwrap();

@@ -11,7 +11,7 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use springwater::internals::{MemoryFloor, NaiveSurface};
-use springwater::{Boundary, Floater, Params, Stepper, Surface};
+use springwater::{Boundary, Floater, Params, SimdLevel, Surface};
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -40,8 +40,9 @@ fn step(c: &mut Criterion) {
         let id = format!("{n}x{n}");
         group.throughput(Throughput::Elements((n * n) as u64));
         let mut s = surface(n);
+        s.set_simd_level(SimdLevel::Scalar);
         group.bench_function(BenchmarkId::new("reference", &id), |b| {
-            b.iter(|| s.step_with(Stepper::Reference).unwrap())
+            b.iter(|| s.step().unwrap())
         });
         for threads in [1, 2] {
             let mut s = surface(n);

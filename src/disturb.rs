@@ -3,8 +3,9 @@
 //!
 //! Both drive a [`Surface`] only through its public API (`drop_at`, `add_force`), so a
 //! game can use them as they are, or read them as examples of writing its own. Lengths
-//! are world units; times and rates are model time (a disturbance sees the substep's
-//! model timestep, see [`Params::time_scale`](crate::Params::time_scale)).
+//! are world units, rates and speeds per second of the game's clock: a disturbance is
+//! handed each substep's model timestep and divides it by
+//! [`Params::time_scale`](crate::Params::time_scale) to get seconds.
 //! [`Surface::advance_with`] applies a disturbance before every substep of a frame; a
 //! pair, a tuple of up to four, a slice or an `Option` of disturbances is a disturbance too:
 //!
@@ -13,7 +14,7 @@
 //! use springwater::{Params, Surface};
 //!
 //! let mut water = Surface::new(Params::with_size(64, 64))?;
-//! let mut rain = Rain::new(0.5, 7);                  // 0.5 drops per unit of model time
+//! let mut rain = Rain::new(12.0, 7);                 // 12 drops a second
 //! let mut boat = Wake::circle(&water, 16.0);          // circles the middle of the pool
 //! for _frame in 0..50 {
 //!     water.advance_with(1.0 / 60.0, &mut (&mut rain, &mut boat))?;
@@ -36,19 +37,19 @@ pub use crate::surface::Disturbance;
 
 /// Rain: drops at random places and random times, the same ones for the same seed.
 ///
-/// Drops arrive as a Poisson process of `rate` drops per unit of model time. Each one is a
+/// Drops arrive as a Poisson process of `rate` drops per second. Each one is a
 /// [`Surface::drop_at`] dent with a radius drawn from `radius` and height
 /// `−depth × radius`, all in world units: as steep on any grid, and within the stable
 /// regime (`|height| ≤ radius`) as long as `depth ≤ 1`. Drops are placed uniformly over
 /// the rest footprint, at least one radius away from its edge where the footprint allows,
 /// so the same seed drops at the same world points on any spacing.
 ///
-/// The times and places depend only on the seed and the model time passed to
+/// The times and places depend only on the seed and the time passed to
 /// [`Disturbance::apply`], not on how that time is cut into steps: a drop due at time
 /// `t` lands at the first step boundary at or after `t`.
 #[derive(Debug, Clone)]
 pub struct Rain {
-    /// Mean drops per unit of model time (default in [`Rain::new`]: as given). Zero: no rain.
+    /// Mean drops per second (default in [`Rain::new`]: as given). Zero: no rain.
     pub rate: f32,
     /// Range of drop radii in world units (default: `1.5..3.0`, one and a half to three
     /// cells at the default spacing of 1). Keep it at one cell or more.
@@ -62,7 +63,7 @@ pub struct Rain {
 }
 
 impl Rain {
-    /// Rain of `rate` drops per unit of model time from `seed`.
+    /// Rain of `rate` drops per second from `seed`.
     pub fn new(rate: f32, seed: u64) -> Self {
         let mut rain = Self {
             rate,
@@ -82,12 +83,12 @@ impl Rain {
         self.fallen
     }
 
-    /// Model time this rain has seen.
+    /// Seconds of rain so far.
     pub fn time(&self) -> f64 {
         self.time
     }
 
-    /// Model time until the next drop: exponential with mean `1 / rate`.
+    /// Seconds until the next drop: exponential with mean `1 / rate`.
     fn wait(&mut self) -> f64 {
         if self.rate.is_finite() && self.rate > 0.0 {
             // 1 − u is in (0, 1], so the logarithm is finite.
@@ -141,7 +142,7 @@ impl Disturbance for Rain {
             self.fallen += 1;
             self.next += self.wait();
         }
-        self.time += dt as f64;
+        self.time += seconds(surface, dt);
         Ok(())
     }
 }
@@ -153,16 +154,16 @@ impl Disturbance for Rain {
 /// unit area, `d` the distance from the object), over the disc of radius `3 × radius`:
 /// every node there gets that pressure times its cell's area `h²`. Everything is in world
 /// units, so the same wake pushes the same total force along the same path on any
-/// spacing. Moving faster than the ripples (about `h·sqrt(3c(1 − rest_ratio)/m)` per unit
-/// of model time, 1.6 with the seed's defaults; [`Params::ripple_speed`](crate::Params::ripple_speed)
-/// converts to seconds) leaves a V-shaped wake behind it.
+/// spacing. Moving faster than the ripples ([`Params::ripple_speed`](crate::Params::ripple_speed),
+/// about 39 world units per second with the defaults) leaves a V-shaped wake behind it.
 #[derive(Debug, Clone)]
 pub struct Wake {
     /// Corners of the closed path, world `[x, z]` in the water's local space.
     path: Vec<[f32; 2]>,
     /// Cumulative length of the path at each corner; the last entry is the full length.
     lengths: Vec<f32>,
-    /// Speed along the path in world units per unit of model time (default: `2.5`).
+    /// Speed along the path in world units per second (default: `60`, half again as fast
+    /// as the ripples with the defaults).
     pub speed: f32,
     /// Footprint radius in world units (default: `2.5`).
     pub radius: f32,
@@ -198,7 +199,7 @@ impl Wake {
         Ok(Self {
             path,
             lengths,
-            speed: 2.5,
+            speed: 60.0,
             radius: 2.5,
             strength: 1.5,
             distance: 0.0,
@@ -269,9 +270,15 @@ impl Disturbance for Wake {
         }
         // Keep the distance small so f32 keeps its precision on long runs.
         let total = *self.lengths.last().expect("at least one corner");
-        self.distance = (self.distance + self.speed * dt).rem_euclid(total);
+        let step = self.speed * seconds(surface, dt) as f32;
+        self.distance = (self.distance + step).rem_euclid(total);
         Ok(())
     }
+}
+
+/// The seconds of the game's clock in `dt` of `surface`'s model time.
+fn seconds(surface: &Surface, dt: f32) -> f64 {
+    dt as f64 / surface.params().time_scale as f64
 }
 
 #[cfg(test)]
@@ -284,8 +291,8 @@ mod tests {
         let p = Params::with_size(32, 32);
         let mut s1 = Surface::new(p).unwrap();
         let mut s2 = Surface::new(p).unwrap();
-        let mut r1 = Rain::new(2.0, 9);
-        let mut r2 = Rain::new(2.0, 9);
+        let mut r1 = Rain::new(48.0, 9);
+        let mut r2 = Rain::new(48.0, 9);
         // Same drops when the same total time is passed in 1 call or in 10.
         r1.apply(&mut s1, 10.0).unwrap();
         r1.apply(&mut s1, 0.0).unwrap();
@@ -301,7 +308,7 @@ mod tests {
     #[test]
     fn rain_stays_stable_for_a_long_time() {
         let mut s = Surface::new(Params::with_size(48, 48)).unwrap();
-        let mut rain = Rain::new(1.0, 3);
+        let mut rain = Rain::new(24.0, 3);
         for _ in 0..2000 {
             let dt = s.params().dt;
             rain.apply(&mut s, dt).unwrap();

@@ -143,9 +143,9 @@ fn the_absorbing_boundary_gives_the_same_bits_at_every_level_and_thread_count() 
             s.drop_at(20.0, 30.0, 1.5, 3.0).unwrap();
             s
         },
-        |s, stepper| {
+        |s| {
             for _ in 0..50 {
-                s.step_with(stepper).unwrap();
+                s.step().unwrap();
             }
             s.step_n(37).unwrap();
         },

@@ -261,16 +261,16 @@ fn many_bodies_stay_stable_at_099_of_the_critical_timestep() {
 }
 
 #[test]
-fn bodies_step_with_the_same_bits_at_every_level_thread_count_and_stepper() {
+fn bodies_step_with_the_same_bits_at_every_level_and_thread_count() {
     common::same_bits_everywhere(
         || {
             let mut s = crowded(0.9);
             s.drop_at(40.0, 40.0, 1.0, 3.0).unwrap();
             s
         },
-        |s, stepper| {
+        |s| {
             for _ in 0..60 {
-                s.step_with(stepper).unwrap();
+                s.step().unwrap();
             }
             s.advance(0.1).unwrap();
         },

@@ -8,7 +8,7 @@ mod common;
 
 use common::{state_bits, Rng};
 use proptest::prelude::*;
-use springwater::{Boundary, Family, Params, SpringId, Stepper, Surface};
+use springwater::{Boundary, Family, Params, SimdLevel, SpringId, Surface};
 
 #[derive(Debug, Clone)]
 struct Case {
@@ -146,13 +146,14 @@ proptest! {
     fn engine_matches_reference_bitwise(case in case()) {
         let mut engine = build(&case);
         let mut reference = engine.clone();
+        reference.set_simd_level(SimdLevel::Scalar);
         for step in 0..40 {
             if step % 10 == 0 {
                 add_forces(&mut engine, case.force_seed);
                 add_forces(&mut reference, case.force_seed);
             }
-            let a = engine.step_with(Stepper::Engine);
-            let b = reference.step_with(Stepper::Reference);
+            let a = engine.step();
+            let b = reference.step();
             prop_assert_eq!(&a, &b);
             prop_assert!(state_bits(&engine) == state_bits(&reference), "states differ after step {}", step);
             if a.is_err() {
@@ -176,13 +177,14 @@ proptest! {
         let mut engine = build(&case);
         engine.set_pass_steps(pass_steps);
         let mut reference = engine.clone();
+        reference.set_simd_level(SimdLevel::Scalar);
         for n in chunks {
             add_forces(&mut engine, case.force_seed);
             add_forces(&mut reference, case.force_seed);
             let a = engine.step_n(n);
             let mut b = Ok(());
             for _ in 0..n {
-                b = reference.step_with(Stepper::Reference);
+                b = reference.step();
                 if b.is_err() {
                     break;
                 }
@@ -259,10 +261,11 @@ fn large_grids_written_with_streaming_stores_match_the_reference() {
         engine.drop_at(900.0, 400.0, -1.5, 4.0).unwrap();
         engine.add_force(7 * cols + 9, [0.3, -0.2, 0.1]).unwrap();
         let mut reference = engine.clone();
+        reference.set_simd_level(SimdLevel::Scalar);
         engine.step().unwrap();
         engine.step_n(8).unwrap();
         for _ in 0..9 {
-            reference.step_with(Stepper::Reference).unwrap();
+            reference.step().unwrap();
         }
         assert!(
             state_bits(&engine) == state_bits(&reference),

@@ -1,6 +1,6 @@
 //! Transactional steps and input validation at every public entry point.
 
-use springwater::{Boundary, Error, Family, Params, Spring, SpringId, Stepper, Surface};
+use springwater::{Boundary, Error, Family, Params, SimdLevel, Spring, SpringId, Surface};
 
 fn surface() -> Surface {
     let mut s = Surface::new(Params::with_size(16, 12)).unwrap();
@@ -42,22 +42,23 @@ fn light_surface() -> Surface {
 
 #[test]
 fn huge_force_makes_the_step_fail_and_leaves_the_state_bitwise_unchanged() {
-    for stepper in [Stepper::Engine, Stepper::Reference] {
+    for level in [SimdLevel::detect(), SimdLevel::Scalar] {
         let mut s = light_surface();
+        s.set_simd_level(level);
         s.add_force(40, [0.0, f32::MAX, 0.0]).unwrap();
         s.add_force(41, [f32::MAX, 0.0, -f32::MAX]).unwrap();
         let before = s.to_bytes();
-        let err = s.step_with(stepper).unwrap_err();
+        let err = s.step().unwrap_err();
         assert!(matches!(err, Error::NonFinite { step: 5, .. }), "{err}");
         assert_eq!(
             s.to_bytes(),
             before,
-            "{stepper:?}: a refused step changed the state"
+            "{level}: a refused step changed the state"
         );
         // Refused again while the force is pending; clearing it lets the surface go on.
-        assert!(s.step_with(stepper).is_err());
+        assert!(s.step().is_err());
         s.clear_forces();
-        s.step_with(stepper).unwrap();
+        s.step().unwrap();
         assert_eq!(s.steps(), 6);
     }
 }
@@ -487,11 +488,12 @@ fn a_sheet_far_from_the_origin_steps_like_the_reference() {
             engine.add_velocity(node, [1e20, 0.0, -1e20]).unwrap();
         }
         let mut reference = engine.clone();
+        reference.set_simd_level(SimdLevel::Scalar);
         for step in 0..4 {
             engine
                 .step()
                 .unwrap_or_else(|e| panic!("{cols} columns, step {step}: {e}"));
-            reference.step_with(Stepper::Reference).unwrap();
+            reference.step().unwrap();
             assert_eq!(engine.to_bytes(), reference.to_bytes());
         }
         assert!(engine.positions()[0][0] > 1e20);

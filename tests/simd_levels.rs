@@ -11,7 +11,7 @@ mod common;
 use common::fingerprint;
 use springwater::mesh::{compute_normals, Normals};
 use springwater::refraction::{refract, Refraction, RefractionParams};
-use springwater::{Boundary, Family, Params, SimdLevel, Spring, SpringId, Stepper, Surface};
+use springwater::{Boundary, Family, Params, SimdLevel, Spring, SpringId, Surface};
 
 /// One fixed set-up: a surface after its disturbances, and how many steps to run.
 struct SetUp {
@@ -88,8 +88,9 @@ fn the_scalar_reference_matches_the_golden_fingerprints() {
         .iter()
         .map(|set_up| {
             let mut s = (set_up.build)();
+            s.set_simd_level(SimdLevel::Scalar);
             for _ in 0..set_up.steps {
-                s.step_with(Stepper::Reference).unwrap();
+                s.step().unwrap();
             }
             fingerprint(&s)
         })
@@ -175,40 +176,31 @@ fn levels_clamp_to_the_cpu() {
 /// ulps, which leaves a few heights near the calm threshold instead of exactly 0.)
 #[test]
 fn a_settling_pool_never_goes_subnormal() {
-    let settle = |level: Option<SimdLevel>| {
+    let settle = |level: SimdLevel| {
         let mut p = Params::with_size(40, 36);
         p.viscosity = 0.5; // settles in thousands of steps instead of tens of thousands
         let mut s = Surface::new(p).unwrap();
-        if let Some(level) = level {
-            assert_eq!(s.set_simd_level(level), level);
-        }
+        assert_eq!(s.set_simd_level(level), level);
         s.drop_at(17.0, 20.0, 1.0, 3.0).unwrap();
         for chunk in 1..=60 {
-            match level {
-                Some(_) => s.step_n(100).unwrap(),
-                None => {
-                    for _ in 0..100 {
-                        s.step_with(Stepper::Reference).unwrap();
-                    }
-                }
-            }
+            s.step_n(100).unwrap();
             let values = s.positions().into_iter().chain(s.velocities()).flatten();
             let subnormal = values.filter(|v| v.is_subnormal()).count();
             assert_eq!(
                 subnormal,
                 0,
-                "{level:?}: subnormal values after {} steps",
+                "{level}: subnormal values after {} steps",
                 100 * chunk
             );
         }
         let [_, y, _] = s.positions();
         let [_, vy, _] = s.velocities();
         let largest = y.iter().chain(vy).fold(0.0f32, |m, v| m.max(v.abs()));
-        assert!(largest < 1e-16, "{level:?}: still moving, {largest:e}");
+        assert!(largest < 1e-16, "{level}: still moving, {largest:e}");
         fingerprint(&s)
     };
-    let reference = settle(None);
+    let reference = settle(SimdLevel::Scalar);
     for level in SimdLevel::ALL.into_iter().filter(|l| l.is_available()) {
-        assert_eq!(settle(Some(level)), reference, "{level}");
+        assert_eq!(settle(level), reference, "{level}");
     }
 }

@@ -143,7 +143,7 @@ fn a_wake_moves_the_same_way_at_spacing_1_and_half() {
 fn rain_falls_on_the_same_world_points_at_any_spacing() {
     let [coarse, fine] = [1.0, 0.5].map(|h| {
         let mut s = Surface::new(pool(h)).unwrap();
-        let mut rain = Rain::new(0.5, 11);
+        let mut rain = Rain::new(12.0, 11); // drops per second: 20 model units is 5/6 s
         rain.apply(&mut s, 20.0).unwrap();
         rain.apply(&mut s, 0.0).unwrap();
         assert!(rain.fallen() > 3);

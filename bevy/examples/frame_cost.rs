@@ -95,7 +95,7 @@ fn measure(size: usize, frames: u32, compute: Option<usize>) -> ([Duration; 3], 
     let half = (size / 2) as f32;
     app.world_mut().spawn((
         Water::with_size(size, size),
-        WaterDisturbance::new(Rain::new(0.05 * (size * size) as f32 / 4096.0, 7)),
+        WaterDisturbance::new(Rain::new(1.2 * (size * size) as f32 / 4096.0, 7)),
     ));
     app.world_mut().spawn((
         WaterViewer,

@@ -22,8 +22,8 @@ use springwater_bevy::prelude::*;
 
 const COLS: usize = 129;
 const ROWS: usize = 97;
-/// Rain drops per unit of model time (24 per second).
-const RAIN: f32 = 0.3;
+/// Rain drops per second.
+const RAIN: f32 = 7.2;
 
 fn main() {
     let mut app = App::new();

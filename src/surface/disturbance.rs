@@ -7,7 +7,8 @@ use crate::error::Result;
 
 /// Something that disturbs a surface as model time passes.
 pub trait Disturbance {
-    /// Disturbs `surface` for the step of model time `dt` about to be taken. Call it right
+    /// Disturbs `surface` for the step of model time `dt` about to be taken, that is
+    /// `dt / surface.params().time_scale` seconds of the game's clock. Call it right
     /// before [`Surface::step`] (or let [`Surface::advance_with`] call it): forces it adds
     /// apply to that step only.
     fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()>;

@@ -21,11 +21,11 @@ use crate::state::State;
 use crate::view::MeshView;
 use std::sync::Arc;
 
-/// Which implementation of the step to run.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
-pub enum Stepper {
-    /// Colour-partitioned bands, SIMD lanes, rayon threads (the default).
-    #[default]
+/// Which implementation of the step to run: the engine at the surface's SIMD level, or
+/// the scalar reference (what [`SimdLevel::Scalar`] runs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(crate) enum Stepper {
+    /// Colour-partitioned bands, SIMD lanes, the host's threads.
     Engine,
     /// The plain scalar loops the engine is tested against.
     Reference,
@@ -257,12 +257,9 @@ impl Surface {
             .with_runner(Runner::of(self.host.as_ref()))
     }
 
-    /// Advances one step of `params().dt` with the engine. See [`Surface::step_with`].
-    pub fn step(&mut self) -> Result<()> {
-        self.step_with(Stepper::Engine)
-    }
-
-    /// Advances one step of `params().dt` with the given implementation.
+    /// Advances one step of `params().dt`, at the surface's SIMD level
+    /// ([`Surface::set_simd_level`]; [`SimdLevel::Scalar`] runs the plain scalar loops the
+    /// engine is tested against, with the same bits).
     ///
     /// The step is transactional: the new state is written to back buffers and checked
     /// for finiteness in the same pass; only if every value is finite are the buffers
@@ -273,8 +270,8 @@ impl Surface {
     /// cost the back buffers (24 bytes per node). Measured against a build without the
     /// check, the difference was below this machine's run-to-run noise (a few percent at
     /// most; docs/reliability.md has the numbers).
-    pub fn step_with(&mut self, stepper: Stepper) -> Result<()> {
-        self.step_dt(self.params.dt, stepper)
+    pub fn step(&mut self) -> Result<()> {
+        self.step_dt(self.params.dt, Stepper::Engine)
     }
 
     /// Advances `n` steps of `params().dt` with the engine, several per pass over memory
@@ -492,12 +489,12 @@ impl Surface {
     /// use springwater::{Params, Surface};
     ///
     /// let mut water = Surface::new(Params::with_size(64, 64))?;
-    /// let mut rain = Rain::new(2.0, 1);                   // 2 drops per unit of model time
+    /// let mut rain = Rain::new(48.0, 1);                  // 48 drops a second
     /// let mut boat = Wake::circle(&water, 16.0);
     /// for _frame in 0..60 {
     ///     water.advance_with(1.0 / 60.0, &mut (&mut rain, &mut boat))?;
     /// }
-    /// assert!(rain.fallen() > 20);                        // 24 units of model time
+    /// assert!(rain.fallen() > 20);                        // one second
     /// # Ok::<(), springwater::Error>(())
     /// ```
     pub fn advance_with<D: Disturbance + ?Sized>(

@@ -67,7 +67,7 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// | 136 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z |
 /// | | 2 × 4n | mass, viscosity per node |
 /// | | n | pinned per node, `u8` 0 or 1 |
-/// | | 8 × 4n | rest length then coefficient, for families E, S, SE, SW |
+/// | | 8 × 4n | rest length then stiffness, for families E, S, SE, SW |
 /// | | 80 f | per body: id `u64`, shape `u32` (0 = sphere, 1 = box), size (radius, 0, 0 or half extents), mass, drag, position, velocity, push, water force (`f32`) |
 /// | end − 4 | 4 | CRC-32 (IEEE) of every byte before it |
 ///
@@ -76,7 +76,7 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// snapshots get the default). Loading refuses, with [`Error::Snapshot`] and a message
 /// that says what is wrong: a wrong magic or version, a total length that disagrees with
 /// `cols × rows` or with the bytes present, a checksum mismatch, parameters that
-/// [`Params::validate`] refuses, non-finite values, masses or coefficients out of range,
+/// [`Params::validate`] refuses, non-finite values, masses or stiffnesses out of range,
 /// pinned nodes that move, springs outside the grid, bounds that do not cover the
 /// tables, and bodies that [`Floater::validate`] refuses or whose ids are not increasing. Lengths are checked against the bytes actually present before anything is
 /// allocated, so a lying length field costs nothing. A refused snapshot changes nothing.
@@ -98,7 +98,7 @@ pub struct Snapshot {
     pub time: f64,
     /// Smallest node mass ever set: with `max_stiffness` it sets `critical_dt`.
     pub min_mass: f32,
-    /// Largest spring coefficient ever set.
+    /// Largest spring stiffness ever set.
     pub max_stiffness: f32,
     /// Largest viscosity ever set.
     pub max_viscosity: f32,
@@ -118,8 +118,10 @@ pub struct Snapshot {
     pub pinned: Vec<bool>,
     /// Rest lengths per family (E, S, SE, SW), indexed by origin node.
     pub rest: [Vec<f32>; 4],
-    /// Coefficients per family (E, S, SE, SW), indexed by origin node.
-    pub coef: [Vec<f32>; 4],
+    /// Spring stiffness `c` per family (E, S, SE, SW), indexed by origin node (the
+    /// [`Spring::stiffness`](crate::Spring::stiffness) of each spring).
+    #[cfg_attr(feature = "serde", serde(alias = "coef"))]
+    pub stiffness: [Vec<f32>; 4],
     /// Floating bodies with their ids, ids increasing.
     #[cfg_attr(feature = "serde", serde(default))]
     pub floaters: Vec<(FloaterId, Floater)>,
@@ -175,7 +177,7 @@ impl Snapshot {
         let arrays = arrays
             .chain([&self.mass, &self.viscosity])
             .chain(&self.rest)
-            .chain(&self.coef);
+            .chain(&self.stiffness);
         let mut lengths = arrays.map(Vec::len).chain([self.pinned.len()]);
         match n {
             Some(n)
@@ -252,7 +254,7 @@ impl Snapshot {
         }
         b.extend(self.pinned.iter().map(|&p| p as u8));
         for f in 0..4 {
-            for a in [&self.rest[f], &self.coef[f]] {
+            for a in [&self.rest[f], &self.stiffness[f]] {
                 a.iter().for_each(|v| b.extend_from_slice(&v.to_le_bytes()));
             }
         }
@@ -383,10 +385,10 @@ impl Snapshot {
         }
         let pinned = pinned.into_iter().map(|b| b == 1).collect();
         let mut rest: [Vec<f32>; 4] = Default::default();
-        let mut coef: [Vec<f32>; 4] = Default::default();
+        let mut stiffness: [Vec<f32>; 4] = Default::default();
         for f in 0..4 {
             rest[f] = r.f32s(n);
-            coef[f] = r.f32s(n);
+            stiffness[f] = r.f32s(n);
         }
         let mut floaters = Vec::with_capacity(floater_count as usize);
         for _ in 0..floater_count {
@@ -442,7 +444,7 @@ impl Snapshot {
             viscosity: viscosity_n,
             pinned,
             rest,
-            coef,
+            stiffness,
             floaters,
             next_floater_id,
             buoyancy,
@@ -489,7 +491,7 @@ impl Snapshot {
         for f in 0..4 {
             for (what, a) in [
                 ("rest length", &self.rest[f]),
-                ("coefficient", &self.coef[f]),
+                ("stiffness", &self.stiffness[f]),
             ] {
                 if a.len() != n {
                     return Err(bad(format!(
@@ -535,20 +537,20 @@ impl Snapshot {
         }
         for (f, family) in crate::grid::Family::ALL.into_iter().enumerate() {
             for i in 0..n {
-                let (rest, coef) = (self.rest[f][i], self.coef[f][i]);
+                let (rest, c) = (self.rest[f][i], self.stiffness[f][i]);
                 if grid.spring_end(family, i).is_none() {
-                    if rest.to_bits() != 0 || coef.to_bits() != 0 {
+                    if rest.to_bits() != 0 || c.to_bits() != 0 {
                         return Err(bad(format!(
                             "spring {family:?} at node {i} lies outside the grid but is not zero"
                         )));
                     }
-                } else if !(rest.is_finite() && rest >= 0.0 && coef.is_finite() && coef > 0.0) {
+                } else if !(rest.is_finite() && rest >= 0.0 && c.is_finite() && c > 0.0) {
                     return Err(bad(format!(
-                        "spring {family:?} at node {i}: rest length {rest} and coefficient {coef} must be finite, >= 0 and > 0"
+                        "spring {family:?} at node {i}: rest length {rest} and stiffness {c} must be finite, >= 0 and > 0"
                     )));
-                } else if coef > self.max_stiffness {
+                } else if c > self.max_stiffness {
                     return Err(bad(format!(
-                        "spring {family:?} at node {i}: coefficient {coef} is above max_stiffness {}",
+                        "spring {family:?} at node {i}: stiffness {c} is above max_stiffness {}",
                         self.max_stiffness
                     )));
                 }
@@ -690,7 +692,7 @@ impl Surface {
             viscosity: s.viscosity[..n].to_vec(),
             pinned: s.pinned.clone(),
             rest: cut4(&self.springs.rest),
-            coef: cut4(&self.springs.coef),
+            stiffness: cut4(&self.springs.coef),
             floaters: self.floaters.bodies.clone(),
             next_floater_id: self.floaters.next_id,
             buoyancy: self.floaters.buoyancy,
@@ -723,7 +725,7 @@ impl Surface {
         state.refresh_inv_mass();
         for f in 0..4 {
             springs.rest[f][..n].copy_from_slice(&snap.rest[f]);
-            springs.coef[f][..n].copy_from_slice(&snap.coef[f]);
+            springs.coef[f][..n].copy_from_slice(&snap.stiffness[f]);
         }
         // The engine reads a family's shared (c, L0) while all its springs agree: derived
         // from the tables, so recomputed rather than stored.

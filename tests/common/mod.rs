@@ -66,7 +66,7 @@ pub fn every_stepping_path(setup: impl FnOnce(&mut Surface)) -> Surface {
         s.step().unwrap();
     }
     s.step_n(37).unwrap();
-    let mut rain = Rain::new(0.8, 5);
+    let mut rain = Rain::new(20.0, 5);
     let mut wake = Wake::circle(&s, 30.0);
     for _ in 0..20 {
         s.advance_with(1.0 / 30.0, &mut (&mut rain, &mut wake))
@@ -75,38 +75,28 @@ pub fn every_stepping_path(setup: impl FnOnce(&mut Surface)) -> Surface {
     s
 }
 
-/// Runs `run(stepper)` on a surface from `build` at every SIMD level (forced, clamped to
-/// the CPU) on 1 and 2 threads with the engine, and asserts that each ends with the same
-/// snapshot bytes as the scalar reference on 1 thread.
-pub fn same_bits_everywhere(
-    build: impl Fn() -> Surface + Sync,
-    run: impl Fn(&mut Surface, springwater::Stepper) + Sync,
-) {
-    use springwater::{SimdLevel, Stepper};
-    let bytes = |level: Option<SimdLevel>, threads: usize, stepper: Stepper| {
+/// Runs `run` on a surface from `build` at every SIMD level (forced, clamped to the CPU)
+/// on 1 and 2 threads, and asserts that each ends with the same snapshot bytes as the
+/// scalar reference (`SimdLevel::Scalar`) on 1 thread.
+pub fn same_bits_everywhere(build: impl Fn() -> Surface + Sync, run: impl Fn(&mut Surface) + Sync) {
+    use springwater::SimdLevel;
+    let bytes = |level: SimdLevel, threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()
             .unwrap();
         pool.install(|| {
             let mut s = build();
-            if let Some(level) = level {
-                s.set_simd_level(level);
-            }
-            run(&mut s, stepper);
+            s.set_simd_level(level);
+            run(&mut s);
             s.to_bytes()
         })
     };
-    let reference = bytes(None, 1, Stepper::Reference);
-    for level in [
-        SimdLevel::Scalar,
-        SimdLevel::Sse2,
-        SimdLevel::Avx2,
-        SimdLevel::Avx512,
-    ] {
+    let reference = bytes(SimdLevel::Scalar, 1);
+    for level in SimdLevel::ALL {
         for threads in [1, 2] {
             assert!(
-                bytes(Some(level), threads, Stepper::Engine) == reference,
+                bytes(level, threads) == reference,
                 "{level:?} on {threads} threads"
             );
         }

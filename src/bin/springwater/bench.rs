@@ -4,7 +4,7 @@
 use crate::args::{next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
 use lexopt::Parser;
 use springwater::internals::{MemoryFloor, NaiveSurface, MAX_PASS_STEPS};
-use springwater::{Stepper, Surface};
+use springwater::{SimdLevel, Surface};
 use std::time::Instant;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -136,9 +136,11 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             );
             n
         });
-        let mut reference = kernels
-            .contains(&Kernel::Reference)
-            .then(|| surface.clone());
+        let mut reference = kernels.contains(&Kernel::Reference).then(|| {
+            let mut s = surface.clone();
+            s.set_simd_level(SimdLevel::Scalar);
+            s
+        });
         let mut single = kernels
             .contains(&Kernel::SingleSteps)
             .then(|| surface.clone());
@@ -170,7 +172,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                     Kernel::Reference => {
                         let s: &mut Surface = reference.as_mut().expect("built above");
                         for _ in 0..model.steps {
-                            s.step_with(Stepper::Reference).map_err(|e| e.to_string())?;
+                            s.step().map_err(|e| e.to_string())?;
                         }
                         model.steps
                     }

@@ -357,7 +357,8 @@ fn animate(
     // Rain and wake sized in cells, as they look on any spacing (the library takes world
     // units).
     let h = surface.params().spacing;
-    let mut rain = Rain::new(o.rain, o.seed);
+    // `--rain` counts drops per unit of model time; the library's rate is per second.
+    let mut rain = Rain::new(o.rain * surface.params().time_scale, o.seed);
     rain.radius = 1.5 * h..3.0 * h;
     let cells = surface.params().cols.min(surface.params().rows) as f32;
     let mut wake = o.wake.then(|| {
