@@ -68,6 +68,17 @@ impl<'a> MeshView<'a> {
         self
     }
 
+    /// The same view, its render-side stages ([`crate::mesh`], [`crate::refraction`],
+    /// [`crate::buffers`]) handing their parts to `jobs`, the host's job system, with the
+    /// same results (see [`JobSystem`](crate::JobSystem): a part the job system skips runs
+    /// on the calling thread). [`Surface::mesh_view`](crate::Surface::mesh_view) already
+    /// carries the surface's job system or thread pool; a view built with
+    /// [`MeshView::new`] runs on the rayon pool the caller is in (`pool.install(..)` picks
+    /// one) until given a job system here.
+    pub fn with_job_system(self, jobs: &'a dyn crate::JobSystem) -> Self {
+        self.with_runner(Runner::Jobs(jobs))
+    }
+
     /// The same view, its stages' parts run by `runner` (the surface's host).
     pub(crate) fn with_runner(mut self, runner: Runner<'a>) -> Self {
         self.runner = runner;

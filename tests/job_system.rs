@@ -266,3 +266,50 @@ fn the_render_side_stages_run_on_the_job_system_with_the_same_bits() {
     // normals, refract, the fused pass, interleave and fill_frame: one batch each.
     assert_eq!(scoped.batches.load(Ordering::Relaxed), 5);
 }
+
+/// A view the caller builds from its own slices runs its render-side stages on the job
+/// system it is given, with the bits of the surface's own view.
+#[test]
+fn a_view_built_by_the_caller_runs_on_the_job_system_it_is_given() {
+    use springwater::buffers::{fill_frame, Vertex, VertexBuffers};
+    use springwater::mesh::{compute_normals, Normals};
+    use springwater::refraction::RefractionParams;
+    use springwater::MeshView;
+
+    let mut s = Surface::new(Params::with_size(97, 131)).unwrap();
+    s.drop_at(40.0, 60.0, 1.2, 4.0).unwrap();
+    s.step_n(9).unwrap();
+    let eye = springwater::glam::Vec3::new(40.0, 25.0, -15.0);
+    let frame = |view: &MeshView<'_>| {
+        let mut normals = Normals::new();
+        compute_normals(view, &mut normals);
+        let mut vertices = vec![Vertex::default(); s.len()];
+        let out = VertexBuffers {
+            vertices: Some(&mut vertices),
+            ..Default::default()
+        };
+        fill_frame(view, eye, &RefractionParams::default(), out).unwrap();
+        (normals, vertices)
+    };
+    let expected = frame(&s.mesh_view());
+    let [x, y, z] = s.positions();
+    let scoped = Scoped {
+        threads: 2,
+        batches: AtomicUsize::new(0),
+    };
+    let view = MeshView::new(s.grid(), s.params().spacing, x, y, z)
+        .unwrap()
+        .with_job_system(&scoped);
+    let got = frame(&view);
+    assert_eq!(
+        scoped.batches.load(Ordering::Relaxed),
+        2,
+        "one batch per stage"
+    );
+    let bits = |(n, v): &(Normals, Vec<Vertex>)| -> Vec<u32> {
+        let normals = [&n.x, &n.y, &n.z].into_iter().flatten().copied();
+        let vertices = bytemuck::cast_slice::<Vertex, f32>(v).iter().copied();
+        normals.chain(vertices).map(f32::to_bits).collect()
+    };
+    assert!(bits(&got) == bits(&expected));
+}
