@@ -46,6 +46,9 @@ pub(crate) struct State {
     /// Every node whose `ext` may be non-zero, while there are few of them (`None`: any
     /// node may be). Lets a step clear a few forces without rewriting the whole buffer.
     pub ext_nodes: Option<Vec<usize>>,
+    /// One flag per row: whether the row holds a node of `ext_nodes` (see
+    /// [`State::mark_ext_rows`]).
+    pub ext_rows: Vec<bool>,
     /// Nodal mass `m`.
     pub mass: Floats,
     /// `1/m` for free nodes, `0` for pinned nodes: the integrator's only use of mass.
@@ -92,6 +95,7 @@ impl State {
             ext: zeros3(len),
             ext_pending: false,
             ext_nodes: Some(Vec::new()),
+            ext_rows: Vec::new(),
             mass,
             inv_mass: Floats::zeros(len),
             viscosity,
@@ -167,6 +171,23 @@ impl State {
                 self.ext_nodes = None;
             }
         }
+    }
+
+    /// Sets `ext_rows` to the rows that hold a listed node of `ext_nodes` and returns true,
+    /// or returns false when any node may hold a force (`ext_nodes` is `None`). A step
+    /// then reads the force buffers only on those rows: a floating body's push costs its
+    /// rows, not the grid.
+    pub fn mark_ext_rows(&mut self) -> bool {
+        let Some(nodes) = &self.ext_nodes else {
+            return false;
+        };
+        let cols = self.grid.cols;
+        self.ext_rows.clear();
+        self.ext_rows.resize(self.grid.rows, false);
+        for &i in nodes {
+            self.ext_rows[i / cols] = true;
+        }
+        true
     }
 
     /// Notes that `ext` was written anywhere.

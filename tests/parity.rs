@@ -128,14 +128,24 @@ fn build(case: &Case) -> Surface {
     s
 }
 
+/// External forces from `seed`: on every node for half the seeds, on three nodes for the
+/// other half (the engine then reads the force buffers only on their rows).
 fn add_forces(s: &mut Surface, seed: Option<u32>) {
     if let Some(seed) = seed {
         let mut rng = Rng(seed);
         let n = s.len();
-        let f: Vec<Vec<f32>> = (0..3)
-            .map(|_| (0..n).map(|_| rng.next()).collect())
-            .collect();
-        s.set_forces([&f[0], &f[1], &f[2]]).unwrap();
+        if seed & 2 == 0 {
+            let f: Vec<Vec<f32>> = (0..3)
+                .map(|_| (0..n).map(|_| rng.next()).collect())
+                .collect();
+            s.set_forces([&f[0], &f[1], &f[2]]).unwrap();
+        } else {
+            for _ in 0..3 {
+                let node = ((rng.next() + 0.5) * n as f32) as usize % n;
+                let f = [rng.next(), rng.next(), rng.next()];
+                s.add_force(node, f).unwrap();
+            }
+        }
     }
 }
 

@@ -36,6 +36,10 @@ pub(super) struct Inputs<'a, V: Vector> {
     pub viscosity: &'a [f32],
     /// External forces, applied in the first step of the pass only.
     pub ext: Option<[&'a [f32]; 3]>,
+    /// The rows whose nodes may hold an external force (`None`: every row). The others
+    /// skip reading `ext`: they would add +0, which changes nothing (the new velocity
+    /// adds the +0 acceleration of the step, which turns a −0 force into +0 anyway).
+    pub ext_rows: Option<&'a [bool]>,
     pub springs: &'a Springs,
     /// Each family's shared coefficient and rest length, when every family has them
     /// (the usual case: no spring was edited). The hot loop then keeps them in registers.
@@ -57,6 +61,7 @@ impl<'a, V: Vector> Inputs<'a, V> {
         inv_mass: &'a [f32],
         viscosity: &'a [f32],
         ext: Option<[&'a [f32]; 3]>,
+        ext_rows: Option<&'a [bool]>,
         springs: &'a Springs,
         cfg: StepConfig,
         stream: bool,
@@ -69,12 +74,19 @@ impl<'a, V: Vector> Inputs<'a, V> {
             inv_mass,
             viscosity,
             ext,
+            ext_rows,
             springs,
             uniform: springs.all_uniform(),
             cfg,
             stream: stream && cols.is_multiple_of(V::LANES),
             _lanes: std::marker::PhantomData,
         }
+    }
+
+    /// The external forces row `r` adds in a pass's first step, if it may hold any.
+    pub fn ext_of_row(&self, r: usize) -> Option<[&'a [f32]; 3]> {
+        self.ext
+            .filter(|_| self.ext_rows.is_none_or(|rows| rows[r]))
     }
 
     /// Chunks in a row.

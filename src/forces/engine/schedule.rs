@@ -135,6 +135,7 @@ pub(super) fn pass_with<V: Vector>(
     let grid = state.grid;
     let (cols, rows, n) = (grid.cols, grid.rows, grid.len());
     let (t, handoffs, claims) = ws.prepare::<V>(cols, rows, levels, runner.workers());
+    let listed = state.ext_pending && state.mark_ext_rows();
     let inp = Inputs::<V>::new(
         cols,
         rows,
@@ -145,6 +146,7 @@ pub(super) fn pass_with<V: Vector>(
         state
             .ext_pending
             .then(|| [&state.ext[0][..], &state.ext[1][..], &state.ext[2][..]]),
+        listed.then_some(&state.ext_rows[..]),
         springs,
         cfg,
         n >= STREAM_MIN_NODES,
@@ -298,7 +300,7 @@ fn band<V: Vector>(
                     }
                     continue;
                 }
-                let ext = if l == 1 { inp.ext } else { None };
+                let ext = if l == 1 { inp.ext_of_row(r) } else { None };
                 let dst = if l == last {
                     RowOut::Back(rows.row(r))
                 } else {
