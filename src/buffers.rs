@@ -115,8 +115,8 @@ pub fn interleave(
 
 /// The render-side stages straight into the vertex buffers, in one pass: each task
 /// computes the normals and refraction coordinates of a block of rows into its thread's
-/// scratch (a few tens of kilobytes, kept in cache and reused), then writes that block of
-/// `out`. The same bits as [`normals_and_refraction`](crate::refraction::normals_and_refraction)
+/// scratch (24 bytes per node of the block, reused from call to call), then writes that
+/// block of `out`. The same bits as [`normals_and_refraction`](crate::refraction::normals_and_refraction)
 /// followed by [`interleave`], without the two structure-of-arrays results ever going to
 /// memory: what a renderer that uploads vertices needs, at little more than the cost of
 /// the stages (docs/performance.md has the figures). Call the two functions instead when
@@ -168,11 +168,13 @@ pub fn fill_frame(
     Ok(())
 }
 
-/// Nodes per block of [`fill_frame`] (whole rows, at least one): its six scratch arrays,
-/// 24 KiB, stay in the first-level cache between being written and being read.
+/// Nodes per block of [`fill_frame`]: whole rows, as many as fit in this many nodes, and
+/// at least one. Up to rows of this length the six scratch arrays (24 KiB) stay in the
+/// first-level cache between being written and being read; a longer row is one block.
 const FRAME_BLOCK: usize = 1024;
 
-/// Scratch floats a thread keeps between calls (blocks of longer rows use a fresh buffer).
+/// Scratch floats a thread keeps between calls: blocks of up to 16 384 nodes (rows that
+/// long). A block of a longer row gets a buffer of its own, freed after it.
 const SCRATCH_KEPT: usize = 6 * 16 * FRAME_BLOCK;
 
 thread_local! {
@@ -181,23 +183,30 @@ thread_local! {
 }
 
 /// Runs `f` on six scratch arrays of `len` floats each (their contents are whatever the
-/// last block left: `f` writes before it reads).
+/// last block left: `f` writes before it reads), from this thread's kept scratch when it
+/// can. A block gets a buffer of its own when it is longer than what a thread keeps, when
+/// the thread's scratch is in use (a job system that runs tasks inside tasks) or already
+/// gone (a task run while the thread exits).
 fn with_scratch<R>(len: usize, f: impl FnOnce([&mut [f32]; 6]) -> R) -> R {
-    SCRATCH.with(|cell| {
-        let mut fresh = Vec::new();
-        // A block that runs while this thread's scratch is in use (a job system that runs
-        // tasks inside tasks) gets its own.
-        let mut kept = cell.try_borrow_mut();
-        let buf = match (&mut kept, 6 * len <= SCRATCH_KEPT) {
-            (Ok(kept), true) => &mut **kept,
-            _ => &mut fresh,
-        };
-        if buf.len() < 6 * len {
-            buf.resize(6 * len, 0.0);
-        }
-        let mut arrays = buf[..6 * len].chunks_exact_mut(len.max(1));
-        f(std::array::from_fn(|_| arrays.next().unwrap_or_default()))
-    })
+    let mut f = Some(f);
+    let kept = SCRATCH.try_with(|cell| match cell.try_borrow_mut() {
+        Ok(mut buf) if 6 * len <= SCRATCH_KEPT => f.take().map(|f| on_arrays(&mut buf, len, f)),
+        _ => None,
+    });
+    match (kept, f) {
+        (Ok(Some(done)), _) => done,
+        (_, Some(f)) => on_arrays(&mut Vec::new(), len, f),
+        (_, None) => unreachable!("`f` runs once: either on the kept scratch or here"),
+    }
+}
+
+/// `f` on the first `6 × len` floats of `buf` (grown if shorter), as six arrays.
+fn on_arrays<R>(buf: &mut Vec<f32>, len: usize, f: impl FnOnce([&mut [f32]; 6]) -> R) -> R {
+    if buf.len() < 6 * len {
+        buf.resize(6 * len, 0.0);
+    }
+    let mut arrays = buf[..6 * len].chunks_exact_mut(len.max(1));
+    f(std::array::from_fn(|_| arrays.next().unwrap_or_default()))
 }
 
 /// `Ok` when a buffer of `got` elements holds one per node of `n`.

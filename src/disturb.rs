@@ -45,8 +45,9 @@ pub use crate::surface::Disturbance;
 /// so the same seed drops at the same world points on any spacing.
 ///
 /// The times and places depend only on the seed and the time passed to
-/// [`Disturbance::apply`], not on how that time is cut into steps: a drop due at time
-/// `t` lands at the first step boundary at or after `t`.
+/// [`Disturbance::apply`], not on how that time is cut into steps (up to the rounding of
+/// the seconds it adds up in `f64`): a drop due at time `t` lands at the first step
+/// boundary at or after `t`.
 #[derive(Debug, Clone)]
 pub struct Rain {
     /// Mean drops per second (default in [`Rain::new`]: as given). Zero: no rain.
@@ -293,11 +294,12 @@ mod tests {
         let mut s2 = Surface::new(p).unwrap();
         let mut r1 = Rain::new(48.0, 9);
         let mut r2 = Rain::new(48.0, 9);
-        // Same drops when the same total time is passed in 1 call or in 10.
-        r1.apply(&mut s1, 10.0).unwrap();
+        // Same drops when the same total time is passed in 1 call or in 10 (model times
+        // whose seconds, at the time scale of 24, are exact binary fractions: 1/32 each).
+        r1.apply(&mut s1, 7.5).unwrap();
         r1.apply(&mut s1, 0.0).unwrap();
         for _ in 0..10 {
-            r2.apply(&mut s2, 1.0).unwrap();
+            r2.apply(&mut s2, 0.75).unwrap();
         }
         r2.apply(&mut s2, 0.0).unwrap();
         assert_eq!(r1.fallen(), r2.fallen());

@@ -32,9 +32,10 @@
 //!   [`Params::dt`]; [`Params`] explains the stability limit the timestep must stay below
 //!   and what validation checks.
 //! * **Units.** Lengths are world units everywhere (the unit of `spacing`): drops, forces
-//!   at a point, queries, wakes. Time is *model time* inside the model (`dt`, disturbance
-//!   rates); a game passes seconds to [`Surface::advance`], and [`Params::time_scale`]
-//!   (model time per second, with [`Params::ripple_speed`] to read it as a speed) converts.
+//!   at a point, queries, wakes. Time is *model time* inside the model (`dt`, floating
+//!   bodies' velocities and gravity); a game passes seconds to [`Surface::advance`], rain
+//!   rates and wake speeds are per second, and [`Params::time_scale`] (model time per
+//!   second, with [`Params::ripple_speed`] to read it as a speed) converts.
 //!
 //! ## The pipeline
 //!

@@ -46,9 +46,10 @@ impl Boundary {
 /// Model parameters. Plain data with the seed's defaults; [`Params::validate`] checks it.
 ///
 /// Lengths are world units (the unit of `spacing`, the water's local space); mass is in
-/// mass units; `dt` and the rates of [`crate::disturb`] are in *model time*, the seed's
-/// time unit. [`Params::time_scale`] says how much model time passes per second of a
-/// game's clock, which is what [`Surface::advance`](crate::Surface::advance) takes.
+/// mass units; `dt` is in *model time*, the seed's time unit, as are the velocities and
+/// gravity of floating bodies. [`Params::time_scale`] says how much model time passes per
+/// second of a game's clock, which is what [`Surface::advance`](crate::Surface::advance)
+/// takes and what the rates and speeds of [`crate::disturb`] are counted in.
 ///
 /// # Where the timestep limits come from
 ///

@@ -74,7 +74,8 @@ impl<'a> MeshView<'a> {
     /// on the calling thread). [`Surface::mesh_view`](crate::Surface::mesh_view) already
     /// carries the surface's job system or thread pool; a view built with
     /// [`MeshView::new`] runs on the rayon pool the caller is in (`pool.install(..)` picks
-    /// one) until given a job system here.
+    /// one; in order on the calling thread without the `parallel` feature) until given a
+    /// job system here.
     pub fn with_job_system(self, jobs: &'a dyn crate::JobSystem) -> Self {
         self.with_runner(Runner::Jobs(jobs))
     }

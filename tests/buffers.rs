@@ -159,12 +159,21 @@ fn wrong_lengths_are_refused_and_nothing_is_written() {
 
 /// `fill_frame` (the stages and the buffers in one pass, through per-thread scratch) gives
 /// the bits of `normals_and_refraction` followed by `interleave`, on grids whose rows split
-/// into its blocks unevenly (one row longer than a block, blocks of hundreds of rows);
+/// into its blocks unevenly (one row longer than a block, blocks of hundreds of rows, rows
+/// longer than the scratch a thread keeps);
 /// bad input is refused with nothing written.
 #[test]
 fn fill_frame_equals_the_stages_then_interleave() {
     use springwater::buffers::fill_frame;
-    for (cols, rows) in [(9, 7), (67, 45), (130, 70), (1031, 9), (3, 2000)] {
+    let shapes = [
+        (9, 7),
+        (67, 45),
+        (130, 70),
+        (1031, 9),
+        (3, 2000),
+        (16_390, 3),
+    ];
+    for (cols, rows) in shapes {
         let (s, normals, uv) = scene(cols, rows);
         let n = s.len();
         let view = s.mesh_view();

@@ -7,7 +7,7 @@
 //! coefficient `c` (the wave speed `h·sqrt(3c(1 − r)/m)` is then the same in world units per
 //! unit time), damping per unit mass unchanged (`γ ∝ m`), and half the timestep (the
 //! critical timestep `sqrt(m/3c)` halves with `h`). Disturbances are given in world units
-//! and model time. The two runs then differ only by discretisation error, which the tests
+//! and seconds. The two runs then differ only by discretisation error, which the tests
 //! bound: heights sampled at the coarse grid's nodes (points every grid has) agree within
 //! 10% of the peak between spacing 1 and 1/2, and closer still between 1/2 and 1/4.
 

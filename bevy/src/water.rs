@@ -76,8 +76,8 @@ impl Water {
     }
 }
 
-/// The simulated surface of a [`Water`] entity and the per-frame buffers of its mesh,
-/// added by the plugin. Game code that wants springwater's whole API (snapshots, pinning,
+/// The simulated surface of a [`Water`] entity and the LOD state of its mesh, added by
+/// the plugin. Game code that wants springwater's whole API (snapshots, pinning,
 /// energy, per-node forces) queries `&mut WaterSurface` and calls [`WaterSurface::surface_mut`].
 #[derive(Component)]
 pub struct WaterSurface {

@@ -363,7 +363,8 @@ fn animate(
     let cells = surface.params().cols.min(surface.params().rows) as f32;
     let mut wake = o.wake.then(|| {
         let mut wake = Wake::circle(&surface, 0.3 * cells * h);
-        wake.speed *= h;
+        // 2.5 cells per unit of model time, whatever the spacing and time scale.
+        wake.speed = 2.5 * h * surface.params().time_scale;
         wake.radius *= h;
         // The same push per node as at spacing 1 (the library's strength is a pressure).
         wake.strength /= h * h;

@@ -37,8 +37,9 @@ pub(super) struct Inputs<'a, V: Vector> {
     /// External forces, applied in the first step of the pass only.
     pub ext: Option<[&'a [f32]; 3]>,
     /// The rows whose nodes may hold an external force (`None`: every row). The others
-    /// skip reading `ext`: they would add +0, which changes nothing (the new velocity
-    /// adds the +0 acceleration of the step, which turns a −0 force into +0 anyway).
+    /// skip reading `ext`: they would add +0, which changes nothing but the sign of a −0
+    /// force, and that sign is lost when the integration adds the step's acceleration,
+    /// which is never −0 (`Surface::config` turns a −0 into +0; pinned nodes add +0).
     pub ext_rows: Option<&'a [bool]>,
     pub springs: &'a Springs,
     /// Each family's shared coefficient and rest length, when every family has them
@@ -652,7 +653,13 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
 
     /// Family `fam`'s spring force on chunk `k` (at `h0`) from `there`; with `EDGE`, only
     /// in the lanes that hold such a spring.
-    #[inline(always)]
+    ///
+    /// Inlined always in release builds. In builds with debug assertions it is only
+    /// offered for inlining, as is [`RowKernel::chunk`]: unoptimised, every inlined copy
+    /// keeps its own stack slots, and the level entry that inlined them all needed 2–3 MB
+    /// of stack, more than a thread of rayon's pool has.
+    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[cfg_attr(debug_assertions, inline)]
     fn spring<const EDGE: bool, const UNIFORM: bool>(
         &self,
         c: &Consts<V>,
@@ -684,7 +691,9 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
     /// `k < chunks`, and `k ≥ 1` when `EDGE` is false. (The sources are readable up to
     /// chunk `chunks`, the node and table views hold `chunks` chunks, the arriving groups
     /// and `sent` `chunks + 2` groups, chunk `k` being group `k + 1`.)
-    #[inline(always)]
+    /// (Inlined as [`RowKernel::spring`] is.)
+    #[cfg_attr(not(debug_assertions), inline(always))]
+    #[cfg_attr(debug_assertions, inline)]
     unsafe fn chunk<const EDGE: bool, const UNIFORM: bool>(
         &self,
         c: &Consts<V>,

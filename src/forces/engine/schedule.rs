@@ -135,6 +135,8 @@ pub(super) fn pass_with<V: Vector>(
     let grid = state.grid;
     let (cols, rows, n) = (grid.cols, grid.rows, grid.len());
     let (t, handoffs, claims) = ws.prepare::<V>(cols, rows, levels, runner.workers());
+    // Rows without forces skip them, which relies on an acceleration that is never −0.
+    debug_assert!(cfg.accel.iter().all(|a| a.to_bits() != (-0.0f32).to_bits()));
     let listed = state.ext_pending && state.mark_ext_rows();
     let inp = Inputs::<V>::new(
         cols,
