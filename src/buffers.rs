@@ -47,7 +47,7 @@
 
 use std::ops::Range;
 
-use crate::error::{Error, Result};
+use crate::error::{same_length, Result};
 use crate::jobs::{for_each_range, Disjoint, Runner};
 use crate::mesh::Normals;
 use crate::refraction::{Refraction, RefractionParams, Refractor};
@@ -88,8 +88,8 @@ const BLOCK: usize = 4096;
 /// per node, in one pass (see the [module docs](self)). `normals` and `uv` must be this
 /// view's (one value per node: run the stages on it first).
 ///
-/// Errors, with nothing written: [`Error::LengthMismatch`] when `normals`, `uv` or a buffer
-/// does not hold one element per node.
+/// Errors, with nothing written: [`Error::LengthMismatch`](crate::Error::LengthMismatch)
+/// when `normals`, `uv` or a buffer does not hold one element per node.
 pub fn interleave(
     view: &MeshView<'_>,
     normals: &Normals,
@@ -98,10 +98,10 @@ pub fn interleave(
 ) -> Result<()> {
     let n = view.grid().len();
     for c in [&normals.x, &normals.y, &normals.z] {
-        same_length(n, "normals", c.len())?;
+        same_length("normals", c.len(), n)?;
     }
     for c in [&uv.u, &uv.v] {
-        same_length(n, "refraction coordinates", c.len())?;
+        same_length("refraction coordinates", c.len(), n)?;
     }
     check(n, &out)?;
     let src = Source {
@@ -141,7 +141,8 @@ pub fn interleave(
 ///
 /// Errors, with nothing written: those of
 /// [`refract`](crate::refraction::refract) for the eye and `params`, and
-/// [`Error::LengthMismatch`] when a buffer of `out` does not hold one element per node.
+/// [`Error::LengthMismatch`](crate::Error::LengthMismatch) when a buffer of `out` does not
+/// hold one element per node.
 pub fn fill_frame(
     view: &MeshView<'_>,
     eye: glam::Vec3,
@@ -209,32 +210,19 @@ fn on_arrays<R>(buf: &mut Vec<f32>, len: usize, f: impl FnOnce([&mut [f32]; 6]) 
     f(std::array::from_fn(|_| arrays.next().unwrap_or_default()))
 }
 
-/// `Ok` when a buffer of `got` elements holds one per node of `n`.
-fn same_length(n: usize, what: &'static str, got: usize) -> Result<()> {
-    if got == n {
-        Ok(())
-    } else {
-        Err(Error::LengthMismatch {
-            what,
-            got,
-            expected: n,
-        })
-    }
-}
-
 /// `Ok` when every buffer of `out` holds one element per node of `n`.
 fn check(n: usize, out: &VertexBuffers<'_>) -> Result<()> {
     if let Some(b) = &out.positions {
-        same_length(n, "position buffer", b.len())?;
+        same_length("position buffer", b.len(), n)?;
     }
     if let Some(b) = &out.normals {
-        same_length(n, "normal buffer", b.len())?;
+        same_length("normal buffer", b.len(), n)?;
     }
     if let Some(b) = &out.uvs {
-        same_length(n, "uv buffer", b.len())?;
+        same_length("uv buffer", b.len(), n)?;
     }
     if let Some(b) = &out.vertices {
-        same_length(n, "vertex buffer", b.len())?;
+        same_length("vertex buffer", b.len(), n)?;
     }
     Ok(())
 }

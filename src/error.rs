@@ -215,3 +215,17 @@ impl std::error::Error for IoError {
 
 /// Shorthand for results whose error is [`Error`](enum@Error).
 pub type Result<T> = std::result::Result<T, Error>;
+
+/// `Ok` when a buffer of `got` elements has the `expected` length, else
+/// [`Error::LengthMismatch`] naming it `what`.
+pub(crate) fn same_length(what: &'static str, got: usize, expected: usize) -> Result<()> {
+    if got == expected {
+        Ok(())
+    } else {
+        Err(Error::LengthMismatch {
+            what,
+            got,
+            expected,
+        })
+    }
+}

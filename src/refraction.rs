@@ -64,7 +64,7 @@
 //! twin, with the same operations in the same order; it computes the tail of the arrays and
 //! is compared with the lane code, bitwise, in tests.
 
-use crate::error::{Error, Result};
+use crate::error::{same_length, Error, Result};
 use crate::mesh::Normals;
 use crate::simd::{Chunks, ChunksMut, Vector};
 use crate::view::MeshView;
@@ -209,18 +209,6 @@ pub fn normals_and_refraction(
     normals: &mut Normals,
     out: &mut Refraction,
 ) -> Result<()> {
-    fused(view, eye, params, normals, out)
-}
-
-/// [`normals_and_refraction`]'s pass: each task computes the normals of a block of rows
-/// and refracts those nodes while they are in cache.
-fn fused(
-    view: &MeshView<'_>,
-    eye: Vec3,
-    params: &RefractionParams,
-    normals: &mut Normals,
-    out: &mut Refraction,
-) -> Result<()> {
     let k = Refractor::new(view, eye, params)?;
     let (n, cols) = (view.grid().len(), view.cols());
     normals.resize(n);
@@ -261,13 +249,7 @@ fn check_normals(view: &MeshView<'_>, normals: &Normals) -> Result<()> {
         ("normals.y", &normals.y),
         ("normals.z", &normals.z),
     ] {
-        if s.len() != n {
-            return Err(Error::LengthMismatch {
-                what,
-                got: s.len(),
-                expected: n,
-            });
-        }
+        same_length(what, s.len(), n)?;
     }
     Ok(())
 }

@@ -3,7 +3,7 @@
 //! The physics knows nothing of them: [`Surface::mesh_view`](crate::Surface::mesh_view)
 //! hands out this view and that is all.
 
-use crate::error::{Error, Result};
+use crate::error::{same_length, Error, Result};
 use crate::grid::Grid;
 use crate::jobs::Runner;
 use crate::simd::SimdLevel;
@@ -42,13 +42,7 @@ impl<'a> MeshView<'a> {
         }
         crate::params::positive("spacing", spacing)?;
         for (what, s) in [("x", x), ("y", y), ("z", z)] {
-            if s.len() != grid.len() {
-                return Err(Error::LengthMismatch {
-                    what,
-                    got: s.len(),
-                    expected: grid.len(),
-                });
-            }
+            same_length(what, s.len(), grid.len())?;
         }
         Ok(Self {
             grid,
@@ -130,13 +124,7 @@ impl<'a> MeshView<'a> {
     /// nothing is written. [`crate::buffers::interleave`] fills normals, texture
     /// coordinates and packed vertices in the same pass.
     pub fn write_positions(&self, out: &mut [[f32; 3]]) -> Result<()> {
-        if out.len() != self.grid.len() {
-            return Err(Error::LengthMismatch {
-                what: "position buffer",
-                got: out.len(),
-                expected: self.grid.len(),
-            });
-        }
+        same_length("position buffer", out.len(), self.grid.len())?;
         for (o, ((x, y), z)) in out.iter_mut().zip(self.x.iter().zip(self.y).zip(self.z)) {
             *o = [*x, *y, *z];
         }

@@ -1,6 +1,6 @@
 //! The view-dependent, crack-free LOD index buffer ([`LodMesh`]; its docs give the method).
 
-use crate::error::{Error, Result};
+use crate::error::{same_length, Error, Result};
 use crate::grid::Grid;
 use crate::view::MeshView;
 use glam::Vec3;
@@ -249,13 +249,7 @@ impl LodMesh {
     /// Like [`LodMesh::update`].
     pub fn set_levels(&mut self, view: &MeshView<'_>, levels: &[u8]) -> Result<bool> {
         let [across, down] = self.patches_for(view.grid());
-        if levels.len() != across * down {
-            return Err(Error::LengthMismatch {
-                what: "patch levels",
-                got: levels.len(),
-                expected: across * down,
-            });
-        }
+        same_length("patch levels", levels.len(), across * down)?;
         let fresh = self.reshape(view);
         let top = (self.params.levels - 1) as u8;
         self.raw.clear();

@@ -1,6 +1,6 @@
 //! [`Texture`]: the pool bottom (an image or the built-in tiles), stored in linear light.
 
-use crate::error::{Error, Result};
+use crate::error::{same_length, Error, Result};
 use crate::rng::Rng;
 
 /// An RGB image in linear light (`f32` per channel, 0..1), sampled bilinearly with
@@ -29,14 +29,7 @@ impl Texture {
                 });
             }
         }
-        let expected = width * height * 3;
-        if rgb.len() != expected {
-            return Err(Error::LengthMismatch {
-                what: "texture pixels",
-                got: rgb.len(),
-                expected,
-            });
-        }
+        same_length("texture pixels", rgb.len(), width * height * 3)?;
         let lut: Vec<f32> = (0..=255u8).map(srgb_to_linear).collect();
         let texels = rgb
             .chunks_exact(3)

@@ -9,7 +9,7 @@ pub(crate) mod snapshot;
 
 pub use disturbance::Disturbance;
 
-use crate::error::{Error, Result};
+use crate::error::{same_length, Error, Result};
 use crate::forces::engine::{PassEnd, Workspace};
 use crate::forces::{self, StepConfig};
 use crate::grid::{Grid, SpringId};
@@ -656,13 +656,7 @@ impl Surface {
     pub fn set_forces(&mut self, force: [&[f32]; 3]) -> Result<()> {
         let n = self.len();
         for c in force {
-            if c.len() != n {
-                return Err(Error::LengthMismatch {
-                    what: "force buffer",
-                    got: c.len(),
-                    expected: n,
-                });
-            }
+            same_length("force buffer", c.len(), n)?;
             if let Some(&bad) = c.iter().find(|v| !v.is_finite()) {
                 return Err(Error::InvalidParam {
                     name: "force",
