@@ -80,14 +80,14 @@
 //! * `parallel` (default): colour batches run on a rayon pool (the global one, or the
 //!   host's: [`Surface::set_thread_pool`]). Results are bitwise identical with it off and
 //!   for any number of threads.
-//! * `cli` (default): the `springwater` command-line tool (turns on `render` and
-//!   `internals`). Engines embedding the library use
-//!   `default-features = false, features = ["parallel"]`.
 //! * `render`: the CPU preview renderer (`springwater::render`). No extra dependencies.
 //! * `serde`: derive `Serialize`/`Deserialize` for [`Params`] and [`Snapshot`].
 //! * `internals`: the unstable `springwater::internals` module (scalar twins of the SIMD
 //!   stages, comparison kernels, the engine's schedule knobs, for the crate's own tests,
-//!   benchmarks and CLI). Not covered by semver.
+//!   benchmarks and command line). Not covered by semver.
+//!
+//! The `springwater` command line is a separate crate, `springwater-cli`, so depending on
+//! the library brings none of its dependencies.
 
 #![warn(missing_docs)]
 #![deny(unsafe_op_in_unsafe_fn)]
@@ -131,10 +131,10 @@ pub use view::MeshView;
 /// Unstable internals for the crate's command line, tests and benchmarks: the scalar
 /// twins the SIMD stages are tested against, the comparison kernels of `bench`, and the
 /// engine's schedule (bands, tiling, steps per pass) that the colouring and parity tests
-/// check. **Not part of the public API**: no semver
-/// promise, may change or vanish in any release. It exists because integration tests,
-/// benchmarks and the binary are outside the crate and can only reach public items; it is
-/// behind the `internals` feature (on with `cli`) and hidden from the docs so that a game
+/// check. **Not part of the public API**: no semver promise, may change or vanish in any
+/// release. It exists because integration tests, benchmarks and the command line are
+/// outside the crate and can only reach public items; it is behind the `internals` feature
+/// (which the `springwater-cli` crate turns on) and hidden from the docs so that a game
 /// does not build on it by accident.
 #[cfg(feature = "internals")]
 #[doc(hidden)]

@@ -32,6 +32,8 @@ fn the_public_api_is_the_checked_in_list() {
         .args([
             "+nightly",
             "rustdoc",
+            "-p",
+            "springwater",
             "--lib",
             "--quiet",
             "--no-default-features",

@@ -7,7 +7,7 @@
 #![no_main]
 
 #[allow(dead_code)]
-#[path = "../../src/bin/springwater/args.rs"]
+#[path = "../../cli/src/args.rs"]
 mod args;
 
 use arbitrary::Arbitrary;

@@ -41,8 +41,8 @@
 //!
 //! # Why it lives in the library, and why it is hand-written
 //!
-//! The renderer is in the library, behind the `render` feature (which `cli` turns on),
-//! not in the binary: its tests can check pixels without parsing a GIF, and a game can
+//! The renderer is in the library, behind the `render` feature (which the
+//! `springwater-cli` crate turns on), not in the binary: its tests can check pixels without parsing a GIF, and a game can
 //! use it as a CPU preview or a reference image for its GPU shader. It needs nothing
 //! beyond what the library already depends on (`glam`, and `rayon` under `parallel`).
 //!
