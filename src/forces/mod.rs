@@ -44,9 +44,10 @@
 //!   per pass over memory.
 //!
 //! Both use the same operations in the same order per spring and per node, never FMA,
-//! and sum a node's spring forces in the same order (each family's leaving spring minus
-//! the same family's arriving one, see [`scalar::node_force`]). So they agree bit for bit,
-//! and the parity tests hold them to tolerance zero.
+//! evaluate each spring for the same one of its ends, and sum a node's spring forces in
+//! the same order (the springs in its own column, then minus what its west neighbour's
+//! column sends east, see [`scalar::node_force`]). So they agree bit for bit, and the
+//! parity tests hold them to tolerance zero.
 //!
 //! Both write the back buffers, check every new value for finiteness, and report the first
 //! non-finite node instead of swapping: the front buffers are never touched.

@@ -2,6 +2,12 @@
 //!
 //! It evaluates every spring once into per-family force buffers, then gives every node
 //! the sum of its springs in the fixed order of [`node_force`], then integrates.
+//!
+//! Each spring's force is evaluated once, for one of its ends, and the other end gets it
+//! negated: E, S and SE springs for their origin (the node they leave), SW springs for
+//! their lower end (the node one row down and one column west). Those are the lanes the
+//! engine evaluates them in, which lets it move forces between columns with one shuffle
+//! per axis (see [`node_force`]).
 
 // Index loops read like the equations here; that is the point of the oracle.
 #![allow(clippy::needless_range_loop)]
@@ -21,22 +27,24 @@ pub(crate) fn spring_force(pi: [f32; 3], pj: [f32; 3], coef: f32, rest: f32) -> 
     [s * d[0], s * d[1], s * d[2]]
 }
 
-/// Sum of a node's spring forces, pairing each family's spring leaving the node with the
-/// same family's spring arriving at it:
+/// A node's force from its eight springs, in the order the engine sums its lanes:
 ///
 /// ```text
-/// (E[i] − E[west]) + (S[i] − S[north]) + (SE[i] − SE[north-west]) + (SW[i] − SW[north-east])
+/// ((E + S) + SE) + (SW[north] − S[north])  −  ((E[west] + SW[west]) + SE[north-west])
 /// ```
 ///
-/// (a missing spring counts as 0). On a flat, uniformly tensioned lattice each pair is
-/// the same number twice, so the rest state is exactly at rest. The engine evaluates the
-/// same expression in lanes, which makes the two steps bitwise equal.
+/// `own = [E, S, SE]` are the springs the node is the origin of (forces on it);
+/// `north = [S, SW]` the north neighbour's S spring (its force on the north neighbour)
+/// and the SW spring leaving the north-east neighbour (its force on this node);
+/// `west_sum` is `(E + SW) + SE` as the west neighbour's lane holds them: its E spring
+/// (on it), the SW spring leaving this node (on that spring's lower end), and the
+/// north-west neighbour's SE spring (on it). Every term is the force on some other node
+/// than this one exactly when it is subtracted. A missing spring, or a missing west
+/// neighbour, counts as +0. On a flat, uniformly tensioned lattice both halves are the
+/// same sums of the same numbers, so the rest state is exactly at rest.
 #[inline(always)]
-pub(crate) fn node_force(out: [f32; 4], arriving: [f32; 4]) -> f32 {
-    (out[0] - arriving[0])
-        + (out[1] - arriving[1])
-        + (out[2] - arriving[2])
-        + (out[3] - arriving[3])
+pub(crate) fn node_force(own: [f32; 3], north: [f32; 2], west_sum: f32) -> f32 {
+    (((own[0] + own[1]) + own[2]) + (north[1] - north[0])) - west_sum
 }
 
 /// Symplectic Euler for one component: returns `(x', v')`.
@@ -69,7 +77,8 @@ pub(crate) fn calm(x: f32) -> f32 {
 /// Per-family spring force buffers of the reference step, allocated on first use.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Scratch {
-    /// `forces[family][axis][origin]`: force of that spring on its origin node.
+    /// `forces[family][axis][origin]`: that spring's force on its origin node (SW: on
+    /// its lower end).
     forces: Vec<Xyz>,
 }
 
@@ -91,9 +100,11 @@ pub(crate) fn step(
         for i in 0..n {
             let f = match grid.spring_end(family, i) {
                 Some(j) => {
-                    let pi = [state.pos[0][i], state.pos[1][i], state.pos[2][i]];
-                    let pj = [state.pos[0][j], state.pos[1][j], state.pos[2][j]];
-                    spring_force(pi, pj, springs.coef[fam][i], springs.rest[fam][i])
+                    // SW springs are evaluated for their lower end (see the module docs).
+                    let (a, b) = if family == Family::SW { (j, i) } else { (i, j) };
+                    let pa = [state.pos[0][a], state.pos[1][a], state.pos[2][a]];
+                    let pb = [state.pos[0][b], state.pos[1][b], state.pos[2][b]];
+                    spring_force(pa, pb, springs.coef[fam][i], springs.rest[fam][i])
                 }
                 None => [0.0; 3],
             };
@@ -102,23 +113,34 @@ pub(crate) fn step(
             }
         }
     }
-    // The node each family's spring arrives from: west, north, north-west, north-east.
-    let from = |family: Family, i: usize| {
-        let (dc, dr) = family.offset();
-        let (c, r) = grid.coords(i);
-        let c = c.checked_add_signed(-dc)?;
-        let r = r.checked_add_signed(-dr)?;
-        (c < grid.cols).then(|| grid.index(c, r))
+    // Family `f`'s force (as evaluated above) of the spring leaving node (c, r), or +0.
+    let (cols, rows) = (grid.cols, grid.rows);
+    let at = |f: Family, k: usize, c: usize, r: usize| {
+        if c < cols && r < rows {
+            forces[f as usize][k][grid.index(c, r)]
+        } else {
+            0.0
+        }
     };
     let mut first_bad = None;
     for i in 0..n {
+        let (c, r) = grid.coords(i);
         let free = state.inv_mass[i] > 0.0;
         let mut finite = true;
         for k in 0..3 {
-            let leaving = Family::ALL.map(|f| forces[f as usize][k][i]);
-            let arriving =
-                Family::ALL.map(|f| from(f, i).map_or(0.0, |j| forces[f as usize][k][j]));
-            let mut force = node_force(leaving, arriving);
+            let own = [Family::E, Family::S, Family::SE].map(|f| at(f, k, c, r));
+            let north = match r.checked_sub(1) {
+                Some(n) => [at(Family::S, k, c, n), at(Family::SW, k, c + 1, n)],
+                None => [0.0; 2],
+            };
+            let west_sum = match c.checked_sub(1) {
+                Some(w) => {
+                    let se = r.checked_sub(1).map_or(0.0, |n| at(Family::SE, k, w, n));
+                    (at(Family::E, k, w, r) + at(Family::SW, k, c, r)) + se
+                }
+                None => 0.0,
+            };
+            let mut force = node_force(own, north, west_sum);
             if state.ext_pending {
                 force += state.ext[k][i];
             }

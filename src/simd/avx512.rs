@@ -2,7 +2,7 @@
 //! (`__mmask16`), so a select is one masked blend and a compare writes no vector.
 //!
 //! As with [`super::avx2`], the intrinsics are called from `#[inline(always)]` methods
-//! that are only ever inlined into [`F32x16::run`]'s `#[target_feature(enable =
+//! that are only ever inlined into [`F32x16::enter`](Vector::enter)'s `#[target_feature(enable =
 //! "avx512f")]` entry, which [`super::dispatch`] calls only on a CPU that has AVX-512F.
 
 use super::{SimdLevel, Task, Vector};

@@ -8,13 +8,22 @@
 //! off comes from aligned chunks and a register shuffle ([`Vector::east`],
 //! [`Vector::west`]).
 //!
+//! The shuffles are few by choice of lanes. Every spring is evaluated in the lane of its
+//! western end (a SW spring from its lower end, see [`RowKernel::chunk`]), so a lane needs
+//! only two neighbours one column east (in its own row and the row below), and everything
+//! a lane owes its east neighbour is summed first and crosses lanes in one shuffle per
+//! axis: six position shuffles and three force shuffles per chunk. (Each spring seen from
+//! its origin, and each family's arrivals moved on their own, would need eighteen; an
+//! AVX2 shuffle across the two 128-bit halves is two or three instructions, on the same
+//! ports as the arithmetic.)
+//!
 //! The loop is shaped by what the step's arithmetic needs per chunk of nodes: four
 //! springs (each a square root and a division), nine force lanes sent down, nine
 //! arriving, six values in and six out. What the shape gains is in `docs/performance.md`:
-//! the first and last chunk of a row are peeled off ([`RowKernel::run_into`]) so the
-//! chunks between run with no mask, no partial store and no call; while every spring
-//! family is uniform the eight shared values stay in registers; the scratch rows are
-//! chunk-major, so one pointer reaches all of a chunk's lanes.
+//! the last chunk of a row is peeled off ([`RowKernel::run_into`]) so the chunks before
+//! it run with no mask, no partial store and no call; while every spring family is
+//! uniform the eight shared values stay in registers; the scratch rows are chunk-major,
+//! so one pointer reaches all of a chunk's lanes.
 //!
 //! A node's force is the same expression as in the scalar reference
 //! ([`super::super::scalar::node_force`]), so the two agree bit for bit, whatever the
@@ -25,6 +34,9 @@ use super::StepConfig;
 use crate::grid::Family;
 use crate::simd::{Chunks, ChunksMut, Task, Vector};
 use crate::springs::Springs;
+
+/// The cache line the non-temporal stores fill, in bytes (x86-64).
+const CACHE_LINE: usize = 64;
 
 /// Everything a band reads: front buffers and tables, shared by all tasks.
 pub(super) struct Inputs<'a, V: Vector> {
@@ -112,10 +124,9 @@ impl<'a, V: Vector> Inputs<'a, V> {
 #[derive(Clone, Copy)]
 struct Edges<V: Vector> {
     /// Per family, the lanes of the last chunk that hold a spring (no E or SE spring
-    /// leaves the last column; columns past the row are off).
+    /// leaves the last column, and no SW spring arrives at its lower end there: the lanes
+    /// of a SW spring are those of its lower end; columns past the row are off).
     tail: [V::Mask; 4],
-    /// The lanes of the first chunk that hold a SW spring (none leaves column 0).
-    head_sw: V::Mask,
 }
 
 impl<V: Vector> Edges<V> {
@@ -124,27 +135,22 @@ impl<V: Vector> Edges<V> {
         let last = cols - (cols - 1) / V::LANES * V::LANES; // columns in the last chunk
         let [all, short] = [V::first_lanes(last), V::first_lanes(last - 1)];
         Self {
-            tail: [short, all, short, all],
-            head_sw: !V::first_lanes(1),
+            tail: [short, all, short, short],
         }
     }
 
     /// Which lanes of chunk `k` of `chunks` hold a spring of family `fam`.
     #[inline(always)]
     fn exists(&self, fam: Family, k: usize, chunks: usize) -> V::Mask {
-        let mut m = if k + 1 == chunks {
+        if k + 1 == chunks {
             self.tail[fam as usize]
         } else {
             V::all_lanes()
-        };
-        if fam == Family::SW && k == 0 {
-            m &= self.head_sw;
         }
-        m
     }
 
     /// Family `fam`'s forces `f` on chunk `k`, with exactly +0 in the lanes that hold no
-    /// spring: in a row's first and last chunk, and every lane of S, SE and SW when there
+    /// spring: in a row's last chunk, and every lane of S, SE and SW when there
     /// is no row below (`has_down` false). Those lanes hold other rows' nodes or padding,
     /// and get +0 like the reference's absent spring. A coefficient of 0 is not enough:
     /// `0 · ∞` is NaN once those positions are far apart (the `params` fuzz target found a
@@ -159,7 +165,7 @@ impl<V: Vector> Edges<V> {
         has_down: bool,
         f: [V; 3],
     ) -> [V; 3] {
-        let edge = k + 1 == chunks || (fam == Family::SW && k == 0);
+        let edge = k + 1 == chunks;
         let none_below = fam != Family::E && !has_down;
         if !edge && !none_below {
             return f;
@@ -372,12 +378,16 @@ impl<V> Clone for Table<'_, V> {
 impl<V> Copy for Table<'_, V> {}
 
 impl<'a, V: Vector> Table<'a, V> {
-    /// Family `fam`'s table for the `chunks` chunks of the row starting at node `base`.
+    /// Family `fam`'s table for the `chunks` chunks of the row starting at node `base`,
+    /// in the lanes the kernel evaluates its springs in: a SW spring in the lane of its
+    /// lower end, one column west of its origin, so that table is read one node on. (The
+    /// tables are padded past the last node by more than a chunk.)
     #[inline(always)]
     fn of(sp: &'a Springs, fam: Family, base: usize, chunks: usize) -> Self {
+        let start = base + usize::from(fam == Family::SW);
         Table {
-            coef: Chunks::new(&sp.coef[fam as usize], base, chunks),
-            rest: Chunks::new(&sp.rest[fam as usize], base, chunks),
+            coef: Chunks::new(&sp.coef[fam as usize], start, chunks),
+            rest: Chunks::new(&sp.rest[fam as usize], start, chunks),
         }
     }
 
@@ -454,23 +464,15 @@ impl<V: Vector, S: Source<V>> Task<V> for DownSprings<'_, '_, V, S> {
         let tables = [Family::S, Family::SE, Family::SW]
             .map(|fam| Table::<V>::of(inp.springs, fam, r * inp.cols, chunks));
         for (k, group) in groups[1..=chunks].iter_mut().enumerate() {
-            // SAFETY: `k < chunks`; positions are readable up to chunk `chunks`, and the
-            // west chunk `k − 1` is read only for `k > 0`.
-            let (h, d0, d1, d_west) = unsafe {
-                // Lane 0 of chunk 0 has no SW spring (column 0): its west neighbour is
-                // never used.
-                let d_west = if k == 0 {
-                    [V::zero(); 3]
-                } else {
-                    down.pos(k - 1)
-                };
-                (here.pos(k), down.pos(k), down.pos(k + 1), d_west)
-            };
-            let there = [d0, east3(d0, d1), west3(d_west, d0)];
+            // SAFETY: `k < chunks`; positions are readable up to chunk `chunks`.
+            let (h0, h1, d0, d1) =
+                unsafe { (here.pos(k), here.pos(k + 1), down.pos(k), down.pos(k + 1)) };
+            // Each spring from the end its force is kept for (see `RowKernel::chunk`).
+            let ends = [(h0, d0), (h0, east3(d0, d1)), (d0, east3(h0, h1))];
             for (i, fam) in [Family::S, Family::SE, Family::SW].into_iter().enumerate() {
                 // SAFETY: `k < chunks`, within the table views.
                 let (coef, rest) = unsafe { tables[i].at(k) };
-                let f = spring_force(h, there[i], coef, rest);
+                let f = spring_force(ends[i].0, ends[i].1, coef, rest);
                 group[i] = edges.only_springs(fam, k, chunks, true, f);
             }
         }
@@ -483,11 +485,11 @@ impl<V: Vector, S: Source<V>> Task<V> for DownSprings<'_, '_, V, S> {
 /// `from` into `dst`, and leaves the S, SE and SW forces in `next` for row r+1. Returns
 /// `false` if a new value is not finite.
 ///
-/// One pass over the row's chunks: the E force of the chunk before, and the neighbour
-/// chunks the shuffles need, stay in registers. The first and last chunk (and every chunk
-/// of the grid's last row) mask the lanes without a spring; the chunks between them run a
-/// loop with no mask, no partial store and no call, so nothing forces the compiler to
-/// spill the registers it carries from chunk to chunk.
+/// One pass over the row's chunks: what the chunk before sends east, and the neighbour
+/// chunks the shuffles need, stay in registers. The last chunk (and every chunk of the
+/// grid's last row) masks the lanes without a spring; the chunks before it run a loop
+/// with no mask, no partial store and no call, so nothing forces the compiler to spill
+/// the registers it carries from chunk to chunk.
 #[inline(always)]
 pub(super) fn advance_row<V: Vector>(
     inp: &Inputs<V>,
@@ -549,6 +551,9 @@ struct RowKernel<'a, 'b, V: Vector, S> {
     inp: &'a Inputs<'b, V>,
     chunks: usize,
     has_down: bool,
+    /// The row starts an odd number of chunks into its buffers: a pair of chunks starting
+    /// at chunk 0 would straddle two pairs' spans (see [`RowKernel::run_into`]).
+    odd_start: bool,
     /// The row and the row below.
     h: S,
     d: S,
@@ -582,6 +587,7 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             inp,
             chunks,
             has_down,
+            odd_start: (base / V::LANES) % 2 == 1,
             h,
             d,
             tables: Family::ALL.map(|fam| Table::of(inp.springs, fam, base, chunks)),
@@ -603,41 +609,48 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         let full = self.inp.cols / V::LANES;
         let c = Consts::<V>::new(self);
         let mut finite = V::zero();
-        // The E force of the chunk before (zero before column 0: no spring there).
-        let mut e_west = [V::zero(); 3];
+        // The forces the chunk before sends east (zero before column 0: no node there).
+        let mut west = [V::zero(); 3];
         let last = chunks - 1;
         if self.has_down {
-            if last > 0 {
-                // SAFETY: `0 < last < chunks`.
-                let new = unsafe { self.chunk::<true, UNIFORM>(&c, 0, &mut e_west, sent) };
-                store(&mut dst, full, 0, new, &mut finite);
+            let mut k = 0;
+            // Chunks narrower than a cache line go in pairs that start on a pair boundary
+            // of the buffers: the non-temporal stores of a large grid's last level then
+            // fill whole lines, in order (AVX2 at 2048²: 1.6x the speed of one chunk per
+            // iteration, or of pairs that straddle lines). A chunk a line wide (AVX-512)
+            // goes alone, which keeps fewer registers live.
+            if V::LANES * size_of::<f32>() < CACHE_LINE {
+                if self.odd_start && last > 0 {
+                    // SAFETY: `0 < last < chunks`.
+                    let new = unsafe { self.chunk::<false, UNIFORM>(&c, 0, &mut west, sent) };
+                    store(&mut dst, full, 0, new, &mut finite);
+                    k = 1;
+                }
+                while k + 1 < last {
+                    // SAFETY: `k < k + 1 < chunks`.
+                    let a = unsafe { self.chunk::<false, UNIFORM>(&c, k, &mut west, sent) };
+                    // SAFETY: as above.
+                    let b = unsafe { self.chunk::<false, UNIFORM>(&c, k + 1, &mut west, sent) };
+                    store(&mut dst, full, k, a, &mut finite);
+                    store(&mut dst, full, k + 1, b, &mut finite);
+                    k += 2;
+                }
             }
-            // Two chunks per iteration: the out-of-order core sees two independent
-            // chunks' square roots and divisions at once.
-            let mut k = 1;
-            while k + 1 < last {
-                // SAFETY: `1 ≤ k < k + 1 < chunks`.
-                let a = unsafe { self.chunk::<false, UNIFORM>(&c, k, &mut e_west, sent) };
-                // SAFETY: as above.
-                let b = unsafe { self.chunk::<false, UNIFORM>(&c, k + 1, &mut e_west, sent) };
-                store(&mut dst, full, k, a, &mut finite);
-                store(&mut dst, full, k + 1, b, &mut finite);
-                k += 2;
-            }
-            if k < last {
-                // SAFETY: `1 ≤ k < chunks`.
-                let new = unsafe { self.chunk::<false, UNIFORM>(&c, k, &mut e_west, sent) };
+            while k < last {
+                // SAFETY: `k < chunks`.
+                let new = unsafe { self.chunk::<false, UNIFORM>(&c, k, &mut west, sent) };
                 store(&mut dst, full, k, new, &mut finite);
+                k += 1;
             }
         } else {
             for k in 0..last {
                 // SAFETY: `k < chunks`.
-                let new = unsafe { self.chunk::<true, UNIFORM>(&c, k, &mut e_west, sent) };
+                let new = unsafe { self.chunk::<true, UNIFORM>(&c, k, &mut west, sent) };
                 store(&mut dst, full, k, new, &mut finite);
             }
         }
         // SAFETY: `last < chunks`.
-        let new = unsafe { self.chunk::<true, UNIFORM>(&c, last, &mut e_west, sent) };
+        let new = unsafe { self.chunk::<true, UNIFORM>(&c, last, &mut west, sent) };
         if last < full {
             store(&mut dst, full, last, new, &mut finite);
         } else {
@@ -651,7 +664,8 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         !finite.any_nan()
     }
 
-    /// Family `fam`'s spring force on chunk `k` (at `h0`) from `there`; with `EDGE`, only
+    /// Family `fam`'s spring force on the `from` end of its springs in chunk `k`'s lanes,
+    /// the other end at `to`; with `EDGE`, only
     /// in the lanes that hold such a spring.
     ///
     /// Inlined always in release builds. In builds with debug assertions it is only
@@ -665,15 +679,15 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         c: &Consts<V>,
         k: usize,
         fam: Family,
-        h0: [V; 3],
-        there: [V; 3],
+        from: [V; 3],
+        to: [V; 3],
     ) -> [V; 3] {
         let (coef, rest) = match c.uniform {
             Some(uniform) if UNIFORM => uniform[fam as usize],
             // SAFETY: `k < chunks` (the caller's contract), within the table views.
             _ => unsafe { self.tables[fam as usize].at(k) },
         };
-        let f = spring_force(h0, there, coef, rest);
+        let f = spring_force(from, to, coef, rest);
         if EDGE {
             c.edges.only_springs(fam, k, self.chunks, self.has_down, f)
         } else {
@@ -682,15 +696,24 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
     }
 
     /// Chunk `k`: its springs, its new positions and velocities `[x, y, z, vx, vy, vz]`.
-    /// Sends its S, SE and SW forces into `sent` and leaves its E force in `e_west` for
-    /// chunk `k + 1`. With `EDGE` false the chunk is neither the first nor the last and
-    /// has a row below: every lane holds a spring of every family.
+    ///
+    /// Each lane `i` evaluates four springs: E (node i to i+1), S (to the node below),
+    /// SE (to the node below i+1), and the SW spring that leaves node i+1 for the node
+    /// below i, evaluated from its lower end. Its S, SE and SW forces go into `sent` for
+    /// row r+1 (S and SE as forces on this row's nodes, SW on the row below's). A node's
+    /// force is then the sum of [`scalar::node_force`](super::super::scalar::node_force):
+    /// its own E, S and SE springs and the north neighbour's S and SW, all in its own lane,
+    /// minus what the lane to its west sends east — that lane's E and SW forces and its
+    /// north neighbour's SE — summed there and moved one lane with a single shuffle per
+    /// axis. `west` carries that sum from chunk `k − 1` to chunk `k`. With `EDGE` false
+    /// the chunk is not the last and has a row below: every lane holds a spring of every
+    /// family.
     ///
     /// # Safety
     ///
-    /// `k < chunks`, and `k ≥ 1` when `EDGE` is false. (The sources are readable up to
-    /// chunk `chunks`, the node and table views hold `chunks` chunks, the arriving groups
-    /// and `sent` `chunks + 2` groups, chunk `k` being group `k + 1`.)
+    /// `k < chunks`. (The sources are readable up to chunk `chunks`, the node and table
+    /// views hold `chunks` chunks, the arriving groups and `sent` `chunks + 2` groups,
+    /// chunk `k` being group `k + 1`.)
     /// (Inlined as [`RowKernel::spring`] is.)
     #[cfg_attr(not(debug_assertions), inline(always))]
     #[cfg_attr(debug_assertions, inline)]
@@ -698,48 +721,34 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         &self,
         c: &Consts<V>,
         k: usize,
-        e_west: &mut [V; 3],
+        west: &mut [V; 3],
         sent: &mut [Group<V>],
     ) -> [V; 6] {
         let (h, d) = (self.h, self.d);
         // SAFETY: `k + 1 ≤ chunks`.
         let (h0, d0, h1, d1) = unsafe { (h.pos(k), d.pos(k), h.pos(k + 1), d.pos(k + 1)) };
-        let d_west = if EDGE && k == 0 {
-            [V::zero(); 3]
-        } else {
-            // SAFETY: `k ≥ 1` here, so `k − 1 < chunks`.
-            unsafe { d.pos(k - 1) }
-        };
-        let e = self.spring::<EDGE, UNIFORM>(c, k, Family::E, h0, east3(h0, h1));
+        let h_east = east3(h0, h1);
+        let e = self.spring::<EDGE, UNIFORM>(c, k, Family::E, h0, h_east);
         let s = self.spring::<EDGE, UNIFORM>(c, k, Family::S, h0, d0);
         let se = self.spring::<EDGE, UNIFORM>(c, k, Family::SE, h0, east3(d0, d1));
-        let sw = self.spring::<EDGE, UNIFORM>(c, k, Family::SW, h0, west3(d_west, d0));
+        let sw = self.spring::<EDGE, UNIFORM>(c, k, Family::SW, d0, h_east);
         // SAFETY: `k < chunks`, within the node views.
         let (inv_mass, viscosity) = unsafe { (self.inv_mass.get(k), self.viscosity.get(k)) };
         let free = inv_mass.gt(V::zero());
-        debug_assert!(k + 2 < self.arriving.len() && k + 2 < sent.len());
-        // SAFETY: `k + 2 ≤ chunks + 1`, within the arriving groups and `sent`.
-        let (west_n, north, east_n) = unsafe {
+        debug_assert!(k + 1 < self.arriving.len() && k + 1 < sent.len());
+        // SAFETY: `k + 1 ≤ chunks`, within the arriving groups and `sent`.
+        let north = unsafe {
             *sent.get_unchecked_mut(k + 1) = [s, se, sw];
-            let a = self.arriving;
-            (
-                a.get_unchecked(k),
-                a.get_unchecked(k + 1),
-                a.get_unchecked(k + 2),
-            )
+            self.arriving.get_unchecked(k + 1)
         };
         let mut new = [V::zero(); 6];
         for axis in 0..3 {
-            // Leaving (this row's springs at this node) and arriving (the same family's
-            // spring from the west, north, north-west and north-east neighbour).
-            let e_w = V::west(e_west[axis], e[axis]);
-            let se_nw = V::west(west_n[1][axis], north[1][axis]);
-            let sw_ne = V::east(north[2][axis], east_n[2][axis]);
+            // What this lane sends east, and what arrives from the west.
+            let east_bound = (e[axis] + sw[axis]) + north[1][axis];
+            let from_west = V::west(west[axis], east_bound);
             // Same expression as `scalar::node_force`.
-            let mut force = (e[axis] - e_w)
-                + (s[axis] - north[0][axis])
-                + (se[axis] - se_nw)
-                + (sw[axis] - sw_ne);
+            let mut force =
+                (((e[axis] + s[axis]) + se[axis]) + (north[2][axis] - north[0][axis])) - from_west;
             if let Some(ext) = self.ext {
                 // SAFETY: `k < chunks`, within the node views.
                 force += unsafe { ext[axis].get(k) };
@@ -750,11 +759,11 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             let v1 = v + acc * c.dt;
             new[axis] = h0[axis] + v1 * c.dt;
             new[axis + 3] = v1;
+            west[axis] = east_bound;
         }
         // Vertical: calm water is exactly calm, as in `scalar::calm`.
         new[1] = calm(new[1], c.calm);
         new[4] = calm(new[4], c.calm);
-        *e_west = e;
         new
     }
 }
@@ -809,16 +818,6 @@ fn east3<V: Vector>(lo: [V; 3], hi: [V; 3]) -> [V; 3] {
         V::east(lo[0], hi[0]),
         V::east(lo[1], hi[1]),
         V::east(lo[2], hi[2]),
-    ]
-}
-
-/// [`Vector::west`] of each axis.
-#[inline(always)]
-fn west3<V: Vector>(lo: [V; 3], hi: [V; 3]) -> [V; 3] {
-    [
-        V::west(lo[0], hi[0]),
-        V::west(lo[1], hi[1]),
-        V::west(lo[2], hi[2]),
     ]
 }
 
