@@ -9,7 +9,7 @@
 # inputs to fuzz/artifacts/TARGET/.
 #
 # Builds without a sanitizer (`-s none`): the crate's `unsafe` is unchecked chunk access
-# (src/simd.rs and the engine's scratch rows in src/forces/simd.rs), whose `debug_assert!`
+# (src/simd/ and the engine's scratch rows in src/forces/engine/), whose `debug_assert!`
 # bounds checks the debug assertions (`-a`, which also turn on overflow checks) keep on,
 # and intrinsics, so AddressSanitizer would mostly slow the search down. Optimisations
 # (`-O`) are on.

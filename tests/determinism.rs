@@ -51,6 +51,12 @@ fn parallel_feature_on_and_off_give_identical_bits() {
         ))
     };
     let parallel = cfg!(feature = "parallel");
+    // The serial build of CI's cross-build step must really be serial: a feature turned
+    // back on by unification would compare the parallel build with itself.
+    assert!(
+        !(parallel && std::env::var_os("SPRINGWATER_CROSS_BUILD").is_some()),
+        "SPRINGWATER_CROSS_BUILD is for the build without `parallel`, and this one has it"
+    );
     std::fs::write(name(parallel), &mine).unwrap();
     match std::fs::read_to_string(name(!parallel)) {
         Ok(other) => assert_eq!(

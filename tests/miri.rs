@@ -4,7 +4,7 @@
 //! to run under Miri, which checks every access for undefined behaviour:
 //!
 //! ```sh
-//! cargo +nightly miri test --no-default-features --test miri
+//! cargo +nightly miri test -p springwater --no-default-features --features internals --test miri
 //! ```
 
 mod common;

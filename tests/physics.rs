@@ -84,9 +84,9 @@ fn a_symmetric_drop_stays_mirror_symmetric() {
     assert!(scale > 1e-3, "the wave died out");
     // Rounding is not mirror-symmetric (x near 7 and near 33 round differently, and a
     // node's force sums its west and east springs in different places), so tiny
-    // asymmetries grow over 500 undamped steps to about 1e-4 of the wave's height; a real
-    // asymmetry (a wrong family offset) is O(scale).
-    let tol = 1e-3 * scale;
+    // asymmetries grow over 500 undamped steps to about 1e-4 of the wave's height (2.4e-4
+    // horizontally); a real asymmetry (a wrong family offset) is O(scale).
+    let (tol, tol_xz) = (3e-4 * scale, 1e-3 * scale);
     for r in 0..rows {
         for c in 0..cols {
             let (i, m) = (g.index(c, r), g.index(cols - 1 - c, rows - 1 - r));
@@ -97,8 +97,8 @@ fn a_symmetric_drop_stays_mirror_symmetric() {
                 (y[i] - y[m]).abs() <= tol,
                 "point mirror broken at ({c},{r})"
             );
-            assert!(((x[i] - c as f32) + (x[n] - (cols - 1 - c) as f32)).abs() <= tol);
-            assert!(((z[i] - r as f32) + (z[m] - (rows - 1 - r) as f32)).abs() <= tol);
+            assert!(((x[i] - c as f32) + (x[n] - (cols - 1 - c) as f32)).abs() <= tol_xz);
+            assert!(((z[i] - r as f32) + (z[m] - (rows - 1 - r) as f32)).abs() <= tol_xz);
         }
     }
 }

@@ -16,7 +16,7 @@ use std::collections::BTreeSet;
 use std::path::Path;
 use std::process::Command;
 
-/// Features documented: everything a user can turn on, except `cli`/`internals`.
+/// Features documented: everything a user can turn on, except `internals`.
 const FEATURES: &str = "parallel,render,serde";
 
 #[test]

@@ -130,12 +130,12 @@ pub(crate) fn step(
         for k in 0..3 {
             let own = [Family::E, Family::S, Family::SE].map(|f| at(f, k, c, r));
             let north = match r.checked_sub(1) {
-                Some(n) => [at(Family::S, k, c, n), at(Family::SW, k, c + 1, n)],
+                Some(up) => [at(Family::S, k, c, up), at(Family::SW, k, c + 1, up)],
                 None => [0.0; 2],
             };
             let west_sum = match c.checked_sub(1) {
                 Some(w) => {
-                    let se = r.checked_sub(1).map_or(0.0, |n| at(Family::SE, k, w, n));
+                    let se = r.checked_sub(1).map_or(0.0, |up| at(Family::SE, k, w, up));
                     (at(Family::E, k, w, r) + at(Family::SW, k, c, r)) + se
                 }
                 None => 0.0,

@@ -42,9 +42,10 @@
 //! # Why it lives in the library, and why it is hand-written
 //!
 //! The renderer is in the library, behind the `render` feature (which the
-//! `springwater-cli` crate turns on), not in the binary: its tests can check pixels without parsing a GIF, and a game can
-//! use it as a CPU preview or a reference image for its GPU shader. It needs nothing
-//! beyond what the library already depends on (`glam`, and `rayon` under `parallel`).
+//! `springwater-cli` crate turns on), not in the binary: its tests can check pixels
+//! without parsing a GIF, and a game can use it as a CPU preview or a reference image for
+//! its GPU shader. It needs nothing beyond what the library already depends on (`glam`,
+//! and `rayon` under `parallel`).
 //!
 //! The rasteriser (the private `raster` module) is about 250 lines written for this job
 //! rather than a crate: what it draws is one kind of primitive (triangles with nine

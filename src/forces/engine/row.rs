@@ -551,8 +551,10 @@ struct RowKernel<'a, 'b, V: Vector, S> {
     inp: &'a Inputs<'b, V>,
     chunks: usize,
     has_down: bool,
-    /// The row starts an odd number of chunks into its buffers: a pair of chunks starting
-    /// at chunk 0 would straddle two pairs' spans (see [`RowKernel::run_into`]).
+    /// The row starts an odd number of chunks into its buffers, so a pair of chunks from
+    /// chunk 0 would straddle a line of the back buffers (see [`RowKernel::run_into`]).
+    /// It matters only for streamed rows, which start on a chunk boundary; elsewhere it
+    /// changes the loop's shape, never its results.
     odd_start: bool,
     /// The row and the row below.
     h: S,
@@ -616,9 +618,10 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             let mut k = 0;
             // Chunks narrower than a cache line go in pairs that start on a pair boundary
             // of the buffers: the non-temporal stores of a large grid's last level then
-            // fill whole lines, in order (AVX2 at 2048²: 1.6x the speed of one chunk per
-            // iteration, or of pairs that straddle lines). A chunk a line wide (AVX-512)
-            // goes alone, which keeps fewer registers live.
+            // fill each line in one iteration at AVX2, or its halves in two in a row at
+            // SSE2 (AVX2 at 2048²: 1.4-1.6x the speed of one chunk per iteration, or of
+            // pairs that straddle lines). A chunk a line wide (AVX-512) goes alone, which
+            // keeps fewer registers live.
             if V::LANES * size_of::<f32>() < CACHE_LINE {
                 if self.odd_start && last > 0 {
                     // SAFETY: `0 < last < chunks`.
@@ -702,7 +705,8 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
     /// below i, evaluated from its lower end. Its S, SE and SW forces go into `sent` for
     /// row r+1 (S and SE as forces on this row's nodes, SW on the row below's). A node's
     /// force is then the sum of [`scalar::node_force`](super::super::scalar::node_force):
-    /// its own E, S and SE springs and the north neighbour's S and SW, all in its own lane,
+    /// its own E, S and SE springs, the north neighbour's S spring and the SW spring
+    /// leaving the north-east neighbour, all in its own lane,
     /// minus what the lane to its west sends east — that lane's E and SW forces and its
     /// north neighbour's SE — summed there and moved one lane with a single shuffle per
     /// axis. `west` carries that sum from chunk `k − 1` to chunk `k`. With `EDGE` false
