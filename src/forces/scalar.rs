@@ -36,15 +36,15 @@ pub(crate) fn spring_force(pi: [f32; 3], pj: [f32; 3], coef: f32, rest: f32) -> 
 /// `own = [E, S, SE]` are the springs the node is the origin of (forces on it);
 /// `north = [S, SW]` the north neighbour's S spring (its force on the north neighbour)
 /// and the SW spring leaving the north-east neighbour (its force on this node);
-/// `west_sum` is `(E + SW) + SE` as the west neighbour's lane holds them: its E spring
-/// (on it), the SW spring leaving this node (on that spring's lower end), and the
-/// north-west neighbour's SE spring (on it). Every term is the force on some other node
+/// `west = [E, SW, SE]` what the west neighbour's lane sends east: its E spring (on it),
+/// the SW spring leaving this node (on that spring's lower end), and the north-west
+/// neighbour's SE spring (on it). Every term is the force on some other node
 /// than this one exactly when it is subtracted. A missing spring, or a missing west
 /// neighbour, counts as +0. On a flat, uniformly tensioned lattice both halves are the
 /// same sums of the same numbers, so the rest state is exactly at rest.
 #[inline(always)]
-pub(crate) fn node_force(own: [f32; 3], north: [f32; 2], west_sum: f32) -> f32 {
-    (((own[0] + own[1]) + own[2]) + (north[1] - north[0])) - west_sum
+pub(crate) fn node_force(own: [f32; 3], north: [f32; 2], west: [f32; 3]) -> f32 {
+    (((own[0] + own[1]) + own[2]) + (north[1] - north[0])) - ((west[0] + west[1]) + west[2])
 }
 
 /// Symplectic Euler for one component: returns `(x', v')`.
@@ -133,14 +133,15 @@ pub(crate) fn step(
                 Some(up) => [at(Family::S, k, c, up), at(Family::SW, k, c + 1, up)],
                 None => [0.0; 2],
             };
-            let west_sum = match c.checked_sub(1) {
-                Some(w) => {
-                    let se = r.checked_sub(1).map_or(0.0, |up| at(Family::SE, k, w, up));
-                    (at(Family::E, k, w, r) + at(Family::SW, k, c, r)) + se
-                }
-                None => 0.0,
+            let west = match c.checked_sub(1) {
+                Some(w) => [
+                    at(Family::E, k, w, r),
+                    at(Family::SW, k, c, r),
+                    r.checked_sub(1).map_or(0.0, |up| at(Family::SE, k, w, up)),
+                ],
+                None => [0.0; 3],
             };
-            let mut force = node_force(own, north, west_sum);
+            let mut force = node_force(own, north, west);
             if state.ext_pending {
                 force += state.ext[k][i];
             }

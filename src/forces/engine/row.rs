@@ -668,8 +668,7 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
     }
 
     /// Family `fam`'s spring force on the `from` end of its springs in chunk `k`'s lanes,
-    /// the other end at `to`; with `EDGE`, only
-    /// in the lanes that hold such a spring.
+    /// the other end at `to`; with `EDGE`, only in the lanes that hold such a spring.
     ///
     /// Inlined always in release builds. In builds with debug assertions it is only
     /// offered for inlining, as is [`RowKernel::chunk`]: unoptimised, every inlined copy
