@@ -294,6 +294,13 @@ pub(crate) trait Vector:
     /// `a` where `m`, else `b`.
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
 
+    /// `a` where `m`, else +0: [`Vector::select`] against zero, which the kernels do
+    /// for every absent spring and calm lane.
+    #[inline(always)]
+    fn keep(m: Self::Mask, a: Self) -> Self {
+        Self::select(m, a, Self::zero())
+    }
+
     /// A mask with every lane on.
     fn all_lanes() -> Self::Mask;
 
@@ -607,6 +614,16 @@ mod tests {
                 (
                     lanes(V::select(V::first_lanes(3), va, vb)),
                     (0..n).map(|i| if i < 3 { a[i] } else { b[i] }).collect(),
+                ),
+                (
+                    lanes(V::keep(va.lt(V::zero()), va)),
+                    a.iter().map(|x| if *x < 0.0 { *x } else { 0.0 }).collect(),
+                ),
+                (
+                    lanes(V::keep(!va.abs().lt(V::one()), va)),
+                    a.iter()
+                        .map(|x| if x.abs() < 1.0 { 0.0 } else { *x })
+                        .collect(),
                 ),
             ];
             for (k, (got, want)) in ops.iter().enumerate() {

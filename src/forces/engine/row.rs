@@ -346,7 +346,7 @@ impl<V: Vector> Sink<V> for &mut [[V; 6]] {
         // The lanes past the row stay zero.
         let g = &mut self[k + 1];
         for (g, v) in g.iter_mut().zip(new) {
-            *g = V::select(real, v, V::zero());
+            *g = V::keep(real, v);
         }
     }
 }
@@ -358,7 +358,7 @@ fn spring_force<V: Vector>(pi: [V; 3], pj: [V; 3], coef: V, rest: V) -> [V; 3] {
     let d = [pj[0] - pi[0], pj[1] - pi[1], pj[2] - pi[2]];
     let l2 = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     let l = l2.sqrt();
-    let s = V::select(l2.gt(V::zero()), coef * (l - rest) / l, V::zero());
+    let s = V::keep(l2.gt(V::zero()), coef * (l - rest) / l);
     [s * d[0], s * d[1], s * d[2]]
 }
 
@@ -661,7 +661,7 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             let real = c.edges.tail[Family::S as usize];
             dst.put_partial(last, new, real);
             for x in &new[..3] {
-                finite += V::select(real, *x * V::zero(), V::zero());
+                finite += V::keep(real, *x * V::zero());
             }
         }
         !finite.any_nan()
@@ -758,7 +758,7 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             }
             // SAFETY: `k < chunks`.
             let v = unsafe { h.vel(k) }[axis];
-            let acc = (force - viscosity * v) * inv_mass + V::select(free, c.g[axis], V::zero());
+            let acc = (force - viscosity * v) * inv_mass + V::keep(free, c.g[axis]);
             let v1 = v + acc * c.dt;
             new[axis] = h0[axis] + v1 * c.dt;
             new[axis + 3] = v1;
@@ -811,7 +811,7 @@ fn splat2<V: Vector>((c, r): (f32, f32)) -> (V, V) {
 /// [`super::super::scalar::calm`] in lanes.
 #[inline(always)]
 fn calm<V: Vector>(x: V, limit: V) -> V {
-    V::select(x.abs().lt(limit), V::zero(), x)
+    V::keep(!x.abs().lt(limit), x)
 }
 
 /// [`Vector::east`] of each axis.
@@ -827,11 +827,7 @@ fn east3<V: Vector>(lo: [V; 3], hi: [V; 3]) -> [V; 3] {
 /// `f` in the lanes on in `m`, +0 elsewhere.
 #[inline(always)]
 fn only<V: Vector>(m: V::Mask, f: [V; 3]) -> [V; 3] {
-    [
-        V::select(m, f[0], V::zero()),
-        V::select(m, f[1], V::zero()),
-        V::select(m, f[2], V::zero()),
-    ]
+    [V::keep(m, f[0]), V::keep(m, f[1]), V::keep(m, f[2])]
 }
 
 /// Stores chunk `k` (whole: `k < full`) of a row into `dst` and folds its positions into
