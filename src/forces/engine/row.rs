@@ -111,10 +111,21 @@ impl<'a, V: Vector> Inputs<'a, V> {
     /// Row `r` of the front buffers (level 0).
     #[inline(always)]
     pub fn front(&self, r: usize) -> FrontRow<'a, V> {
-        let chunks = self.chunks();
+        // Written out, as everywhere a row is set up: a closure passed to `array::map` is
+        // compiled on its own and became calls, several per row.
+        let (chunks, start) = (self.chunks(), r * self.cols);
+        let ([x, y, z], [vx, vy, vz]) = (self.pos, self.vel);
         FrontRow {
-            pos: self.pos.map(|p| Chunks::new(p, r * self.cols, chunks + 1)),
-            vel: self.vel.map(|v| Chunks::new(v, r * self.cols, chunks)),
+            pos: [
+                Chunks::new(x, start, chunks + 1),
+                Chunks::new(y, start, chunks + 1),
+                Chunks::new(z, start, chunks + 1),
+            ],
+            vel: [
+                Chunks::new(vx, start, chunks),
+                Chunks::new(vy, start, chunks),
+                Chunks::new(vz, start, chunks),
+            ],
         }
     }
 }
@@ -300,9 +311,24 @@ impl<'a, V: Vector> BackRow<'a, V> {
     #[inline(always)]
     fn new(dst: [&'a mut [f32]; 6], cols: usize, stream: bool) -> Self {
         let full = cols / V::LANES;
-        let [x, y, z, vx, vy, vz] = dst.map(|d| d[..cols].split_at_mut(full * V::LANES));
+        let [x, y, z, vx, vy, vz] = dst;
+        let [x, y, z, vx, vy, vz] = [
+            x[..cols].split_at_mut(full * V::LANES),
+            y[..cols].split_at_mut(full * V::LANES),
+            z[..cols].split_at_mut(full * V::LANES),
+            vx[..cols].split_at_mut(full * V::LANES),
+            vy[..cols].split_at_mut(full * V::LANES),
+            vz[..cols].split_at_mut(full * V::LANES),
+        ];
         BackRow {
-            whole: [x.0, y.0, z.0, vx.0, vy.0, vz.0].map(|d| ChunksMut::new(d, 0, full)),
+            whole: [
+                ChunksMut::new(x.0, 0, full),
+                ChunksMut::new(y.0, 0, full),
+                ChunksMut::new(z.0, 0, full),
+                ChunksMut::new(vx.0, 0, full),
+                ChunksMut::new(vy.0, 0, full),
+                ChunksMut::new(vz.0, 0, full),
+            ],
             tail: [x.1, y.1, z.1, vx.1, vy.1, vz.1],
             stream,
         }
@@ -389,6 +415,19 @@ impl<'a, V: Vector> Table<'a, V> {
             coef: Chunks::new(&sp.coef[fam as usize], start, chunks),
             rest: Chunks::new(&sp.rest[fam as usize], start, chunks),
         }
+    }
+
+    /// [`Table::of`] for every family. (Written out: a closure passed to `array::map`
+    /// is compiled on its own, and became four calls per row.)
+    #[inline(always)]
+    fn all(sp: &'a Springs, base: usize, chunks: usize) -> [Self; 4] {
+        let [e, s, se, sw] = Family::ALL;
+        [
+            Self::of(sp, e, base, chunks),
+            Self::of(sp, s, base, chunks),
+            Self::of(sp, se, base, chunks),
+            Self::of(sp, sw, base, chunks),
+        ]
     }
 
     /// `(coefficient, rest length)` of chunk `k`.
@@ -512,7 +551,10 @@ pub(super) fn advance_row<V: Vector>(
             V::enter(AdvanceRow { kernel, sent, dst })
         }
         Level::Ring(ring) => {
-            let [h, d] = [r % 2, below % 2].map(|i| ring[i].groups(inp.cols));
+            let (h, d) = (
+                ring[r % 2].groups(inp.cols),
+                ring[below % 2].groups(inp.cols),
+            );
             let kernel = RowKernel::new(inp, r, h, d, has_down, ext, arriving);
             V::enter(AdvanceRow { kernel, sent, dst })
         }
@@ -559,7 +601,8 @@ struct RowKernel<'a, 'b, V: Vector, S> {
     /// The row and the row below.
     h: S,
     d: S,
-    tables: [Table<'a, V>; 4],
+    /// Each family's table, when the springs are not [`Inputs::uniform`].
+    tables: Option<[Table<'a, V>; 4]>,
     /// [`Inputs::uniform`].
     uniform: Option<[(f32, f32); 4]>,
     inv_mass: Chunks<'a, V>,
@@ -592,7 +635,10 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             odd_start: (base / V::LANES) % 2 == 1,
             h,
             d,
-            tables: Family::ALL.map(|fam| Table::of(inp.springs, fam, base, chunks)),
+            tables: match inp.uniform {
+                Some(_) => None,
+                None => Some(Table::all(inp.springs, base, chunks)),
+            },
             uniform: inp.uniform,
             inv_mass: node(inp.inv_mass),
             viscosity: node(inp.viscosity),
@@ -684,10 +730,11 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         from: [V; 3],
         to: [V; 3],
     ) -> [V; 3] {
-        let (coef, rest) = match c.uniform {
-            Some(uniform) if UNIFORM => uniform[fam as usize],
+        let (coef, rest) = match (c.uniform, &self.tables) {
+            (Some(uniform), _) if UNIFORM => uniform[fam as usize],
             // SAFETY: `k < chunks` (the caller's contract), within the table views.
-            _ => unsafe { self.tables[fam as usize].at(k) },
+            (_, Some(tables)) => unsafe { tables[fam as usize].at(k) },
+            _ => unreachable!("a row has uniform springs or spring tables"),
         };
         let f = spring_force(from, to, coef, rest);
         if EDGE {

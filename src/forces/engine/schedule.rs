@@ -43,8 +43,18 @@ impl Rows<'_> {
     /// Row `r` (held by this task), for [`advance_row`] to write.
     fn row(&mut self, r: usize) -> [&mut [f32]; 6] {
         let at = (r - self.first_row) * self.cols;
-        let cols = self.cols;
-        self.out.each_mut().map(|s| &mut s[at..at + cols])
+        let row = at..at + self.cols;
+        // Written out: a closure passed to `array::map` is compiled on its own (a call per
+        // row).
+        let [x, y, z, vx, vy, vz] = &mut self.out;
+        [
+            &mut x[row.clone()],
+            &mut y[row.clone()],
+            &mut z[row.clone()],
+            &mut vx[row.clone()],
+            &mut vy[row.clone()],
+            &mut vz[row],
+        ]
     }
 }
 
