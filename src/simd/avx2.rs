@@ -124,9 +124,10 @@ impl Vector for F32x8 {
         avx!(_mm256_blendv_ps(b.0, a.0, m.0))
     }
 
-    /// One `and`. (LLVM compiles a `blendv` against zero to an `and` after an integer
-    /// compare that spreads the mask's sign bits again: one more instruction on the
-    /// vector ports per absent spring and calm lane.)
+    /// One `and`, which equals the blend because every mask is all-ones or all-zero
+    /// lanes (compares, [`Vector::first_lanes`], [`Vector::all_lanes`] and their `!` and
+    /// `&`). (LLVM compiles a `blendv` against zero to an `and` after an integer compare
+    /// that spreads the mask's sign bits again: one more vector instruction per call.)
     #[inline(always)]
     fn keep(m: Self, a: Self) -> Self {
         avx!(_mm256_and_ps(m.0, a.0))

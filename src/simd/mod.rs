@@ -295,7 +295,7 @@ pub(crate) trait Vector:
     fn select(m: Self::Mask, a: Self, b: Self) -> Self;
 
     /// `a` where `m`, else +0: [`Vector::select`] against zero, which the kernels do
-    /// for every absent spring and calm lane.
+    /// for absent springs, calm lanes, pinned nodes and the lanes past a row.
     #[inline(always)]
     fn keep(m: Self::Mask, a: Self) -> Self {
         Self::select(m, a, Self::zero())
@@ -570,7 +570,18 @@ mod tests {
             let n = V::LANES;
             let a: Vec<f32> = (0..n).map(|i| i as f32 - 3.5).collect();
             let b: Vec<f32> = (0..n).map(|i| (n + i) as f32 * 0.25).collect();
-            let (va, vb) = (V::from_slice(&a), V::from_slice(&b));
+            // Lanes a select must pass through unchanged: −0, NaN, infinities.
+            let special = [
+                -0.0,
+                f32::NAN,
+                f32::INFINITY,
+                f32::NEG_INFINITY,
+                0.5,
+                -2.0,
+                0.0,
+            ];
+            let c: Vec<f32> = (0..n).map(|i| special[i % special.len()]).collect();
+            let (va, vb, vc) = (V::from_slice(&a), V::from_slice(&b), V::from_slice(&c));
             let lanes = |v: V| {
                 let mut o = vec![0.0; n];
                 v.write_to(&mut o);
@@ -616,13 +627,25 @@ mod tests {
                     (0..n).map(|i| if i < 3 { a[i] } else { b[i] }).collect(),
                 ),
                 (
-                    lanes(V::keep(va.lt(V::zero()), va)),
-                    a.iter().map(|x| if *x < 0.0 { *x } else { 0.0 }).collect(),
+                    lanes(V::keep(vc.lt(V::zero()), vc)),
+                    c.iter().map(|x| if *x < 0.0 { *x } else { 0.0 }).collect(),
                 ),
                 (
-                    lanes(V::keep(!va.abs().lt(V::one()), va)),
-                    a.iter()
+                    lanes(V::keep(!vc.abs().lt(V::one()), vc)),
+                    c.iter()
                         .map(|x| if x.abs() < 1.0 { 0.0 } else { *x })
+                        .collect(),
+                ),
+                (
+                    lanes(V::keep(V::first_lanes(5) & !vc.lt(V::zero()), vc)),
+                    (0..n)
+                        .map(|i| {
+                            if i < 5 && (c[i] >= 0.0 || c[i].is_nan()) {
+                                c[i]
+                            } else {
+                                0.0
+                            }
+                        })
                         .collect(),
                 ),
             ];

@@ -111,8 +111,8 @@ impl<'a, V: Vector> Inputs<'a, V> {
     /// Row `r` of the front buffers (level 0).
     #[inline(always)]
     pub fn front(&self, r: usize) -> FrontRow<'a, V> {
-        // Written out, as everywhere a row is set up: a closure passed to `array::map` is
-        // compiled on its own and became calls, several per row.
+        // Written out, as is every view a row advance builds: a closure passed to
+        // `array::map` is compiled on its own and became calls, several per row.
         let (chunks, start) = (self.chunks(), r * self.cols);
         let ([x, y, z], [vx, vy, vz]) = (self.pos, self.vel);
         FrontRow {
@@ -642,7 +642,11 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             uniform: inp.uniform,
             inv_mass: node(inp.inv_mass),
             viscosity: node(inp.viscosity),
-            ext: ext.map(|e| e.map(node)),
+            #[allow(clippy::manual_map)] // `Option::map` would take a closure: see `front`
+            ext: match ext {
+                Some([x, y, z]) => Some([node(x), node(y), node(z)]),
+                None => None,
+            },
             arriving,
             dt: inp.cfg.dt,
             g: inp.cfg.accel,
