@@ -150,16 +150,6 @@ impl<V: Vector> Edges<V> {
         }
     }
 
-    /// Which lanes of chunk `k` of `chunks` hold a spring of family `fam`.
-    #[inline(always)]
-    fn exists(&self, fam: Family, k: usize, chunks: usize) -> V::Mask {
-        if k + 1 == chunks {
-            self.tail[fam as usize]
-        } else {
-            V::all_lanes()
-        }
-    }
-
     /// Family `fam`'s forces `f` on chunk `k`, with exactly +0 in the lanes that hold no
     /// spring: in a row's last chunk, and every lane of S, SE and SW when there
     /// is no row below (`has_down` false). Those lanes hold other rows' nodes or padding,
@@ -176,17 +166,14 @@ impl<V: Vector> Edges<V> {
         has_down: bool,
         f: [V; 3],
     ) -> [V; 3] {
-        let edge = k + 1 == chunks;
         let none_below = fam != Family::E && !has_down;
-        if !edge && !none_below {
-            return f;
+        if none_below {
+            only(V::first_lanes(0), f)
+        } else if k + 1 == chunks {
+            only(self.tail[fam as usize], f)
+        } else {
+            f
         }
-        let exists = match (none_below, edge) {
-            (true, _) => V::first_lanes(0),
-            (false, true) => self.exists(fam, k, chunks),
-            (false, false) => V::all_lanes(),
-        };
-        only(exists, f)
     }
 }
 
