@@ -32,7 +32,7 @@
 use super::scratch::{Group, Row, RowForces};
 use super::StepConfig;
 use crate::grid::Family;
-use crate::simd::{Chunks, ChunksMut, Task, Vector};
+use crate::simd::{Chunks, ChunksMut, Vector};
 use crate::springs::Springs;
 
 /// The cache line the non-temporal stores fill, in bytes (x86-64).
@@ -97,9 +97,17 @@ impl<'a, V: Vector> Inputs<'a, V> {
     }
 
     /// The external forces row `r` adds in a pass's first step, if it may hold any.
+    #[inline(always)]
     pub fn ext_of_row(&self, r: usize) -> Option<[&'a [f32]; 3]> {
-        self.ext
-            .filter(|_| self.ext_rows.is_none_or(|rows| rows[r]))
+        let listed = match self.ext_rows {
+            Some(rows) => rows[r],
+            None => true,
+        };
+        if listed {
+            self.ext
+        } else {
+            None
+        }
     }
 
     /// Chunks in a row.
@@ -431,7 +439,9 @@ impl<'a, V: Vector> Table<'a, V> {
 
 /// Evaluates the S, SE and SW springs from row `r` of level `from` down to row r+1 (zero
 /// on the last row) into `out`: what row r sends to the next row. Only for the row just
-/// above a band's rows; [`advance_row`] does this for its own rows on the way.
+/// above a band's rows; [`advance_row`] does this for its own rows on the way. Inlined into
+/// the band, inside the level's instruction set, like [`advance_row`].
+#[inline(always)]
 pub(super) fn down_springs<V: Vector>(
     inp: &Inputs<V>,
     r: usize,
@@ -443,64 +453,46 @@ pub(super) fn down_springs<V: Vector>(
         return;
     }
     match from {
-        Level::Front => V::enter(DownSprings {
-            inp,
-            r,
-            here: inp.front(r),
-            down: inp.front(r + 1),
-            out,
-        }),
+        Level::Front => springs_down(inp, r, inp.front(r), inp.front(r + 1), out),
         Level::Ring(ring) => {
-            let [here, down] = [r % 2, (r + 1) % 2].map(|i| ring[i].groups(inp.cols));
-            V::enter(DownSprings {
-                inp,
-                r,
-                here,
-                down,
-                out,
-            })
+            let (here, down) = (
+                ring[r % 2].groups(inp.cols),
+                ring[(r + 1) % 2].groups(inp.cols),
+            );
+            springs_down(inp, r, here, down, out)
         }
     }
 }
 
 /// [`down_springs`] from row `here` to row `down`.
-struct DownSprings<'a, 'b, V: Vector, S> {
-    inp: &'a Inputs<'b, V>,
+#[inline(always)]
+fn springs_down<V: Vector, S: Source<V>>(
+    inp: &Inputs<V>,
     r: usize,
     here: S,
     down: S,
-    out: &'a mut RowForces<V>,
-}
-
-impl<V: Vector, S: Source<V>> Task<V> for DownSprings<'_, '_, V, S> {
-    type Output = ();
-
-    #[inline(always)]
-    fn run(self) {
-        let DownSprings {
-            inp,
-            r,
-            here,
-            down,
-            out,
-        } = self;
-        let chunks = inp.chunks();
-        let edges = Edges::<V>::new(inp.cols);
-        let groups = out.groups_mut(inp.cols);
-        let tables = [Family::S, Family::SE, Family::SW]
-            .map(|fam| Table::<V>::of(inp.springs, fam, r * inp.cols, chunks));
-        for (k, group) in groups[1..=chunks].iter_mut().enumerate() {
-            // SAFETY: `k < chunks`; positions are readable up to chunk `chunks`.
-            let (h0, h1, d0, d1) =
-                unsafe { (here.pos(k), here.pos(k + 1), down.pos(k), down.pos(k + 1)) };
-            // Each spring from the end its force is kept for (see `RowKernel::chunk`).
-            let ends = [(h0, d0), (h0, east3(d0, d1)), (d0, east3(h0, h1))];
-            for (i, fam) in [Family::S, Family::SE, Family::SW].into_iter().enumerate() {
-                // SAFETY: `k < chunks`, within the table views.
-                let (coef, rest) = unsafe { tables[i].at(k) };
-                let f = spring_force(ends[i].0, ends[i].1, coef, rest);
-                group[i] = edges.only_springs(fam, k, chunks, true, f);
-            }
+    out: &mut RowForces<V>,
+) {
+    let chunks = inp.chunks();
+    let edges = Edges::<V>::new(inp.cols);
+    let groups = out.groups_mut(inp.cols);
+    let base = r * inp.cols;
+    let tables = [
+        Table::<V>::of(inp.springs, Family::S, base, chunks),
+        Table::<V>::of(inp.springs, Family::SE, base, chunks),
+        Table::<V>::of(inp.springs, Family::SW, base, chunks),
+    ];
+    for (k, group) in groups[1..=chunks].iter_mut().enumerate() {
+        // SAFETY: `k < chunks`; positions are readable up to chunk `chunks`.
+        let (h0, h1, d0, d1) =
+            unsafe { (here.pos(k), here.pos(k + 1), down.pos(k), down.pos(k + 1)) };
+        // Each spring from the end its force is kept for (see `RowKernel::chunk`).
+        let ends = [(h0, d0), (h0, east3(d0, d1)), (d0, east3(h0, h1))];
+        for (i, fam) in [Family::S, Family::SE, Family::SW].into_iter().enumerate() {
+            // SAFETY: `k < chunks`, within the table views.
+            let (coef, rest) = unsafe { tables[i].at(k) };
+            let f = spring_force(ends[i].0, ends[i].1, coef, rest);
+            group[i] = edges.only_springs(fam, k, chunks, true, f);
         }
     }
 }
@@ -516,6 +508,9 @@ impl<V: Vector, S: Source<V>> Task<V> for DownSprings<'_, '_, V, S> {
 /// grid's last row) masks the lanes without a spring; the chunks before it run a loop
 /// with no mask, no partial store and no call, so nothing forces the compiler to spill
 /// the registers it carries from chunk to chunk.
+///
+/// Runs inside the level's instruction set: the band that calls it has entered it
+/// ([`Vector::enter`]), and it is inlined there.
 #[inline(always)]
 pub(super) fn advance_row<V: Vector>(
     inp: &Inputs<V>,
@@ -535,7 +530,7 @@ pub(super) fn advance_row<V: Vector>(
         Level::Front => {
             let (h, d) = (inp.front(r), inp.front(below));
             let kernel = RowKernel::new(inp, r, h, d, has_down, ext, arriving);
-            V::enter(AdvanceRow { kernel, sent, dst })
+            AdvanceRow { kernel, sent, dst }.run()
         }
         Level::Ring(ring) => {
             let (h, d) = (
@@ -543,21 +538,19 @@ pub(super) fn advance_row<V: Vector>(
                 ring[below % 2].groups(inp.cols),
             );
             let kernel = RowKernel::new(inp, r, h, d, has_down, ext, arriving);
-            V::enter(AdvanceRow { kernel, sent, dst })
+            AdvanceRow { kernel, sent, dst }.run()
         }
     }
 }
 
-/// [`advance_row`]'s work, run inside the level's instruction set.
+/// [`advance_row`]'s work for one kind of source row.
 struct AdvanceRow<'a, 'b, V: Vector, S> {
     kernel: RowKernel<'a, 'b, V, S>,
     sent: &'a mut [Group<V>],
     dst: RowOut<'a, V>,
 }
 
-impl<V: Vector, S: Source<V>> Task<V> for AdvanceRow<'_, '_, V, S> {
-    type Output = bool;
-
+impl<V: Vector, S: Source<V>> AdvanceRow<'_, '_, V, S> {
     #[inline(always)]
     fn run(self) -> bool {
         let AdvanceRow { kernel, sent, dst } = self;

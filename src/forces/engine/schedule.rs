@@ -16,17 +16,17 @@
 //! state, no locks. Each colour's bands are one batch of independent tasks for a
 //! [`Runner`]: rayon's pool, or the host's job system ([`crate::JobSystem`]). A step
 //! allocates nothing: handoffs live in the [`Workspace`], and each worker thread keeps its
-//! rings from pass to pass ([`with_scratch`]).
+//! rings from pass to pass ([`take_scratch`]).
 //!
 //! Within a band, a pass is a wavefront over rows and levels ([`band`]): as soon as row
 //! `r` of level `l−1` exists, row `r−1` of level `l` can be integrated, because a row only
 //! needs the rows beside it.
 
 use super::row::{advance_row, down_springs, Inputs, Level, RowOut};
-use super::scratch::{with_scratch, Scratch};
+use super::scratch::{put_scratch, take_scratch, Scratch};
 use super::{Handoff, StepConfig, Workspace, MAX_PASS_STEPS, STREAM_MIN_NODES};
 use crate::jobs::{Disjoint, Runner};
-use crate::simd::Vector;
+use crate::simd::{Task, Vector};
 use crate::springs::{Springs, Tiling};
 use crate::state::{State, Xyz};
 use std::ops::Range;
@@ -41,6 +41,7 @@ struct Rows<'a> {
 
 impl Rows<'_> {
     /// Row `r` (held by this task), for [`advance_row`] to write.
+    #[inline(always)]
     fn row(&mut self, r: usize) -> [&mut [f32]; 6] {
         let at = (r - self.first_row) * self.cols;
         let row = at..at + self.cols;
@@ -239,38 +240,77 @@ enum Handoffs<'a, V> {
 /// if it is the row just above the band's rows (their S, SE, SW arrive at the first row);
 /// or evaluating and integrating it if it is the band's own, then handing it over if it
 /// is one of the two rows next to a cut (even bands).
+///
+/// The whole band runs inside the SIMD level's instruction set ([`Vector::enter`]), so
+/// every row kernel is inlined into its loop; nothing in the loop is a closure.
 fn band<V: Vector>(
     inp: &Inputs<V>,
     t: &Tiling,
     b: usize,
-    mut handoffs: Handoffs<V>,
+    handoffs: Handoffs<V>,
     rows: &mut Rows,
 ) -> bool {
-    let last = t.levels;
-    let own: [Range<usize>; MAX_PASS_STEPS + 1] =
-        std::array::from_fn(|l| if l <= last { t.rows_at(b, l) } else { 0..0 });
-    let odd = matches!(handoffs, Handoffs::Take(..));
-    // Rows level `l` handles: its own, the row above them, and for an odd band below the
-    // last level the two rows beyond each cut that the next level borrows.
-    let handled = |l: usize| {
-        let own = &own[l];
-        let borrow = if odd && l < last { 2 } else { 1 };
-        let below = if odd && l < last && own.end < inp.rows {
-            2
-        } else {
-            0
-        };
-        own.start.saturating_sub(borrow)..(own.end + below).min(inp.rows)
-    };
-    let first_time = (1..=last).map(|l| handled(l).start + l - 1).min();
-    let end_time = (1..=last).map(|l| handled(l).end + l - 1).max();
-    let (Some(first_time), Some(end_time)) = (first_time, end_time) else {
-        return true;
-    };
-    with_scratch::<V, _>(inp.cols, last, |s| {
+    V::enter(Band {
+        inp,
+        t,
+        b,
+        handoffs,
+        rows,
+    })
+}
+
+/// [`band`]'s work, run inside the level's instruction set.
+struct Band<'a, 'b, 'c, V: Vector> {
+    inp: &'a Inputs<'b, V>,
+    t: &'a Tiling,
+    b: usize,
+    handoffs: Handoffs<'a, V>,
+    rows: &'a mut Rows<'c>,
+}
+
+impl<V: Vector> Task<V> for Band<'_, '_, '_, V> {
+    type Output = bool;
+
+    #[inline(always)]
+    fn run(self) -> bool {
+        let Band {
+            inp,
+            t,
+            b,
+            mut handoffs,
+            rows,
+        } = self;
+        let last = t.levels;
+        let odd = matches!(handoffs, Handoffs::Take(..));
+        // Per level `l` (1..=last): the band's own rows, and the rows it handles — its
+        // own, the row above them, and for an odd band below the last level the two rows
+        // beyond each cut that the next level borrows.
+        const NONE: Range<usize> = 0..0;
+        let mut own = [NONE; MAX_PASS_STEPS + 1];
+        let mut handled = [NONE; MAX_PASS_STEPS + 1];
+        let (mut first_time, mut end_time) = (usize::MAX, 0);
+        for l in 1..=last {
+            own[l] = t.rows_at(b, l);
+            let borrows = odd && l < last;
+            let above = if borrows { 2 } else { 1 };
+            let below = if borrows && own[l].end < inp.rows {
+                2
+            } else {
+                0
+            };
+            handled[l] = own[l].start.saturating_sub(above)..(own[l].end + below).min(inp.rows);
+            if !handled[l].is_empty() {
+                first_time = first_time.min(handled[l].start + l - 1);
+                end_time = end_time.max(handled[l].end + l - 1);
+            }
+        }
+        if first_time >= end_time {
+            return true;
+        }
+        let mut scratch = take_scratch::<V>(inp.cols, last);
         let Scratch {
             rings, prev, cur, ..
-        } = s;
+        } = &mut *scratch;
         for l in 1..=last {
             if own[l].start == 0 {
                 prev[l].zero_down();
@@ -282,7 +322,7 @@ fn band<V: Vector>(
                 let Some(r) = (time + 1).checked_sub(l) else {
                     continue;
                 };
-                if !handled(l).contains(&r) {
+                if !handled[l].contains(&r) {
                     continue;
                 }
                 let (lower, upper) = rings.split_at_mut(l);
@@ -300,10 +340,10 @@ fn band<V: Vector>(
                     }
                     if let Handoffs::Take(above, below) = &handoffs {
                         if l < last {
-                            let from = if r < own_l.start {
-                                above.map(|h| &h[l - 1][r + 2 - own_l.start])
-                            } else {
-                                below.map(|h| &h[l - 1][r - own_l.end])
+                            let from = match (r < own_l.start, above, below) {
+                                (true, Some(h), _) => Some(&h[l - 1][r + 2 - own_l.start]),
+                                (false, _, Some(h)) => Some(&h[l - 1][r - own_l.end]),
+                                _ => None,
                             };
                             if let Some(from) = from {
                                 upper[0][r % 2].copy_from(from);
@@ -323,21 +363,26 @@ fn band<V: Vector>(
                 if let Handoffs::Give(above, below) = &mut handoffs {
                     if l < last {
                         let row = &upper[0][r % 2];
-                        if let Some(h) = above.as_deref_mut().filter(|_| r < own_l.start + 2) {
-                            h[l - 1][r - own_l.start].copy_from(row);
+                        if let Some(h) = above {
+                            if r < own_l.start + 2 {
+                                h[l - 1][r - own_l.start].copy_from(row);
+                            }
                         }
-                        if let Some(h) = below.as_deref_mut().filter(|_| r + 2 >= own_l.end) {
-                            h[l - 1][r + 2 - own_l.end].copy_from(row);
+                        if let Some(h) = below {
+                            if r + 2 >= own_l.end {
+                                h[l - 1][r + 2 - own_l.end].copy_from(row);
+                            }
                         }
                     }
                 }
             }
         }
+        put_scratch(scratch);
         if inp.stream {
             // The streamed rows must be visible before the pass ends and other threads
             // read them.
             V::fence();
         }
         ok
-    })
+    }
 }

@@ -115,25 +115,20 @@ thread_local! {
     static SCRATCH: RefCell<Option<Box<dyn Any>>> = const { RefCell::new(None) };
 }
 
-/// Runs `f` with this thread's scratch sized for `cols` columns and `levels` levels.
-pub(super) fn with_scratch<V: Vector, T>(
-    cols: usize,
-    levels: usize,
-    f: impl FnOnce(&mut Scratch<V>) -> T,
-) -> T {
-    SCRATCH.with(|s| {
-        let mut s = s.borrow_mut();
-        let fits = s
-            .as_mut()
-            .and_then(|b| b.downcast_mut::<Scratch<V>>())
-            .is_some_and(|s| s.cols == cols && s.rings.len() >= levels);
-        if !fits {
-            *s = Some(Box::new(Scratch::<V>::new(cols, levels)));
-        }
-        let scratch = s
-            .as_mut()
-            .and_then(|b| b.downcast_mut::<Scratch<V>>())
-            .expect("the scratch was just made for this vector type");
-        f(scratch)
-    })
+/// Takes this thread's scratch, sized for `cols` columns and `levels` levels, out of its
+/// slot (made anew if the one there is of another vector type or size); give it back with
+/// [`put_scratch`]. Taking and putting back, rather than lending it to a closure, keeps
+/// the band's loop in the function that entered the SIMD level: a closure is compiled on
+/// its own, without the level's instruction set.
+pub(super) fn take_scratch<V: Vector>(cols: usize, levels: usize) -> Box<Scratch<V>> {
+    let held = SCRATCH.with(|s| s.borrow_mut().take());
+    match held.map(|b| b.downcast::<Scratch<V>>()) {
+        Some(Ok(s)) if s.cols == cols && s.rings.len() >= levels => s,
+        _ => Box::new(Scratch::new(cols, levels)),
+    }
+}
+
+/// Gives this thread's scratch back to its slot for the next band.
+pub(super) fn put_scratch<V: Vector>(scratch: Box<Scratch<V>>) {
+    SCRATCH.with(|s| *s.borrow_mut() = Some(scratch));
 }
