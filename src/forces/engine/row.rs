@@ -530,7 +530,7 @@ pub(super) fn advance_row<V: Vector>(
         Level::Front => {
             let (h, d) = (inp.front(r), inp.front(below));
             let kernel = RowKernel::new(inp, r, h, d, has_down, ext, arriving);
-            AdvanceRow { kernel, sent, dst }.run()
+            kernel.advance(sent, dst)
         }
         Level::Ring(ring) => {
             let (h, d) = (
@@ -538,32 +538,7 @@ pub(super) fn advance_row<V: Vector>(
                 ring[below % 2].groups(inp.cols),
             );
             let kernel = RowKernel::new(inp, r, h, d, has_down, ext, arriving);
-            AdvanceRow { kernel, sent, dst }.run()
-        }
-    }
-}
-
-/// [`advance_row`]'s work for one kind of source row.
-struct AdvanceRow<'a, 'b, V: Vector, S> {
-    kernel: RowKernel<'a, 'b, V, S>,
-    sent: &'a mut [Group<V>],
-    dst: RowOut<'a, V>,
-}
-
-impl<V: Vector, S: Source<V>> AdvanceRow<'_, '_, V, S> {
-    #[inline(always)]
-    fn run(self) -> bool {
-        let AdvanceRow { kernel, sent, dst } = self;
-        let cols = kernel.inp.cols;
-        match (dst, kernel.uniform.is_some()) {
-            (RowOut::Back(b), true) => {
-                kernel.run_into::<true>(sent, BackRow::new(b, cols, kernel.inp.stream))
-            }
-            (RowOut::Back(b), false) => {
-                kernel.run_into::<false>(sent, BackRow::new(b, cols, kernel.inp.stream))
-            }
-            (RowOut::Ring(row), true) => kernel.run_into::<true>(sent, row.groups_mut(cols)),
-            (RowOut::Ring(row), false) => kernel.run_into::<false>(sent, row.groups_mut(cols)),
+            kernel.advance(sent, dst)
         }
     }
 }
@@ -630,6 +605,23 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             arriving,
             dt: inp.cfg.dt,
             g: inp.cfg.accel,
+        }
+    }
+
+    /// Runs the row into `dst` with the kernel for its springs and destination, and
+    /// leaves what it sends down in `sent`.
+    #[inline(always)]
+    fn advance(&self, sent: &mut [Group<V>], dst: RowOut<V>) -> bool {
+        let cols = self.inp.cols;
+        match (dst, self.uniform.is_some()) {
+            (RowOut::Back(b), true) => {
+                self.run_into::<true>(sent, BackRow::new(b, cols, self.inp.stream))
+            }
+            (RowOut::Back(b), false) => {
+                self.run_into::<false>(sent, BackRow::new(b, cols, self.inp.stream))
+            }
+            (RowOut::Ring(row), true) => self.run_into::<true>(sent, row.groups_mut(cols)),
+            (RowOut::Ring(row), false) => self.run_into::<false>(sent, row.groups_mut(cols)),
         }
     }
 
