@@ -437,6 +437,46 @@ impl<'a, V: Vector> Table<'a, V> {
     }
 }
 
+/// Where a row's springs take their coefficient and rest length from: the kernel is
+/// compiled once for each kind.
+trait SpringValues<V> {
+    /// `(coefficient, rest length)` of family `fam`'s springs in chunk `k`'s lanes.
+    ///
+    /// # Safety
+    ///
+    /// `k < chunks` of the row.
+    unsafe fn at(&self, fam: Family, k: usize) -> (V, V);
+}
+
+/// Every family's springs share one coefficient and rest length ([`Inputs::uniform`]):
+/// the eight values stay in registers and no table is read.
+struct Shared<V>([(V, V); 4]);
+
+impl<V: Vector> Shared<V> {
+    #[inline(always)]
+    fn new([e, s, se, sw]: [(f32, f32); 4]) -> Self {
+        Self([splat2(e), splat2(s), splat2(se), splat2(sw)])
+    }
+}
+
+impl<V: Vector> SpringValues<V> for Shared<V> {
+    #[inline(always)]
+    unsafe fn at(&self, fam: Family, _k: usize) -> (V, V) {
+        self.0[fam as usize]
+    }
+}
+
+/// Each spring's own values, read from the families' tables along the row.
+struct Tables<'a, V>([Table<'a, V>; 4]);
+
+impl<V: Vector> SpringValues<V> for Tables<'_, V> {
+    #[inline(always)]
+    unsafe fn at(&self, fam: Family, k: usize) -> (V, V) {
+        // SAFETY: `k < chunks` (the caller's contract), within the table views.
+        unsafe { self.0[fam as usize].at(k) }
+    }
+}
+
 /// Evaluates the S, SE and SW springs from row `r` of level `from` down to row r+1 (zero
 /// on the last row) into `out`: what row r sends to the next row. Only for the row just
 /// above a band's rows; [`advance_row`] does this for its own rows on the way. Inlined into
@@ -556,10 +596,8 @@ struct RowKernel<'a, 'b, V: Vector, S> {
     /// The row and the row below.
     h: S,
     d: S,
-    /// Each family's table, when the springs are not [`Inputs::uniform`].
-    tables: Option<[Table<'a, V>; 4]>,
-    /// [`Inputs::uniform`].
-    uniform: Option<[(f32, f32); 4]>,
+    /// The row's first node.
+    base: usize,
     inv_mass: Chunks<'a, V>,
     viscosity: Chunks<'a, V>,
     ext: Option<[Chunks<'a, V>; 3]>,
@@ -590,11 +628,7 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             odd_start: (base / V::LANES) % 2 == 1,
             h,
             d,
-            tables: match inp.uniform {
-                Some(_) => None,
-                None => Some(Table::all(inp.springs, base, chunks)),
-            },
-            uniform: inp.uniform,
+            base,
             inv_mass: node(inp.inv_mass),
             viscosity: node(inp.viscosity),
             #[allow(clippy::manual_map)] // `Option::map` would take a closure: see `front`
@@ -612,23 +646,41 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
     /// leaves what it sends down in `sent`.
     #[inline(always)]
     fn advance(&self, sent: &mut [Group<V>], dst: RowOut<V>) -> bool {
+        match self.inp.uniform {
+            Some(shared) => self.advance_with(Shared::new(shared), sent, dst),
+            None => {
+                let tables = Tables(Table::all(self.inp.springs, self.base, self.chunks));
+                self.advance_with(tables, sent, dst)
+            }
+        }
+    }
+
+    /// [`RowKernel::advance`] with the springs' values from `springs`.
+    #[inline(always)]
+    fn advance_with<P: SpringValues<V>>(
+        &self,
+        springs: P,
+        sent: &mut [Group<V>],
+        dst: RowOut<V>,
+    ) -> bool {
         let cols = self.inp.cols;
-        match (dst, self.uniform.is_some()) {
-            (RowOut::Back(b), true) => {
-                self.run_into::<true>(sent, BackRow::new(b, cols, self.inp.stream))
+        match dst {
+            RowOut::Back(b) => {
+                self.run_into(&springs, sent, BackRow::new(b, cols, self.inp.stream))
             }
-            (RowOut::Back(b), false) => {
-                self.run_into::<false>(sent, BackRow::new(b, cols, self.inp.stream))
-            }
-            (RowOut::Ring(row), true) => self.run_into::<true>(sent, row.groups_mut(cols)),
-            (RowOut::Ring(row), false) => self.run_into::<false>(sent, row.groups_mut(cols)),
+            RowOut::Ring(row) => self.run_into(&springs, sent, row.groups_mut(cols)),
         }
     }
 
     /// Runs every chunk of the row (see [`advance_row`]) and writes the new values into
-    /// `dst`; `UNIFORM` says every family's springs share one coefficient and rest length.
+    /// `dst`, each spring's coefficient and rest length taken from `springs`.
     #[inline(always)]
-    fn run_into<const UNIFORM: bool>(&self, sent: &mut [Group<V>], mut dst: impl Sink<V>) -> bool {
+    fn run_into<P: SpringValues<V>>(
+        &self,
+        springs: &P,
+        sent: &mut [Group<V>],
+        mut dst: impl Sink<V>,
+    ) -> bool {
         let chunks = self.chunks;
         let full = self.inp.cols / V::LANES;
         let c = Consts::<V>::new(self);
@@ -647,15 +699,15 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             if V::LANES * size_of::<f32>() < CACHE_LINE {
                 if self.odd_start && last > 0 {
                     // SAFETY: `0 < last < chunks`.
-                    let new = unsafe { self.chunk::<false, UNIFORM>(&c, 0, &mut west, sent) };
+                    let new = unsafe { self.chunk::<false, P>(&c, springs, 0, &mut west, sent) };
                     store(&mut dst, full, 0, new, &mut finite);
                     k = 1;
                 }
                 while k + 1 < last {
                     // SAFETY: `k < k + 1 < chunks`.
-                    let a = unsafe { self.chunk::<false, UNIFORM>(&c, k, &mut west, sent) };
+                    let a = unsafe { self.chunk::<false, P>(&c, springs, k, &mut west, sent) };
                     // SAFETY: as above.
-                    let b = unsafe { self.chunk::<false, UNIFORM>(&c, k + 1, &mut west, sent) };
+                    let b = unsafe { self.chunk::<false, P>(&c, springs, k + 1, &mut west, sent) };
                     store(&mut dst, full, k, a, &mut finite);
                     store(&mut dst, full, k + 1, b, &mut finite);
                     k += 2;
@@ -663,19 +715,19 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             }
             while k < last {
                 // SAFETY: `k < chunks`.
-                let new = unsafe { self.chunk::<false, UNIFORM>(&c, k, &mut west, sent) };
+                let new = unsafe { self.chunk::<false, P>(&c, springs, k, &mut west, sent) };
                 store(&mut dst, full, k, new, &mut finite);
                 k += 1;
             }
         } else {
             for k in 0..last {
                 // SAFETY: `k < chunks`.
-                let new = unsafe { self.chunk::<true, UNIFORM>(&c, k, &mut west, sent) };
+                let new = unsafe { self.chunk::<true, P>(&c, springs, k, &mut west, sent) };
                 store(&mut dst, full, k, new, &mut finite);
             }
         }
         // SAFETY: `last < chunks`.
-        let new = unsafe { self.chunk::<true, UNIFORM>(&c, last, &mut west, sent) };
+        let new = unsafe { self.chunk::<true, P>(&c, springs, last, &mut west, sent) };
         if last < full {
             store(&mut dst, full, last, new, &mut finite);
         } else {
@@ -698,20 +750,17 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
     /// of stack, more than a thread of rayon's pool has.
     #[cfg_attr(not(debug_assertions), inline(always))]
     #[cfg_attr(debug_assertions, inline)]
-    fn spring<const EDGE: bool, const UNIFORM: bool>(
+    fn spring<const EDGE: bool, P: SpringValues<V>>(
         &self,
         c: &Consts<V>,
+        springs: &P,
         k: usize,
         fam: Family,
         from: [V; 3],
         to: [V; 3],
     ) -> [V; 3] {
-        let (coef, rest) = match (c.uniform, &self.tables) {
-            (Some(uniform), _) if UNIFORM => uniform[fam as usize],
-            // SAFETY: `k < chunks` (the caller's contract), within the table views.
-            (_, Some(tables)) => unsafe { tables[fam as usize].at(k) },
-            _ => unreachable!("a row has uniform springs or spring tables"),
-        };
+        // SAFETY: `k < chunks` (the caller's contract).
+        let (coef, rest) = unsafe { springs.at(fam, k) };
         let f = spring_force(from, to, coef, rest);
         if EDGE {
             c.edges.only_springs(fam, k, self.chunks, self.has_down, f)
@@ -743,9 +792,10 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
     /// (Inlined as [`RowKernel::spring`] is.)
     #[cfg_attr(not(debug_assertions), inline(always))]
     #[cfg_attr(debug_assertions, inline)]
-    unsafe fn chunk<const EDGE: bool, const UNIFORM: bool>(
+    unsafe fn chunk<const EDGE: bool, P: SpringValues<V>>(
         &self,
         c: &Consts<V>,
+        springs: &P,
         k: usize,
         west: &mut [V; 3],
         sent: &mut [Group<V>],
@@ -754,10 +804,10 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         // SAFETY: `k + 1 ≤ chunks`.
         let (h0, d0, h1, d1) = unsafe { (h.pos(k), d.pos(k), h.pos(k + 1), d.pos(k + 1)) };
         let h_east = east3(h0, h1);
-        let e = self.spring::<EDGE, UNIFORM>(c, k, Family::E, h0, h_east);
-        let s = self.spring::<EDGE, UNIFORM>(c, k, Family::S, h0, d0);
-        let se = self.spring::<EDGE, UNIFORM>(c, k, Family::SE, h0, east3(d0, d1));
-        let sw = self.spring::<EDGE, UNIFORM>(c, k, Family::SW, d0, h_east);
+        let e = self.spring::<EDGE, P>(c, springs, k, Family::E, h0, h_east);
+        let s = self.spring::<EDGE, P>(c, springs, k, Family::S, h0, d0);
+        let se = self.spring::<EDGE, P>(c, springs, k, Family::SE, h0, east3(d0, d1));
+        let sw = self.spring::<EDGE, P>(c, springs, k, Family::SW, d0, h_east);
         // SAFETY: `k < chunks`, within the node views.
         let (inv_mass, viscosity) = unsafe { (self.inv_mass.get(k), self.viscosity.get(k)) };
         let free = inv_mass.gt(V::zero());
@@ -797,7 +847,6 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
 /// The row's constants as lanes, made once per row inside the kernel's instruction set.
 struct Consts<V: Vector> {
     edges: Edges<V>,
-    uniform: Option<[(V, V); 4]>,
     dt: V,
     g: [V; 3],
     calm: V,
@@ -808,11 +857,6 @@ impl<V: Vector> Consts<V> {
     fn new<S>(k: &RowKernel<'_, '_, V, S>) -> Self {
         Self {
             edges: Edges::new(k.inp.cols),
-            #[allow(clippy::manual_map)] // `Option::map` would take a closure: see `splat2`
-            uniform: match k.uniform {
-                Some([e, s, se, sw]) => Some([splat2(e), splat2(s), splat2(se), splat2(sw)]),
-                None => None,
-            },
             dt: V::splat(k.dt),
             g: [V::splat(k.g[0]), V::splat(k.g[1]), V::splat(k.g[2])],
             calm: V::splat(crate::forces::CALM),
