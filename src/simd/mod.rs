@@ -16,8 +16,8 @@
 //!   Miri). Every operation is a single IEEE operation per lane (add, subtract, multiply,
 //!   divide, square root, compare, select): no fused multiply-add, no approximate
 //!   reciprocal. So every level computes the same bits as the scalar reference.
-//! * [`Kernel`] is a piece of work generic over the vector type (a row of the step, a row
-//!   of normals, a run of refraction). [`dispatch`] runs it with the vector type of a
+//! * [`Kernel`] is a piece of work generic over the vector type (a pass of the step, a
+//!   row of normals, a run of refraction). [`dispatch`] runs it with the vector type of a
 //!   level, inside a function compiled with that level's `#[target_feature]`. The kernel
 //!   and every lane operation are `#[inline(always)]`, so the whole loop is compiled for
 //!   that instruction set, not just the calls into it.

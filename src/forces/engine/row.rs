@@ -748,9 +748,13 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
     /// offered for inlining, as is [`RowKernel::chunk`]: unoptimised, every inlined copy
     /// keeps its own stack slots, and the level entry that inlined them all needed 2–3 MB
     /// of stack, more than a thread of rayon's pool has.
+    ///
+    /// # Safety
+    ///
+    /// `k < chunks`.
     #[cfg_attr(not(debug_assertions), inline(always))]
     #[cfg_attr(debug_assertions, inline)]
-    fn spring<const EDGE: bool, P: SpringValues<V>>(
+    unsafe fn spring<const EDGE: bool, P: SpringValues<V>>(
         &self,
         c: &Consts<V>,
         springs: &P,
@@ -804,10 +808,15 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         // SAFETY: `k + 1 ≤ chunks`.
         let (h0, d0, h1, d1) = unsafe { (h.pos(k), d.pos(k), h.pos(k + 1), d.pos(k + 1)) };
         let h_east = east3(h0, h1);
-        let e = self.spring::<EDGE, P>(c, springs, k, Family::E, h0, h_east);
-        let s = self.spring::<EDGE, P>(c, springs, k, Family::S, h0, d0);
-        let se = self.spring::<EDGE, P>(c, springs, k, Family::SE, h0, east3(d0, d1));
-        let sw = self.spring::<EDGE, P>(c, springs, k, Family::SW, d0, h_east);
+        // SAFETY: `k < chunks`.
+        let (e, s, se, sw) = unsafe {
+            (
+                self.spring::<EDGE, P>(c, springs, k, Family::E, h0, h_east),
+                self.spring::<EDGE, P>(c, springs, k, Family::S, h0, d0),
+                self.spring::<EDGE, P>(c, springs, k, Family::SE, h0, east3(d0, d1)),
+                self.spring::<EDGE, P>(c, springs, k, Family::SW, d0, h_east),
+            )
+        };
         // SAFETY: `k < chunks`, within the node views.
         let (inv_mass, viscosity) = unsafe { (self.inv_mass.get(k), self.viscosity.get(k)) };
         let free = inv_mass.gt(V::zero());

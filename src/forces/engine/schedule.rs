@@ -305,6 +305,7 @@ impl<V: Vector> Task<V> for Band<'_, '_, '_, V> {
             }
         }
         if first_time >= end_time {
+            // Nothing to handle: only a grid without rows tiles that way.
             return true;
         }
         let mut scratch = take_scratch::<V>(inp.cols, last);
