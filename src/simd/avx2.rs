@@ -204,6 +204,7 @@ impl Vector for F32x8 {
     #[inline(always)]
     fn enter<T: Task<Self>>(task: T) -> T::Output {
         #[target_feature(enable = "avx2")]
+        #[inline(never)]
         fn entry<T: Task<F32x8>>(task: T) -> T::Output {
             task.run()
         }

@@ -214,6 +214,7 @@ impl Vector for F32x16 {
     #[inline(always)]
     fn enter<T: Task<Self>>(task: T) -> T::Output {
         #[target_feature(enable = "avx512f")]
+        #[inline(never)]
         fn entry<T: Task<F32x16>>(task: T) -> T::Output {
             task.run()
         }

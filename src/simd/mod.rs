@@ -353,6 +353,10 @@ pub(crate) trait Vector:
     /// Runs `task` compiled for this vector type's instruction set: inside a function with
     /// its `#[target_feature]`, into which the task and every lane operation are inlined.
     ///
+    /// The entry is never inlined, not even into another entry of the same level: a task
+    /// entered inside a task (the engine's rows inside its bands) stays a function of its
+    /// own, which keeps every function small enough for LLVM to compile quickly.
+    ///
     /// Panics if the CPU lacks the instruction set; [`dispatch`] and the engine only name
     /// a vector type whose level they clamped to the CPU's.
     fn enter<T: Task<Self>>(task: T) -> T::Output;

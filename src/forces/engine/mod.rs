@@ -17,11 +17,12 @@
 //! # Levels of SIMD
 //!
 //! [`pass`] picks the vector type of the surface's [`SimdLevel`] once per pass; the
-//! schedule is generic over it, and each band's work enters the level's instruction set
-//! through [`crate::simd::Vector::enter`] (a `#[target_feature]` function, one call per
-//! band and pass), with every row kernel inlined into the band's loop. Nothing in that
-//! loop is a closure: a closure is compiled as a function of its own, without the level's
-//! instruction set. Every level computes the same operations in the same order, so the
+//! schedule is generic over it, and each band's loop enters the level's instruction set
+//! through [`crate::simd::Vector::enter`] (a `#[target_feature]` function, once per band
+//! and pass). Each row's kernel is an entry of its own, called from that loop: one
+//! function holding the band and all eight of its row kernels took LLVM minutes to
+//! compile. Nothing in the loop is a closure: a closure is compiled as a function of its
+//! own, without the level's instruction set. Every level computes the same operations in the same order, so the
 //! results do not depend on it, nor on the thread count.
 
 mod row;

@@ -32,7 +32,7 @@
 use super::scratch::{Group, Row, RowForces};
 use super::StepConfig;
 use crate::grid::Family;
-use crate::simd::{Chunks, ChunksMut, Vector};
+use crate::simd::{Chunks, ChunksMut, Task, Vector};
 use crate::springs::Springs;
 
 /// The cache line the non-temporal stores fill, in bytes (x86-64).
@@ -549,8 +549,10 @@ fn springs_down<V: Vector, S: Source<V>>(
 /// with no mask, no partial store and no call, so nothing forces the compiler to spill
 /// the registers it carries from chunk to chunk.
 ///
-/// Runs inside the level's instruction set: the band that calls it has entered it
-/// ([`Vector::enter`]), and it is inlined there.
+/// Called inside the level's instruction set (the band has entered it); the row's kernel
+/// enters it again as a function of its own ([`RowRun`], one per kind of source row,
+/// springs and destination), so that the band's function stays small enough to compile
+/// quickly.
 #[inline(always)]
 pub(super) fn advance_row<V: Vector>(
     inp: &Inputs<V>,
@@ -579,6 +581,36 @@ pub(super) fn advance_row<V: Vector>(
             );
             let kernel = RowKernel::new(inp, r, h, d, has_down, ext, arriving);
             kernel.advance(sent, dst)
+        }
+    }
+}
+
+/// One row's run: [`RowKernel::run_into`] for its springs and destination, entered as a
+/// function of its own (see [`advance_row`]).
+struct RowRun<'k, 'a, 'b, V: Vector, S, P> {
+    kernel: &'k RowKernel<'a, 'b, V, S>,
+    springs: P,
+    sent: &'k mut [Group<V>],
+    dst: RowOut<'k, V>,
+}
+
+impl<V: Vector, S: Source<V>, P: SpringValues<V>> Task<V> for RowRun<'_, '_, '_, V, S, P> {
+    type Output = bool;
+
+    #[inline(always)]
+    fn run(self) -> bool {
+        let RowRun {
+            kernel,
+            springs,
+            sent,
+            dst,
+        } = self;
+        let cols = kernel.inp.cols;
+        match dst {
+            RowOut::Back(b) => {
+                kernel.run_into(&springs, sent, BackRow::new(b, cols, kernel.inp.stream))
+            }
+            RowOut::Ring(row) => kernel.run_into(&springs, sent, row.groups_mut(cols)),
         }
     }
 }
@@ -663,13 +695,12 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         sent: &mut [Group<V>],
         dst: RowOut<V>,
     ) -> bool {
-        let cols = self.inp.cols;
-        match dst {
-            RowOut::Back(b) => {
-                self.run_into(&springs, sent, BackRow::new(b, cols, self.inp.stream))
-            }
-            RowOut::Ring(row) => self.run_into(&springs, sent, row.groups_mut(cols)),
-        }
+        V::enter(RowRun {
+            kernel: self,
+            springs,
+            sent,
+            dst,
+        })
     }
 
     /// Runs every chunk of the row (see [`advance_row`]) and writes the new values into

@@ -241,8 +241,8 @@ enum Handoffs<'a, V> {
 /// or evaluating and integrating it if it is the band's own, then handing it over if it
 /// is one of the two rows next to a cut (even bands).
 ///
-/// The whole band runs inside the SIMD level's instruction set ([`Vector::enter`]), so
-/// every row kernel is inlined into its loop; nothing in the loop is a closure.
+/// The whole band runs inside the SIMD level's instruction set ([`Vector::enter`]), and
+/// nothing in its loop is a closure; each row's kernel is an entry of its own.
 fn band<V: Vector>(
     inp: &Inputs<V>,
     t: &Tiling,
