@@ -22,8 +22,8 @@
 //! and pass). Each row's kernel is an entry of its own, called from that loop: one
 //! function holding the band and all eight of its row kernels took LLVM minutes to
 //! compile. Nothing in the loop is a closure: a closure is compiled as a function of its
-//! own, without the level's instruction set. Every level computes the same operations in the same order, so the
-//! results do not depend on it, nor on the thread count.
+//! own, without the level's instruction set. Every level computes the same operations in
+//! the same order, so the results do not depend on it, nor on the thread count.
 
 mod row;
 mod schedule;
