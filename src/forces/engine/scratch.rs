@@ -118,9 +118,9 @@ thread_local! {
 /// Takes this thread's scratch, for `cols` columns and at least `levels` levels, out of
 /// its slot (made anew if the one there is of another vector type or width, or has fewer
 /// levels); give it back with [`put_scratch`]. A band that panics in between drops it,
-/// and the next band makes a new one. Taking and putting back, rather than lending it to a closure, keeps
-/// the band's loop in the function that entered the SIMD level: a closure is compiled on
-/// its own, without the level's instruction set.
+/// and the next band makes a new one. Taking and putting back, rather than lending it to
+/// a closure, keeps the band's loop in the function that entered the SIMD level: a
+/// closure is compiled on its own, without the level's instruction set.
 pub(super) fn take_scratch<V: Vector>(cols: usize, levels: usize) -> Box<Scratch<V>> {
     let held = SCRATCH.with(|s| s.borrow_mut().take());
     match held.map(|b| b.downcast::<Scratch<V>>()) {
