@@ -214,6 +214,11 @@ pub(super) enum RowOut<'a, V> {
 /// holds the next row's nodes, padding or zeros (as do the lanes past the row in the last
 /// chunk), which only ever meet masked-off springs.
 pub(super) trait Source<V>: Copy {
+    /// Rows of this kind may carry external forces. Only the front buffers do: a pass
+    /// applies them in its first step. (Known when the kernel is compiled, so a ring row's
+    /// kernel has no test for them.)
+    const EXTERNAL: bool;
+
     /// Positions of chunk `k`.
     ///
     /// # Safety
@@ -245,6 +250,8 @@ impl<V> Clone for FrontRow<'_, V> {
 impl<V> Copy for FrontRow<'_, V> {}
 
 impl<V: Vector> Source<V> for FrontRow<'_, V> {
+    const EXTERNAL: bool = true;
+
     #[inline(always)]
     unsafe fn pos(self, k: usize) -> [V; 3] {
         let [x, y, z] = self.pos;
@@ -262,6 +269,8 @@ impl<V: Vector> Source<V> for FrontRow<'_, V> {
 
 /// A [`Row`]'s groups (`chunks + 2`; chunk `k` is group `k + 1`).
 impl<V: Vector> Source<V> for &[[V; 6]] {
+    const EXTERNAL: bool = false;
+
     #[inline(always)]
     unsafe fn pos(self, k: usize) -> [V; 3] {
         debug_assert!(k + 1 < self.len());
@@ -504,7 +513,8 @@ pub(super) fn down_springs<V: Vector>(
     }
 }
 
-/// [`down_springs`] from row `here` to row `down`.
+/// [`down_springs`] from row `here` to row `down`, with the springs' values kept in
+/// registers while every family is uniform, as [`RowKernel::advance`] does.
 #[inline(always)]
 fn springs_down<V: Vector, S: Source<V>>(
     inp: &Inputs<V>,
@@ -513,15 +523,27 @@ fn springs_down<V: Vector, S: Source<V>>(
     down: S,
     out: &mut RowForces<V>,
 ) {
+    match inp.uniform {
+        Some(shared) => springs_down_with(inp, &Shared::new(shared), here, down, out),
+        None => {
+            let tables = Tables(Table::all(inp.springs, r * inp.cols, inp.chunks()));
+            springs_down_with(inp, &tables, here, down, out)
+        }
+    }
+}
+
+/// [`springs_down`] with the springs' values from `springs`.
+#[inline(always)]
+fn springs_down_with<V: Vector, S: Source<V>, P: SpringValues<V>>(
+    inp: &Inputs<V>,
+    springs: &P,
+    here: S,
+    down: S,
+    out: &mut RowForces<V>,
+) {
     let chunks = inp.chunks();
     let edges = Edges::<V>::new(inp.cols);
     let groups = out.groups_mut(inp.cols);
-    let base = r * inp.cols;
-    let tables = [
-        Table::<V>::of(inp.springs, Family::S, base, chunks),
-        Table::<V>::of(inp.springs, Family::SE, base, chunks),
-        Table::<V>::of(inp.springs, Family::SW, base, chunks),
-    ];
     for (k, group) in groups[1..=chunks].iter_mut().enumerate() {
         // SAFETY: `k < chunks`; positions are readable up to chunk `chunks`.
         let (h0, h1, d0, d1) =
@@ -529,8 +551,8 @@ fn springs_down<V: Vector, S: Source<V>>(
         // Each spring from the end its force is kept for (see `RowKernel::chunk`).
         let ends = [(h0, d0), (h0, east3(d0, d1)), (d0, east3(h0, h1))];
         for (i, fam) in [Family::S, Family::SE, Family::SW].into_iter().enumerate() {
-            // SAFETY: `k < chunks`, within the table views.
-            let (coef, rest) = unsafe { tables[i].at(k) };
+            // SAFETY: `k < chunks` of the row.
+            let (coef, rest) = unsafe { springs.at(fam, k) };
             let f = spring_force(ends[i].0, ends[i].1, coef, rest);
             group[i] = edges.only_springs(fam, k, chunks, true, f);
         }
@@ -541,7 +563,8 @@ fn springs_down<V: Vector, S: Source<V>>(
 /// down to row r+1, none on the last row), sums each node's force with the springs
 /// arriving from row r−1 (`prev`, evaluated one row earlier), integrates from level
 /// `from` into `dst`, and leaves the S, SE and SW forces in `next` for row r+1. Returns
-/// `false` if a new value is not finite.
+/// `false` if a new value is not finite. `ext` (the row's external forces) is read only
+/// from the front buffers, [`Level::Front`]: a pass applies them in its first step.
 ///
 /// One pass over the row's chunks: what the chunk before sends east, and the neighbour
 /// chunks the shuffles need, stay in registers. The last chunk (and every chunk of the
@@ -579,7 +602,8 @@ pub(super) fn advance_row<V: Vector>(
                 ring[r % 2].groups(inp.cols),
                 ring[below % 2].groups(inp.cols),
             );
-            let kernel = RowKernel::new(inp, r, h, d, has_down, ext, arriving);
+            debug_assert!(ext.is_none(), "external forces in a pass's later step");
+            let kernel = RowKernel::new(inp, r, h, d, has_down, None, arriving);
             kernel.advance(sent, dst)
         }
     }
@@ -674,33 +698,24 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         }
     }
 
-    /// Runs the row into `dst` with the kernel for its springs and destination, and
-    /// leaves what it sends down in `sent`.
+    /// Runs the row into `dst` with the kernel for its springs and destination (entered
+    /// as a function of its own, [`RowRun`]), and leaves what it sends down in `sent`.
     #[inline(always)]
     fn advance(&self, sent: &mut [Group<V>], dst: RowOut<V>) -> bool {
         match self.inp.uniform {
-            Some(shared) => self.advance_with(Shared::new(shared), sent, dst),
-            None => {
-                let tables = Tables(Table::all(self.inp.springs, self.base, self.chunks));
-                self.advance_with(tables, sent, dst)
-            }
+            Some(shared) => V::enter(RowRun {
+                kernel: self,
+                springs: Shared::new(shared),
+                sent,
+                dst,
+            }),
+            None => V::enter(RowRun {
+                kernel: self,
+                springs: Tables(Table::all(self.inp.springs, self.base, self.chunks)),
+                sent,
+                dst,
+            }),
         }
-    }
-
-    /// [`RowKernel::advance`] with the springs' values from `springs`.
-    #[inline(always)]
-    fn advance_with<P: SpringValues<V>>(
-        &self,
-        springs: P,
-        sent: &mut [Group<V>],
-        dst: RowOut<V>,
-    ) -> bool {
-        V::enter(RowRun {
-            kernel: self,
-            springs,
-            sent,
-            dst,
-        })
     }
 
     /// Runs every chunk of the row (see [`advance_row`]) and writes the new values into
@@ -865,7 +880,7 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             // Same expression as `scalar::node_force`.
             let mut force =
                 (((e[axis] + s[axis]) + se[axis]) + (north[2][axis] - north[0][axis])) - from_west;
-            if let Some(ext) = self.ext {
+            if let (true, Some(ext)) = (S::EXTERNAL, self.ext) {
                 // SAFETY: `k < chunks`, within the node views.
                 force += unsafe { ext[axis].get(k) };
             }
