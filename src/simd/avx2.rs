@@ -206,6 +206,7 @@ impl Vector for F32x8 {
         #[target_feature(enable = "avx2")]
         #[inline(never)]
         fn entry<T: Task<F32x8>>(task: T) -> T::Output {
+            super::align_frame();
             task.run()
         }
         assert!(Self::LEVEL.is_available(), "this CPU has no avx2");

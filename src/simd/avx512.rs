@@ -216,6 +216,7 @@ impl Vector for F32x16 {
         #[target_feature(enable = "avx512f")]
         #[inline(never)]
         fn entry<T: Task<F32x16>>(task: T) -> T::Output {
+            super::align_frame();
             task.run()
         }
         assert!(Self::LEVEL.is_available(), "this CPU has no avx512f");

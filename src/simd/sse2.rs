@@ -231,6 +231,7 @@ impl Vector for F32x8 {
         // A function of its own, as the other levels' entries are.
         #[inline(never)]
         fn entry<T: Task<F32x8>>(task: T) -> T::Output {
+            super::align_frame();
             task.run()
         }
         entry(task)
