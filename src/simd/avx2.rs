@@ -2,8 +2,9 @@
 //!
 //! The intrinsics need AVX (arithmetic) and AVX2 (the byte align of [`Vector::east`]).
 //! They are called from `#[inline(always)]` methods without a target feature of their
-//! own: they are only ever inlined into [`F32x8::enter`](Vector::enter)'s `#[target_feature(enable =
-//! "avx2")]` entry, which [`super::dispatch`] calls only on a CPU that has AVX2.
+//! own: they are only ever inlined into [`F32x8::enter`](Vector::enter)'s
+//! `#[target_feature(enable = "avx2")]` entry, which [`super::dispatch`] calls only on a
+//! CPU that has AVX2.
 
 use super::{SimdLevel, Task, Vector};
 use core::arch::x86_64::*;

@@ -48,6 +48,9 @@
 //! thread with AVX-512) and the same state serves every level. For the same reason a
 //! neighbour one column off is not loaded one element off but shuffled out of two
 //! aligned chunks ([`Vector::east`], [`Vector::west`]).
+//!
+//! What a kernel spills is aligned too: every level entry calls [`align_frame`], so that
+//! its stack frame starts on a cache line and no spilled register straddles two.
 
 use std::ops::{Add, AddAssign, BitAnd, BitAndAssign, Div, Mul, Neg, Not, Sub};
 use std::sync::OnceLock;
@@ -367,14 +370,14 @@ pub(crate) trait Vector:
 /// lines.
 ///
 /// A 32- or 64-byte register spilled to a frame that is only 16-byte aligned straddles a
-/// cache line one time in two (AVX2) or always (AVX-512), and such an access costs about
-/// two. LLVM realigns a frame only if it knows before register allocation that the frame
-/// holds an over-aligned object; spills appear during register allocation, too late to
-/// reserve the frame pointer that realigning needs, and LLVM then spills with unaligned
-/// moves to whatever slots it has. Whether some other over-aligned temporary happened to
-/// survive into the entry was a matter of inlining: the same AVX2 row kernel ran 22% slower
-/// without one (Intel Xeon, 256², 1 thread). A cache-line-aligned local that escapes into
-/// [`std::hint::black_box`] settles it for every entry at the cost of one store.
+/// cache line up to one time in two (AVX2) or three in four (AVX-512), and each such
+/// access costs about two. LLVM realigns a frame only if it knows before register
+/// allocation that the frame holds an over-aligned object: spills appear during
+/// allocation, too late to reserve the frame pointer that realigning needs, and then go to
+/// unaligned slots. So whether an entry's spills were aligned depended on some other
+/// over-aligned temporary surviving inlining into it (`docs/performance.md`: the same AVX2
+/// row kernel 22% slower without one). A cache-line-aligned local that escapes into
+/// [`std::hint::black_box`] settles it for every entry, for one 64-byte store per call.
 #[inline(always)]
 pub(crate) fn align_frame() {
     #[repr(align(64))]
