@@ -366,18 +366,21 @@ pub(crate) trait Vector:
 }
 
 /// Makes the level entry that calls it align its stack frame to a cache line, so that
-/// every register the kernel spills is stored and reloaded whole, never split across two
-/// lines.
+/// the registers its kernel spills are stored and reloaded whole, never split across two
+/// lines (in release builds: with debug assertions the kernel's inner functions may keep
+/// frames of their own).
 ///
 /// A 32- or 64-byte register spilled to a frame that is only 16-byte aligned straddles a
-/// cache line up to one time in two (AVX2) or three in four (AVX-512), and each such
-/// access costs about two. LLVM realigns a frame only if it knows before register
-/// allocation that the frame holds an over-aligned object: spills appear during
-/// allocation, too late to reserve the frame pointer that realigning needs, and then go to
-/// unaligned slots. So whether an entry's spills were aligned depended on some other
-/// over-aligned temporary surviving inlining into it (`docs/performance.md`: the same AVX2
-/// row kernel 22% slower without one). A cache-line-aligned local that escapes into
-/// [`std::hint::black_box`] settles it for every entry, for one 64-byte store per call.
+/// cache line up to one time in two (AVX2) or every time (AVX-512), and each such access
+/// costs about two. LLVM realigns a frame only if it knows before register allocation that
+/// the frame holds an over-aligned object: spills appear during allocation, too late to
+/// reserve the frame pointer that realigning needs, and then go to unaligned slots. So
+/// whether an entry's spills were aligned depended on some other over-aligned temporary
+/// surviving inlining into it (`docs/performance.md`: the same AVX2 row kernel 22% slower
+/// without one). A cache-line-aligned local that escapes into [`std::hint::black_box`]
+/// makes every entry realign, for a few stores per call and the frame pointer. (The SSE2
+/// and portable entries call it too: in a build for a wider target their vectors may be
+/// compiled to wider registers.)
 #[inline(always)]
 pub(crate) fn align_frame() {
     #[repr(align(64))]

@@ -563,8 +563,9 @@ fn springs_down_with<V: Vector, S: Source<V>, P: SpringValues<V>>(
 /// down to row r+1, none on the last row), sums each node's force with the springs
 /// arriving from row r−1 (`prev`, evaluated one row earlier), integrates from level
 /// `from` into `dst`, and leaves the S, SE and SW forces in `next` for row r+1. Returns
-/// `false` if a new value is not finite. `ext` (the row's external forces) is read only
-/// from the front buffers, [`Level::Front`]: a pass applies them in its first step.
+/// `false` if a new value is not finite. `ext`, the row's external forces, is read only
+/// when advancing from [`Level::Front`] (a pass applies them in its first step) and must
+/// be `None` otherwise.
 ///
 /// One pass over the row's chunks: what the chunk before sends east, and the neighbour
 /// chunks the shuffles need, stay in registers. The last chunk (and every chunk of the
