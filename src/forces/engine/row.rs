@@ -98,7 +98,7 @@ impl<'a, V: Vector> Inputs<'a, V> {
 
     /// The external forces row `r` adds in a pass's first step, if it may hold any.
     #[inline(always)]
-    pub fn ext_of_row(&self, r: usize) -> Option<[&'a [f32]; 3]> {
+    fn ext_of_row(&self, r: usize) -> Option<[&'a [f32]; 3]> {
         let listed = match self.ext_rows {
             Some(rows) => rows[r],
             None => true,
@@ -563,9 +563,8 @@ fn springs_down_with<V: Vector, S: Source<V>, P: SpringValues<V>>(
 /// down to row r+1, none on the last row), sums each node's force with the springs
 /// arriving from row r−1 (`prev`, evaluated one row earlier), integrates from level
 /// `from` into `dst`, and leaves the S, SE and SW forces in `next` for row r+1. Returns
-/// `false` if a new value is not finite. `ext`, the row's external forces, is read only
-/// when advancing from [`Level::Front`] (a pass applies them in its first step) and must
-/// be `None` otherwise.
+/// `false` if a new value is not finite. The row's external forces ([`Inputs::ext_of_row`])
+/// are added when advancing from [`Level::Front`]: a pass applies them in its first step.
 ///
 /// One pass over the row's chunks: what the chunk before sends east, and the neighbour
 /// chunks the shuffles need, stay in registers. The last chunk (and every chunk of the
@@ -582,7 +581,6 @@ pub(super) fn advance_row<V: Vector>(
     inp: &Inputs<V>,
     r: usize,
     from: Level<V>,
-    ext: Option<[&[f32]; 3]>,
     prev: &RowForces<V>,
     next: &mut RowForces<V>,
     dst: RowOut<V>,
@@ -595,6 +593,7 @@ pub(super) fn advance_row<V: Vector>(
     match from {
         Level::Front => {
             let (h, d) = (inp.front(r), inp.front(below));
+            let ext = inp.ext_of_row(r);
             let kernel = RowKernel::new(inp, r, h, d, has_down, ext, arriving);
             kernel.advance(sent, dst)
         }
@@ -603,7 +602,6 @@ pub(super) fn advance_row<V: Vector>(
                 ring[r % 2].groups(inp.cols),
                 ring[below % 2].groups(inp.cols),
             );
-            debug_assert!(ext.is_none(), "external forces in a pass's later step");
             let kernel = RowKernel::new(inp, r, h, d, has_down, None, arriving);
             kernel.advance(sent, dst)
         }

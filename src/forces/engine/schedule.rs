@@ -353,13 +353,12 @@ impl<V: Vector> Task<V> for Band<'_, '_, '_, V> {
                     }
                     continue;
                 }
-                let ext = if l == 1 { inp.ext_of_row(r) } else { None };
                 let dst = if l == last {
                     RowOut::Back(rows.row(r))
                 } else {
                     RowOut::Ring(&mut upper[0][r % 2])
                 };
-                ok &= advance_row(inp, r, from, ext, &prev[l], cur, dst);
+                ok &= advance_row(inp, r, from, &prev[l], cur, dst);
                 std::mem::swap(cur, &mut prev[l]);
                 if let Handoffs::Give(above, below) = &mut handoffs {
                     if l < last {
