@@ -513,8 +513,10 @@ pub(super) fn down_springs<V: Vector>(
     }
 }
 
-/// [`down_springs`] from row `here` to row `down`, with the springs' values kept in
-/// registers while every family is uniform, as [`RowKernel::advance`] does.
+/// [`down_springs`] from row `here` to row `down`, the springs' values read from their
+/// tables. (Shared values are the tables' values bit for bit, and this runs once per band
+/// and level: a second copy that keeps them in registers, as [`RowKernel::advance`] does,
+/// added a quarter to the crate's compile time for no measurable speed.)
 #[inline(always)]
 fn springs_down<V: Vector, S: Source<V>>(
     inp: &Inputs<V>,
@@ -523,25 +525,8 @@ fn springs_down<V: Vector, S: Source<V>>(
     down: S,
     out: &mut RowForces<V>,
 ) {
-    match inp.uniform {
-        Some(shared) => springs_down_with(inp, &Shared::new(shared), here, down, out),
-        None => {
-            let tables = Tables(Table::all(inp.springs, r * inp.cols, inp.chunks()));
-            springs_down_with(inp, &tables, here, down, out)
-        }
-    }
-}
-
-/// [`springs_down`] with the springs' values from `springs`.
-#[inline(always)]
-fn springs_down_with<V: Vector, S: Source<V>, P: SpringValues<V>>(
-    inp: &Inputs<V>,
-    springs: &P,
-    here: S,
-    down: S,
-    out: &mut RowForces<V>,
-) {
     let chunks = inp.chunks();
+    let springs = Tables(Table::all(inp.springs, r * inp.cols, chunks));
     let edges = Edges::<V>::new(inp.cols);
     let groups = out.groups_mut(inp.cols);
     for (k, group) in groups[1..=chunks].iter_mut().enumerate() {
