@@ -578,8 +578,7 @@ pub(super) fn advance_row<V: Vector>(
     match from {
         Level::Front => {
             let (h, d) = (inp.front(r), inp.front(below));
-            let ext = inp.ext_of_row(r);
-            let kernel = RowKernel::new(inp, r, h, d, has_down, ext, arriving);
+            let kernel = RowKernel::new(inp, r, h, d, has_down, arriving);
             kernel.advance(sent, dst)
         }
         Level::Ring(ring) => {
@@ -587,7 +586,7 @@ pub(super) fn advance_row<V: Vector>(
                 ring[r % 2].groups(inp.cols),
                 ring[below % 2].groups(inp.cols),
             );
-            let kernel = RowKernel::new(inp, r, h, d, has_down, None, arriving);
+            let kernel = RowKernel::new(inp, r, h, d, has_down, arriving);
             kernel.advance(sent, dst)
         }
     }
@@ -640,6 +639,8 @@ struct RowKernel<'a, 'b, V: Vector, S> {
     base: usize,
     inv_mass: Chunks<'a, V>,
     viscosity: Chunks<'a, V>,
+    /// The row's external forces, if its source carries them ([`Source::EXTERNAL`]) and
+    /// it may hold any ([`Inputs::ext_of_row`]).
     ext: Option<[Chunks<'a, V>; 3]>,
     /// What row r−1 sent down ([`RowForces`]: `chunks + 2` groups).
     arriving: &'a [Group<V>],
@@ -655,12 +656,12 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         h: S,
         d: S,
         has_down: bool,
-        ext: Option<[&'a [f32]; 3]>,
         arriving: &'a [Group<V>],
     ) -> Self {
         let chunks = inp.chunks();
         let base = r * inp.cols;
         let node = |s| Chunks::new(s, base, chunks);
+        let ext = if S::EXTERNAL { inp.ext_of_row(r) } else { None };
         RowKernel {
             inp,
             chunks,
