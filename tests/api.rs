@@ -102,7 +102,7 @@ fn a_timestep_at_or_past_critical_names_the_critical_value() {
 }
 
 #[test]
-fn advance_splits_a_frame_into_substeps_no_longer_than_dt() {
+fn advance_takes_whole_steps_and_keeps_the_rest_for_the_next_frame() {
     // Frames in seconds; a time scale of 10 model time units per second makes the model
     // times 0, 0.4, 0.41 and 1.0.
     let mut s = Surface::new(Params {
@@ -112,15 +112,42 @@ fn advance_splits_a_frame_into_substeps_no_longer_than_dt() {
     .unwrap();
     assert_eq!(s.advance(0.0).unwrap(), 0);
     assert_eq!(s.advance(0.04).unwrap(), 1);
-    assert_eq!(s.advance(0.041).unwrap(), 2);
-    assert_eq!(s.advance(0.1).unwrap(), 3);
+    assert_eq!(s.advance(0.041).unwrap(), 1); // 0.01 owed
+    assert!((s.interpolation() - 0.025).abs() < 1e-4);
+    assert_eq!(s.advance(0.1).unwrap(), 2); // 1.01: 0.21 owed
+    assert!((s.interpolation() - 0.525).abs() < 1e-4);
+    assert!((s.owed_seconds() - 0.021).abs() < 1e-6);
+    assert!((s.time() - 1.6).abs() < 1e-5);
+    for bad in [-1.0, f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
+        let (before, owed) = (state_bits(&s), s.owed_seconds());
+        assert!(s.advance(bad).is_err(), "{bad}");
+        assert!(state_bits(&s) == before && s.owed_seconds() == owed);
+    }
+}
+
+#[test]
+fn advance_variable_splits_a_frame_into_substeps_no_longer_than_dt() {
+    let mut s = Surface::new(Params {
+        time_scale: 10.0,
+        ..Params::with_size(8, 8)
+    })
+    .unwrap();
+    assert_eq!(s.advance_variable(0.0).unwrap(), 0);
+    assert_eq!(s.advance_variable(0.04).unwrap(), 1);
+    assert_eq!(s.advance_variable(0.041).unwrap(), 2);
+    assert_eq!(s.advance_variable(0.1).unwrap(), 3);
     assert!((s.time() - 1.81).abs() < 1e-5);
+    assert_eq!(
+        s.interpolation(),
+        0.0,
+        "the variable split leaves the accumulator"
+    );
     let (n, sub) = s.split_frame(0.041).unwrap();
     assert_eq!(n, 2);
     assert!((sub - 0.205).abs() < 1e-6 && sub <= s.params().dt);
     for bad in [-1.0, f32::NAN, f32::INFINITY, 1e9] {
         let before = state_bits(&s);
-        assert!(s.advance(bad).is_err(), "{bad}");
+        assert!(s.advance_variable(bad).is_err(), "{bad}");
         assert!(state_bits(&s) == before);
     }
 }
@@ -133,10 +160,12 @@ fn the_default_time_scale_takes_one_step_per_60_hz_frame() {
     for _ in 0..600 {
         assert_eq!(s.advance(1.0 / 60.0).unwrap(), 1);
     }
-    // Ten seconds of frames are 240 units of model time, to the rounding dropped per frame.
+    // Ten seconds of frames are 240 units of model time.
     assert!((s.time() - 240.0).abs() < 240.0 * 1e-5, "{}", s.time());
     assert_eq!(s.advance(1.0 / 30.0).unwrap(), 2);
-    assert_eq!(s.advance(1.0 / 144.0).unwrap(), 1);
+    // A 144 Hz frame is 0.4167 of a step: none now, one in the third frame.
+    let steps: Vec<usize> = (0..3).map(|_| s.advance(1.0 / 144.0).unwrap()).collect();
+    assert_eq!(steps, [0, 0, 1]);
     // Ripples: about 39 world units per second with the seed's parameters.
     assert!((p.ripple_speed() - 24.0 * 2.625f32.sqrt()).abs() < 1e-3);
 }

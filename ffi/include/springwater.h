@@ -332,14 +332,29 @@ SwStatus sw_surface_params(const struct SwSurface *surface, struct SwParams *out
 SwStatus sw_surface_node_count(const struct SwSurface *surface, size_t *out);
 
 // Advances the water by one frame of the caller's clock: `frame_time` seconds (finite,
-// at least 0), cut into equal substeps no longer than the timestep. Writes the number
-// of substeps taken to `substeps` (optional, may be NULL). A failing substep stops the
-// frame there, earlier substeps stay applied.
+// at least 0) go into the surface's accumulator, and every whole timestep it holds is
+// taken (a fixed-step clock: the same total time gives the same state, however it is cut
+// into frames). Writes the number of steps taken to `substeps` (optional, may be NULL):
+// 0 when the frame did not complete a step, at most the cap (`sw_surface_set_step_cap`).
+// A failing step stops the frame there, earlier steps stay applied.
 //
 // # Safety
 //
 // `substeps` is NULL or a valid pointer.
 SwStatus sw_surface_advance(struct SwSurface *surface, float frame_time, uint32_t *substeps);
+
+// Sets the most steps one `sw_surface_advance` call takes (1 to 10000; 16 by default)
+// and what happens to the steps a longer frame owes: `carry` 0 drops them (the water falls
+// behind the caller's clock, the default), 1 carries them into the following calls.
+SwStatus sw_surface_set_step_cap(struct SwSurface *surface, uint32_t max_steps, int32_t carry);
+
+// Writes to `out` how far the caller's clock is past the water's last step, as a
+// fraction of a step in `[0, 1)`: what a renderer that blends the last two states uses.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_interpolation(const struct SwSurface *surface, float *out);
 
 // Advances `steps` steps of the model's timestep, several per pass over memory (bitwise
 // the same as one at a time). Stops at a failing step; the steps before it stay applied.

@@ -46,7 +46,7 @@ use handle::Water;
 use springwater::buffers::{fill_frame, Vertex, VertexBuffers};
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use springwater::refraction::RefractionParams;
-use springwater::{Boundary, Params, SimdLevel, Surface};
+use springwater::{Boundary, Overflow, Params, SimdLevel, Surface};
 use std::ffi::c_char;
 
 /// What happens at the edge of the grid (`SW_BOUNDARY_*`).
@@ -304,9 +304,11 @@ pub unsafe extern "C" fn sw_surface_node_count(
 }
 
 /// Advances the water by one frame of the caller's clock: `frame_time` seconds (finite,
-/// at least 0), cut into equal substeps no longer than the timestep. Writes the number
-/// of substeps taken to `substeps` (optional, may be NULL). A failing substep stops the
-/// frame there, earlier substeps stay applied.
+/// at least 0) go into the surface's accumulator, and every whole timestep it holds is
+/// taken (a fixed-step clock: the same total time gives the same state, however it is cut
+/// into frames). Writes the number of steps taken to `substeps` (optional, may be NULL):
+/// 0 when the frame did not complete a step, at most the cap (`sw_surface_set_step_cap`).
+/// A failing step stops the frame there, earlier steps stay applied.
 ///
 /// # Safety
 ///
@@ -327,6 +329,41 @@ pub unsafe extern "C" fn sw_surface_advance(
             Ok(())
         })
     })
+}
+
+/// Sets the most steps one `sw_surface_advance` call takes (1 to 10000; 16 by default)
+/// and what happens to the steps a longer frame owes: `carry` 0 drops them (the water falls
+/// behind the caller's clock, the default), 1 carries them into the following calls.
+#[no_mangle]
+pub extern "C" fn sw_surface_set_step_cap(
+    surface: *mut SwSurface,
+    max_steps: u32,
+    carry: i32,
+) -> SwStatus {
+    guard(|| {
+        let overflow = match carry {
+            0 => Overflow::Drop,
+            1 => Overflow::Carry,
+            other => return Err(Failure::invalid(format!("carry is {other}, not 0 or 1"))),
+        };
+        handle::with(surface, |w| {
+            Ok(w.surface.set_step_cap(max_steps, overflow)?)
+        })
+    })
+}
+
+/// Writes to `out` how far the caller's clock is past the water's last step, as a
+/// fraction of a step in `[0, 1)`: what a renderer that blends the last two states uses.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_interpolation(
+    surface: *const SwSurface,
+    out: *mut f32,
+) -> SwStatus {
+    read_into(surface, out, |w| Ok(w.surface.interpolation()))
 }
 
 /// Advances `steps` steps of the model's timestep, several per pass over memory (bitwise

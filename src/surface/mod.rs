@@ -2,11 +2,13 @@
 //! state and stepping (this file), the point queries and forces at a point ([`query`]),
 //! and snapshots ([`snapshot`]).
 
+mod clock;
 mod disturbance;
 mod floaters;
 pub(crate) mod query;
 pub(crate) mod snapshot;
 
+pub use clock::Overflow;
 pub use disturbance::Disturbance;
 
 use crate::error::{same_length, Error, Result};
@@ -85,6 +87,8 @@ pub struct Surface {
     pub(crate) max_viscosity: f32,
     steps: u64,
     time: f64,
+    /// The accumulator of [`Surface::advance`] and its cap.
+    pub(crate) clock: clock::Clock,
     /// The host's threads the engine steps on; `None`: rayon's global pool.
     pub(crate) host: Option<Host>,
     /// Floating bodies and their world.
@@ -92,7 +96,8 @@ pub struct Surface {
 }
 
 impl Surface {
-    /// Most substeps one [`Surface::advance`] call may take.
+    /// Most steps one [`Surface::advance`] call may be allowed to take
+    /// ([`Surface::set_step_cap`]), and most substeps of [`Surface::advance_variable`].
     pub const MAX_SUBSTEPS: usize = 10_000;
 
     /// A flat surface at rest with the given parameters, validated.
@@ -162,6 +167,7 @@ impl Surface {
             max_viscosity,
             steps: progress.0,
             time: progress.1,
+            clock: Default::default(),
             params,
             host: None,
             floaters: Default::default(),
@@ -465,24 +471,47 @@ impl Surface {
         }
     }
 
-    /// Advances the water by one frame of a game's clock: `frame_seconds` seconds, that is
-    /// `frame_seconds × params().time_scale` of model time, in equal substeps no longer
-    /// than `params().dt`, so the frame time can be passed as it is and never asks for an
-    /// unstable step. Returns the number of substeps taken (0 for a frame of 0 s).
+    /// Advances the water by one frame of a game's clock, `frame_seconds` seconds long, in
+    /// whole steps of `params().dt`: the frame's time (times `params().time_scale`) goes
+    /// into an accumulator of model time (kept in `f64`, part of the state and of
+    /// snapshots), and every whole step it holds is taken (a step is due 10⁻⁴ of a step
+    /// early, so that the rounding of `f32` frame lengths never costs one). Returns the number of steps taken: 0 when the frame was shorter than what
+    /// the accumulator lacked for the next step, 1 for a 60 Hz frame at the defaults.
     ///
-    /// A failing substep stops the frame there (earlier substeps stay applied, the failing
-    /// one is not) and returns its error. See [`Surface::advance_with`] to disturb the
-    /// water before every substep.
+    /// The state depends on the total time passed, not on how it was cut into frames:
+    /// 60 frames of 1/60 s, jittered frames or 59.94 Hz frames that add up to the same
+    /// second give the same bits. [`Surface::interpolation`] is the fraction of a step the
+    /// game's clock is past the water's. A frame that owes more than the cap
+    /// ([`Surface::set_step_cap`], [`Surface::DEFAULT_MAX_STEPS`]) takes the cap's steps and
+    /// drops the rest, or carries it into the next calls ([`Overflow`]);
+    /// [`Surface::dropped_seconds`] and [`Surface::owed_seconds`] say which.
+    ///
+    /// A negative or non-finite frame is refused with nothing changed. A failing step stops
+    /// the frame there (earlier steps stay applied, the failing one is not, and the time of
+    /// the steps not taken stays owed) and returns its error. See [`Surface::advance_with`]
+    /// to disturb the water before every step.
+    ///
+    /// ```
+    /// use springwater::{Params, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(32, 32))?;
+    /// let frames = [0.016, 0.0173, 0.0167, 0.0167];     // a jittery display
+    /// let steps: usize = frames.iter().map(|&f| water.advance(f)).sum::<Result<_, _>>()?;
+    /// assert_eq!(steps, 4);                               // 0.0667 s: four steps of 1/60 s
+    /// assert!((0.0..1.0).contains(&water.interpolation()));
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
     pub fn advance(&mut self, frame_seconds: f32) -> Result<usize> {
-        let (substeps, dt) = self.split_frame(frame_seconds)?;
-        self.run_steps(substeps as u64, dt)?;
-        Ok(substeps)
+        let (steps, before) = (self.tick(frame_seconds)?, self.steps);
+        // Nothing reads the water between these steps: the engine takes several per pass.
+        let result = self.run_steps(steps as u64, self.params.dt);
+        self.settle(steps, before, result)
     }
 
-    /// [`Surface::advance`] with `disturbance` applied before every substep, with that
-    /// substep's model timestep: rain, wakes, buoyancy, anything implementing
+    /// [`Surface::advance`] with `disturbance` applied before every step, with the model
+    /// timestep `params().dt`: rain, wakes, buoyancy, anything implementing
     /// [`Disturbance`] (tuples, slices and `&mut` of disturbances are disturbances too).
-    /// A failing disturbance or substep stops the frame there and returns its error.
+    /// A failing disturbance or step stops the frame there and returns its error.
     ///
     /// ```
     /// use springwater::disturb::{Rain, Wake};
@@ -502,15 +531,40 @@ impl Surface {
         frame_seconds: f32,
         disturbance: &mut D,
     ) -> Result<usize> {
-        let (substeps, dt) = self.split_frame(frame_seconds)?;
-        for _ in 0..substeps {
+        let (steps, before) = (self.tick(frame_seconds)?, self.steps);
+        let dt = self.params.dt;
+        let result = (0..steps).try_for_each(|_| {
             disturbance.apply(self, dt)?;
-            self.run_steps(1, dt)?;
+            self.run_steps(1, dt)
+        });
+        self.settle(steps, before, result)
+    }
+
+    /// Ends a clocked frame of `steps` steps begun at step count `before`: on error the
+    /// time of the steps not taken goes back to the accumulator.
+    fn settle(&mut self, steps: usize, before: u64, result: Result<()>) -> Result<usize> {
+        if let Err(e) = result {
+            let missed = steps as u64 - (self.steps - before);
+            self.clock.owed += missed as f64 * self.params.dt as f64;
+            return Err(e);
         }
+        Ok(steps)
+    }
+
+    /// The frame split of earlier versions, for callers who ask for it by name: advances
+    /// by `frame_seconds` in [`Surface::split_frame`]'s equal substeps of *variable*
+    /// length (never longer than `dt`), so that every frame ends exactly on the game's
+    /// clock, at the price of results that depend on the frame times and of a second full
+    /// step whenever a frame is a hair longer than `dt`. It ignores and keeps the
+    /// accumulator of [`Surface::advance`]. Refuses frames of more than
+    /// [`Surface::MAX_SUBSTEPS`] steps.
+    pub fn advance_variable(&mut self, frame_seconds: f32) -> Result<usize> {
+        let (substeps, dt) = self.split_frame(frame_seconds)?;
+        self.run_steps(substeps as u64, dt)?;
         Ok(substeps)
     }
 
-    /// How [`Surface::advance`] cuts a frame of `frame_seconds`: the number of equal
+    /// How [`Surface::advance_variable`] cuts a frame of `frame_seconds`: the number of equal
     /// substeps and their length in model time, never longer than `params().dt` (not even
     /// by a rounding error).
     ///

@@ -485,6 +485,33 @@ static void run_frames(SwSurface *surface, int frames) {
     }
 }
 
+/* ---- The fixed-step clock: 144 Hz frames step every 2.4 frames, the cap drops a stall. ---- */
+
+static void clock_frames(void) {
+    SwSurface *surface = make_surface();
+    uint32_t taken[3] = {9, 9, 9};
+    for (int k = 0; k < 3; k++) {
+        OK(sw_surface_advance(surface, 1.0f / 144.0f, &taken[k]));
+    }
+    CHECK(taken[0] == 0 && taken[1] == 0 && taken[2] == 1);
+    float t = -1.0f;
+    OK(sw_surface_interpolation(surface, &t));
+    CHECK(t > 0.24f && t < 0.26f); /* 3 × 0.4167 − 1 of a step */
+    uint32_t steps = 0;
+    OK(sw_surface_set_step_cap(surface, 4, 0));
+    OK(sw_surface_advance(surface, 1.0f, &steps));
+    CHECK(steps == 4);
+    OK(sw_surface_set_step_cap(surface, 4, 1));
+    OK(sw_surface_advance(surface, 0.1f, &steps)); /* six steps owed, four taken */
+    CHECK(steps == 4);
+    OK(sw_surface_advance(surface, 0.0f, &steps));
+    CHECK(steps == 2);
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_set_step_cap(surface, 0, 0));
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_set_step_cap(surface, 4, 2));
+    FAILS(SW_ERROR_NULL_POINTER, sw_surface_interpolation(surface, NULL));
+    sw_surface_destroy(surface);
+}
+
 int main(void) {
     printf("version %s\n", sw_version());
     printf("simd_detect %s\n", sw_simd_level_name(sw_simd_level_detect()));
@@ -716,6 +743,7 @@ int main(void) {
     sw_surface_destroy(hosted);
     sw_surface_destroy(water);
     floating_bodies();
+    clock_frames();
     free(xyz);
     free(xyz_copy);
     free(normals);

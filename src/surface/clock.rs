@@ -1,0 +1,216 @@
+//! The game's clock: how [`Surface::advance`] turns frames of real time into whole steps.
+//!
+//! A game's frames are not all the same length (59.94 Hz displays, a frame that takes a
+//! tenth of a millisecond longer, a stall while a level loads), but the lattice must be
+//! stepped with a fixed `dt` for two reasons: the state after a given stretch of time must
+//! not depend on how that time was cut into frames (two machines running the same game
+//! agree on where a boat floats), and a step shorter than `dt` costs as much as a full one.
+//! So `advance` works as physics engines do with a fixed timestep (Bevy's `FixedUpdate`,
+//! Godot's physics ticks, "Fix Your Timestep!"):
+//!
+//! 1. the frame's seconds, times [`Params::time_scale`](crate::Params::time_scale), are
+//!    added to an accumulator of model time that is owed;
+//! 2. as many whole steps of `dt` as the accumulator holds are taken, at most the cap
+//!    ([`Surface::set_step_cap`]); what the cap leaves is dropped or carried
+//!    ([`Overflow`]);
+//! 3. the rest, less than one step, stays in the accumulator for the next frame, and
+//!    [`Surface::interpolation`] says how far the game's clock is past the last step, for
+//!    a renderer that blends between the last two states.
+//!
+//! The accumulator is part of the surface's state: a snapshot keeps it, and a clone
+//! continues exactly as the original would. Frames of the same total length give the
+//! same steps, whatever their lengths: the sum is kept in `f64`, and a step is due when
+//! the accumulator is within [`TOLERANCE`] of a whole `dt`, so that the rounding of many
+//! `f32` frame lengths (1/60 s is not exactly representable) can never cost or add a step.
+
+use super::Surface;
+use crate::error::{Error, Result};
+use crate::params;
+
+/// What [`Surface::advance`] does with the steps a frame owes beyond the cap.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+#[non_exhaustive]
+pub enum Overflow {
+    /// The steps past the cap are dropped: after a stall the water goes on from where it
+    /// was, a little behind the game's clock ([`Surface::dropped_seconds`] says by how
+    /// much). What engines do by default, so that a slow frame cannot make the next one
+    /// slower still.
+    #[default]
+    Drop,
+    /// The steps past the cap stay owed and are taken by the following calls, at most the
+    /// cap per call: the water catches up with the game's clock over several frames.
+    Carry,
+}
+
+/// A fraction of `dt` that the accumulator may fall short of a whole step and still take
+/// it: far above the rounding of a sum of `f32` frame lengths in `f64` (about 10⁻⁸ of a
+/// step per frame), far below anything a game could mean (10⁻⁴ of a step is 1.7 µs of
+/// game time at the defaults).
+pub(crate) const TOLERANCE: f64 = 1e-4;
+
+/// The accumulator and the cap, one per surface.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Clock {
+    /// Model time owed and not yet stepped. After a call of `advance` it is below one
+    /// `dt` (unless steps are carried), and may be below zero by up to `TOLERANCE · dt`
+    /// (a step taken a hair early is paid back by the next frame).
+    pub owed: f64,
+    /// Most steps one call of `advance` takes.
+    pub max_steps: u32,
+    /// What happens to the steps past `max_steps`.
+    pub overflow: Overflow,
+    /// Seconds of the game's clock dropped by the cap so far.
+    pub dropped: f64,
+}
+
+impl Default for Clock {
+    fn default() -> Self {
+        Self {
+            owed: 0.0,
+            max_steps: Surface::DEFAULT_MAX_STEPS,
+            overflow: Overflow::Drop,
+            dropped: 0.0,
+        }
+    }
+}
+
+impl Clock {
+    /// Adds `model` time to the accumulator and takes out the steps of `dt` to run now:
+    /// returns how many, the cap and the overflow rule applied.
+    pub fn tick(&mut self, model: f64, dt: f32, time_scale: f32) -> u32 {
+        let dt = dt as f64;
+        self.owed += model;
+        let due = (self.owed / dt + TOLERANCE).floor().max(0.0);
+        let steps = due.min(self.max_steps as f64);
+        self.owed -= steps * dt;
+        if due > steps && self.overflow == Overflow::Drop {
+            // What is left is the fraction of a step past the last whole one. Taken as a
+            // remainder rather than by subtracting the dropped steps, which for an absurd
+            // frame (10³⁰ s) would cancel catastrophically and leave an arbitrary debt.
+            let mut left = self.owed.rem_euclid(dt);
+            if left > dt * (1.0 - TOLERANCE) {
+                left -= dt;
+            }
+            self.dropped += (self.owed - left) / time_scale as f64;
+            self.owed = left;
+        }
+        steps as u32
+    }
+
+    /// How far the owed time is into the next step, in `[0, 1)`.
+    pub fn fraction(&self, dt: f32) -> f32 {
+        let f = (self.owed / dt as f64) as f32;
+        if f >= 1.0 {
+            // Only when steps are carried past the cap: the renderer is a whole step or
+            // more behind, and the nearest it can show is the last state.
+            return 1.0 - f32::EPSILON / 2.0;
+        }
+        f.max(0.0)
+    }
+}
+
+impl Surface {
+    /// The default cap on the steps one [`Surface::advance`] call takes: 16, a quarter of a
+    /// second of game time at the default time scale and timestep (one step per 60 Hz
+    /// frame). A frame that owes more is a stall, not gameplay.
+    pub const DEFAULT_MAX_STEPS: u32 = 16;
+
+    /// Sets the most steps one [`Surface::advance`] (or [`Surface::advance_with`]) call
+    /// takes, and what happens to the steps a long frame owes beyond it ([`Overflow::Drop`]
+    /// by default; the default cap is [`Surface::DEFAULT_MAX_STEPS`]). `max_steps` is from
+    /// 1 to [`Surface::MAX_SUBSTEPS`]; otherwise an error, and nothing changes.
+    pub fn set_step_cap(&mut self, max_steps: u32, overflow: Overflow) -> Result<()> {
+        if max_steps == 0 || max_steps as usize > Self::MAX_SUBSTEPS {
+            return Err(Error::InvalidParam {
+                name: "max steps per frame",
+                value: max_steps as f64,
+                expected: "from 1 to 10000",
+            });
+        }
+        self.clock.max_steps = max_steps;
+        self.clock.overflow = overflow;
+        Ok(())
+    }
+
+    /// The cap on steps per [`Surface::advance`] call and what happens past it.
+    pub fn step_cap(&self) -> (u32, Overflow) {
+        (self.clock.max_steps, self.clock.overflow)
+    }
+
+    /// How far the game's clock is past the last step, as a fraction of a step in
+    /// `[0, 1)`: after [`Surface::advance`] the water's state is the game's time minus
+    /// `interpolation() × dt`. A renderer that keeps the previous frame's positions can
+    /// blend `previous + (current − previous) × interpolation()`-style to hide that the
+    /// water moves in whole steps; most games at one step per frame can ignore it.
+    pub fn interpolation(&self) -> f32 {
+        self.clock.fraction(self.params.dt)
+    }
+
+    /// Seconds of the game's clock that [`Surface::advance`] owes and has not stepped
+    /// yet: under one step normally, more while [`Overflow::Carry`] catches up after a
+    /// stall.
+    pub fn owed_seconds(&self) -> f64 {
+        self.clock.owed.max(0.0) / self.params.time_scale as f64
+    }
+
+    /// Seconds of the game's clock that the cap has dropped so far ([`Overflow::Drop`]):
+    /// how far the water is behind the seconds passed to [`Surface::advance`].
+    pub fn dropped_seconds(&self) -> f64 {
+        self.clock.dropped
+    }
+
+    /// The steps [`Surface::advance`] takes for a frame of `frame_seconds`, with the
+    /// accumulator updated: the frame is checked first and refused with nothing changed.
+    pub(crate) fn tick(&mut self, frame_seconds: f32) -> Result<usize> {
+        params::non_negative("frame seconds", frame_seconds)?;
+        let model = frame_seconds as f64 * self.params.time_scale as f64;
+        Ok(self
+            .clock
+            .tick(model, self.params.dt, self.params.time_scale) as usize)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn clock(max_steps: u32, overflow: Overflow) -> Clock {
+        Clock {
+            max_steps,
+            overflow,
+            ..Clock::default()
+        }
+    }
+
+    #[test]
+    fn whole_steps_and_a_remainder() {
+        let mut c = clock(16, Overflow::Drop);
+        assert_eq!(c.tick(0.3, 0.4, 24.0), 0);
+        assert!((c.fraction(0.4) - 0.75).abs() < 1e-6);
+        assert_eq!(c.tick(0.3, 0.4, 24.0), 1);
+        assert!((c.fraction(0.4) - 0.5).abs() < 1e-6);
+    }
+
+    #[test]
+    fn a_hair_short_of_a_step_is_a_step() {
+        let mut c = clock(16, Overflow::Drop);
+        assert_eq!(c.tick(0.4 * (1.0 - 1e-6), 0.4, 24.0), 1);
+        assert_eq!(c.fraction(0.4), 0.0);
+        assert_eq!(c.tick(0.4, 0.4, 24.0), 1);
+    }
+
+    #[test]
+    fn the_cap_drops_or_carries() {
+        let mut d = clock(3, Overflow::Drop);
+        assert_eq!(d.tick(10.0 * 0.4 + 0.1, 0.4, 24.0), 3);
+        assert!((d.dropped - 7.0 * 0.4 / 24.0).abs() < 1e-6);
+        assert!((d.owed - 0.1).abs() < 1e-6);
+        let mut c = clock(3, Overflow::Carry);
+        let steps: Vec<u32> = (0..5)
+            .map(|k| c.tick(if k == 0 { 4.1 } else { 0.0 }, 0.4, 24.0))
+            .collect();
+        assert_eq!(steps, [3, 3, 3, 1, 0]);
+        assert_eq!(c.dropped, 0.0);
+        assert!(c.fraction(0.4) < 1.0);
+    }
+}
