@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds the default and the `-C target-cpu=native` binaries and prints the README's
-# performance table: `springwater bench` at 64², 256², 1024², 2048² on 1 and 2 threads.
+# Builds the default and the `-C target-cpu=native` binaries and prints the performance
+# table of docs/performance.md: `springwater bench` at 64², 256², 1024², 2048² on 1 and 2 threads.
 # The default build dispatches at run time to the widest SIMD level the CPU has;
 # `default:sse2` forces a level through SPRINGWATER_SIMD. The simd column is the level
 # that ran (bench's first line). Every ratio in a row comes from one run (the kernels are

@@ -152,6 +152,11 @@ pub mod internals {
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
 
+/// The guide's examples, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/guide.md")]
+pub struct GuideDoctests;
+
 /// The examples of docs/reliability.md, compiled and run as doc tests.
 #[cfg(doctest)]
 #[doc = include_str!("../docs/reliability.md")]

@@ -70,7 +70,7 @@ fn the_public_api_is_the_checked_in_list() {
     assert!(
         added.is_empty() && removed.is_empty(),
         "the public API changed; if on purpose, run with SPRINGWATER_BLESS=1 and add a \
-         migration note to the README. (This walker was written for rustdoc JSON format \
+         migration note to CHANGELOG.md. (This walker was written for rustdoc JSON format \
          57; this nightly wrote {}: if the lists differ only in form, adapt `walk`.)\n\
          added: {added:#?}\nremoved: {removed:#?}",
         doc["format_version"]

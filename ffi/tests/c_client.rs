@@ -5,7 +5,7 @@
 //!   threads, floating bodies on an absorbing (open water) surface, and every kind of bad
 //!   input; its printed values must equal what the Rust API computes for the same frames. It runs plainly, under AddressSanitizer, and under
 //!   Valgrind's memcheck where those are installed.
-//! * the README's C example, linked against the dynamic library;
+//! * ffi/README.md's C example, linked against the dynamic library;
 //! * the header compiled as C++.
 //!
 //! Needs `cc` (and `c++`) on the PATH: the test fails without them, unless
@@ -356,7 +356,7 @@ fn the_readme_c_example_builds_against_the_dynamic_library_and_runs() {
     if skip() {
         return;
     }
-    let readme = std::fs::read_to_string(crate_dir().join("../README.md")).unwrap();
+    let readme = std::fs::read_to_string(crate_dir().join("README.md")).unwrap();
     let start = readme.find("```c\n").expect("the README has a C example") + "```c\n".len();
     let end = start + readme[start..].find("```").unwrap();
     let source = out_dir().join("readme_example.c");
