@@ -1,7 +1,10 @@
 //! The public API changes only on purpose: this test lists every public item of the
-//! library (modules, types, functions, constants, fields, variants, methods, trait
-//! implementations) from rustdoc's JSON output and compares the list with the checked-in
-//! `tests/public-api.txt`.
+//! library from rustdoc's JSON output, with its signature (modules, types with their
+//! generics, functions and methods with their parameters and return types, constants and
+//! fields with their types, variants with their fields, the traits implemented and the
+//! auto traits, `Send` and `Sync` among them), and compares the list with the checked-in
+//! `tests/public-api.txt`. A changed parameter, a field's new type or a type that stops
+//! being `Send` fails it as surely as a removed function.
 //!
 //! After an intended change, regenerate the list with
 //! `SPRINGWATER_BLESS=1 cargo test --test public_api` and review its diff.
@@ -15,6 +18,9 @@ use serde_json::Value;
 use std::collections::BTreeSet;
 use std::path::Path;
 use std::process::Command;
+
+/// The auto traits a user can name on stable Rust.
+const AUTO_TRAITS: [&str; 5] = ["Send", "Sync", "Unpin", "UnwindSafe", "RefUnwindSafe"];
 
 /// Features documented: everything a user can turn on, except `internals`.
 const FEATURES: &str = "parallel,render,serde";
@@ -77,7 +83,7 @@ fn the_public_api_is_the_checked_in_list() {
     );
 }
 
-/// Records the item `id` as `path`, and what it contains.
+/// Records the item `id` as `path`, with its signature, and what it contains.
 fn walk(doc: &Value, id: &str, path: &str, out: &mut BTreeSet<String>) {
     let Some(item) = doc["index"].get(id) else {
         // A re-export of another crate's item.
@@ -87,6 +93,11 @@ fn walk(doc: &Value, id: &str, path: &str, out: &mut BTreeSet<String>) {
     let inner = &item["inner"];
     let Some((kind, body)) = inner.as_object().and_then(|o| o.iter().next()) else {
         return;
+    };
+    let name_of = |id: &Value| {
+        doc["index"][&id.to_string()]["name"]
+            .as_str()
+            .unwrap_or("_")
     };
     match kind.as_str() {
         "module" => {
@@ -111,33 +122,77 @@ fn walk(doc: &Value, id: &str, path: &str, out: &mut BTreeSet<String>) {
             }
         }
         "struct" => {
-            out.insert(format!("struct {path}"));
-            if let Some(fields) = body["kind"]["plain"]["fields"].as_array() {
-                for f in fields {
-                    let name = doc["index"][&f.to_string()]["name"].as_str().unwrap_or("_");
-                    out.insert(format!("field {path}::{name}"));
-                }
+            let g = generics(&body["generics"]);
+            let kind = &body["kind"];
+            if let Some(fields) = kind["tuple"].as_array() {
+                let parts: Vec<String> = fields
+                    .iter()
+                    .map(|f| match f.is_null() {
+                        true => "_".into(),
+                        false => format!("pub {}", field_type(doc, f)),
+                    })
+                    .collect();
+                out.insert(format!("struct {path}{g}({})", parts.join(", ")));
+            } else {
+                out.insert(format!("struct {path}{g}"));
+            }
+            for f in kind["plain"]["fields"].as_array().into_iter().flatten() {
+                out.insert(format!(
+                    "field {path}::{}: {}",
+                    name_of(f),
+                    field_type(doc, f)
+                ));
+            }
+            if kind["plain"]["has_stripped_fields"] == true {
+                out.insert(format!("field {path}::.. (private fields)"));
             }
             impls(doc, &body["impls"], path, out);
         }
         "enum" => {
-            out.insert(format!("enum {path}"));
+            out.insert(format!("enum {path}{}", generics(&body["generics"])));
             for v in body["variants"].as_array().unwrap() {
-                let name = doc["index"][&v.to_string()]["name"].as_str().unwrap();
-                out.insert(format!("variant {path}::{name}"));
+                let var = &doc["index"][&v.to_string()];
+                let vk = &var["inner"]["variant"]["kind"];
+                let shape = if let Some(fields) = vk["tuple"].as_array() {
+                    let parts: Vec<String> = fields.iter().map(|f| field_type(doc, f)).collect();
+                    format!("({})", parts.join(", "))
+                } else if let Some(fields) = vk["struct"]["fields"].as_array() {
+                    let parts: Vec<String> = fields
+                        .iter()
+                        .map(|f| format!("{}: {}", name_of(f), field_type(doc, f)))
+                        .collect();
+                    format!(" {{ {} }}", parts.join(", "))
+                } else {
+                    String::new()
+                };
+                out.insert(format!("variant {path}::{}{shape}", name_of(v)));
             }
             impls(doc, &body["impls"], path, out);
         }
         "trait" => {
-            out.insert(format!("trait {path}"));
+            out.insert(format!("trait {path}{}", generics(&body["generics"])));
             for i in body["items"].as_array().unwrap() {
-                let name = doc["index"][&i.to_string()]["name"].as_str().unwrap();
-                out.insert(format!("trait-item {path}::{name}"));
+                let it = &doc["index"][&i.to_string()];
+                let sig = match it["inner"].get("function") {
+                    Some(f) => function(f),
+                    None => String::new(),
+                };
+                out.insert(format!("trait-item {path}::{}{sig}", name_of(i)));
             }
             for i in body["implementations"].as_array().unwrap() {
                 let imp = &doc["index"][&i.to_string()]["inner"]["impl"];
-                out.insert(format!("impl {path} for {}", type_name(&imp["for"])));
+                out.insert(format!("impl {path} for {}", ty(&imp["for"])));
             }
+        }
+        "function" => {
+            out.insert(format!("fn {path}{}", function(body)));
+        }
+        "constant" | "static" => {
+            out.insert(format!("{kind} {path}: {}", ty(&body["type"])));
+        }
+        "type_alias" => {
+            let g = generics(&body["generics"]);
+            out.insert(format!("type {path}{g} = {}", ty(&body["type"])));
         }
         other => {
             out.insert(format!("{other} {path}"));
@@ -145,53 +200,271 @@ fn walk(doc: &Value, id: &str, path: &str, out: &mut BTreeSet<String>) {
     }
 }
 
-/// Inherent methods and constants, and the traits implemented (not auto or blanket ones).
+/// The type of the struct field or variant field `id`.
+fn field_type(doc: &Value, id: &Value) -> String {
+    ty(&doc["index"][&id.to_string()]["inner"]["struct_field"])
+}
+
+/// Inherent methods and constants with their signatures, the traits implemented (not
+/// blanket ones) and the auto traits (`Send`, `Sync`, `Unpin`, `UnwindSafe`, …), whose
+/// loss would break users as surely as a changed signature.
 fn impls(doc: &Value, ids: &Value, path: &str, out: &mut BTreeSet<String>) {
     for i in ids.as_array().into_iter().flatten() {
         let imp = &doc["index"][&i.to_string()]["inner"]["impl"];
-        if imp["is_synthetic"] == true || !imp["blanket_impl"].is_null() {
+        if !imp["blanket_impl"].is_null() {
             continue;
         }
-        if imp["trait"].is_null() {
+        let not = if imp["is_negative"] == true { "!" } else { "" };
+        if imp["is_synthetic"] == true {
+            // The stable auto traits only: rustdoc also lists unstable ones (`Freeze`, …)
+            // that come and go with the nightly.
+            let name = trait_path(&imp["trait"]);
+            if AUTO_TRAITS.contains(&name.as_str()) {
+                out.insert(format!("auto impl {not}{name} for {path}"));
+            }
+        } else if imp["trait"].is_null() {
             for m in imp["items"].as_array().unwrap() {
                 let m = &doc["index"][&m.to_string()];
                 let Some(name) = m["name"].as_str() else {
                     continue;
                 };
                 let full = format!("{path}::{name}");
-                let kind = m["inner"]
-                    .as_object()
-                    .and_then(|o| o.keys().next().cloned());
-                out.insert(format!("{} {full}", kind.unwrap_or_default()));
+                match m["inner"].as_object().and_then(|o| o.iter().next()) {
+                    Some((k, f)) if k == "function" => {
+                        out.insert(format!("fn {full}{}", function(f)));
+                    }
+                    Some((k, c)) if k == "assoc_const" => {
+                        out.insert(format!("const {full}: {}", ty(&c["type"])));
+                    }
+                    Some((k, _)) => {
+                        out.insert(format!("{k} {full}"));
+                    }
+                    None => {}
+                }
             }
         } else {
-            let name = imp["trait"]["path"].as_str().unwrap_or("?");
-            let name = name.rsplit("::").next().unwrap();
-            out.insert(format!("impl {name} for {path}"));
+            out.insert(format!(
+                "impl {not}{} for {path}",
+                trait_path(&imp["trait"])
+            ));
         }
     }
 }
 
-/// A short name for the type an implementation is for.
-fn type_name(ty: &Value) -> String {
-    if let Some(p) = ty.get("resolved_path") {
-        return p["path"].as_str().unwrap_or("?").to_string();
+/// A function's generics, parameters, return type and qualifiers.
+fn function(f: &Value) -> String {
+    let h = &f["header"];
+    let mut q = String::new();
+    for (flag, word) in [("is_const", "const "), ("is_unsafe", "unsafe ")] {
+        if h[flag] == true {
+            q.push_str(word);
+        }
     }
-    if let Some(p) = ty.get("primitive") {
+    if h["abi"] != "Rust" {
+        q.push_str(&format!("extern {} ", h["abi"]));
+    }
+    let inputs: Vec<String> = f["sig"]["inputs"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| {
+            let (name, t) = (p[0].as_str().unwrap_or("_"), &p[1]);
+            match (name, ty(t).as_str()) {
+                ("self", "Self") => "self".into(),
+                ("self", "&Self") => "&self".into(),
+                ("self", "&mut Self") => "&mut self".into(),
+                (_, t) => format!("{name}: {t}"),
+            }
+        })
+        .collect();
+    let output = match f["sig"]["output"].is_null() {
+        true => String::new(),
+        false => format!(" -> {}", ty(&f["sig"]["output"])),
+    };
+    let g = generics(&f["generics"]);
+    let w = where_clause(&f["generics"]);
+    format!("{q}{g}({}){output}{w}", inputs.join(", "))
+}
+
+/// `<T: Bound, 'a, const N: usize>`, without the parameters `impl Trait` arguments make.
+fn generics(g: &Value) -> String {
+    let params: Vec<String> = g["params"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|p| {
+            let name = p["name"].as_str().unwrap_or("_");
+            let kind = &p["kind"];
+            if let Some(t) = kind.get("type") {
+                if t["is_synthetic"] == true {
+                    return None;
+                }
+                let b = bounds(&t["bounds"]);
+                Some(match b.is_empty() {
+                    true => name.to_string(),
+                    false => format!("{name}: {b}"),
+                })
+            } else if let Some(c) = kind.get("const") {
+                Some(format!("const {name}: {}", ty(&c["type"])))
+            } else {
+                Some(name.to_string())
+            }
+        })
+        .collect();
+    match params.is_empty() {
+        true => String::new(),
+        false => format!("<{}>", params.join(", ")),
+    }
+}
+
+/// ` where T: Bound, …`, or nothing.
+fn where_clause(g: &Value) -> String {
+    let preds: Vec<String> = g["where_predicates"]
+        .as_array()
+        .into_iter()
+        .flatten()
+        .filter_map(|p| {
+            let b = p.get("bound_predicate")?;
+            Some(format!("{}: {}", ty(&b["type"]), bounds(&b["bounds"])))
+        })
+        .collect();
+    match preds.is_empty() {
+        true => String::new(),
+        false => format!(" where {}", preds.join(", ")),
+    }
+}
+
+/// `A + ?Sized + 'a`.
+fn bounds(b: &Value) -> String {
+    let parts: Vec<String> = b
+        .as_array()
+        .into_iter()
+        .flatten()
+        .map(|b| {
+            if let Some(t) = b.get("trait_bound") {
+                let maybe = if t["modifier"] == "maybe" { "?" } else { "" };
+                format!("{maybe}{}", trait_path(&t["trait"]))
+            } else {
+                b["outlives"].as_str().unwrap_or("?").to_string()
+            }
+        })
+        .collect();
+    parts.join(" + ")
+}
+
+/// A trait or type path with its generic arguments: `From<Error>`, `Fn(usize) -> bool`.
+fn trait_path(p: &Value) -> String {
+    let name = p["path"].as_str().unwrap_or("?");
+    let name = name.rsplit("::").next().unwrap();
+    format!("{name}{}", args(&p["args"]))
+}
+
+/// `<T, 'a, Item = U>` or `(A, B) -> C`, or nothing.
+fn args(a: &Value) -> String {
+    if let Some(ab) = a.get("angle_bracketed") {
+        let mut parts: Vec<String> = ab["args"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .map(|x| {
+                if let Some(t) = x.get("type") {
+                    ty(t)
+                } else if let Some(l) = x.get("lifetime") {
+                    l.as_str().unwrap_or("'_").to_string()
+                } else {
+                    x["const"]["expr"].as_str().unwrap_or("_").to_string()
+                }
+            })
+            .collect();
+        for c in ab["constraints"].as_array().into_iter().flatten() {
+            let binding = &c["binding"];
+            let value = match binding.get("equality") {
+                Some(e) => format!(" = {}", ty(&e["type"])),
+                None => format!(": {}", bounds(&binding["constraint"])),
+            };
+            parts.push(format!("{}{value}", c["name"].as_str().unwrap_or("?")));
+        }
+        return match parts.is_empty() {
+            true => String::new(),
+            false => format!("<{}>", parts.join(", ")),
+        };
+    }
+    if let Some(p) = a.get("parenthesized") {
+        let inputs: Vec<String> = p["inputs"].as_array().unwrap().iter().map(ty).collect();
+        let output = match p["output"].is_null() {
+            true => String::new(),
+            false => format!(" -> {}", ty(&p["output"])),
+        };
+        return format!("({}){output}", inputs.join(", "));
+    }
+    String::new()
+}
+
+/// A type as Rust source writes it (paths shortened to their last segment).
+fn ty(t: &Value) -> String {
+    if let Some(p) = t.get("resolved_path") {
+        return trait_path(p);
+    }
+    if let Some(p) = t.get("primitive").or(t.get("generic")) {
         return p.as_str().unwrap_or("?").to_string();
     }
-    if let Some(t) = ty.get("tuple") {
-        let parts: Vec<String> = t.as_array().unwrap().iter().map(type_name).collect();
+    if let Some(parts) = t.get("tuple") {
+        let parts: Vec<String> = parts.as_array().unwrap().iter().map(ty).collect();
         return format!("({})", parts.join(", "));
     }
-    if let Some(s) = ty.get("slice") {
-        return format!("[{}]", type_name(s));
+    if let Some(s) = t.get("slice") {
+        return format!("[{}]", ty(s));
     }
-    if let Some(r) = ty.get("borrowed_ref") {
-        return format!("&mut {}", type_name(&r["type"]));
+    if let Some(a) = t.get("array") {
+        return format!("[{}; {}]", ty(&a["type"]), a["len"].as_str().unwrap_or("_"));
     }
-    if ty.get("generic").is_some() {
-        return ty["generic"].as_str().unwrap_or("?").to_string();
+    if let Some(r) = t.get("borrowed_ref") {
+        let life = match r["lifetime"].as_str() {
+            Some(l) => format!("{l} "),
+            None => String::new(),
+        };
+        let m = if r["is_mutable"] == true { "mut " } else { "" };
+        return format!("&{life}{m}{}", ty(&r["type"]));
     }
-    "?".to_string()
+    if let Some(r) = t.get("raw_pointer") {
+        let m = if r["is_mutable"] == true {
+            "mut"
+        } else {
+            "const"
+        };
+        return format!("*{m} {}", ty(&r["type"]));
+    }
+    if let Some(b) = t.get("impl_trait") {
+        return format!("impl {}", bounds(b));
+    }
+    if let Some(d) = t.get("dyn_trait") {
+        let mut parts: Vec<String> = d["traits"]
+            .as_array()
+            .into_iter()
+            .flatten()
+            .map(|p| trait_path(&p["trait"]))
+            .collect();
+        if let Some(l) = d["lifetime"].as_str() {
+            parts.push(l.to_string());
+        }
+        return format!("dyn {}", parts.join(" + "));
+    }
+    if let Some(q) = t.get("qualified_path") {
+        let name = q["name"].as_str().unwrap_or("?");
+        return match q["trait"].is_null() {
+            true => format!("{}::{name}", ty(&q["self_type"])),
+            false => format!(
+                "<{} as {}>::{name}",
+                ty(&q["self_type"]),
+                trait_path(&q["trait"])
+            ),
+        };
+    }
+    if t.get("function_pointer").is_some() {
+        return "fn(..)".to_string();
+    }
+    if t.get("infer").is_some() {
+        return "_".to_string();
+    }
+    format!("{t}")
 }
