@@ -104,7 +104,7 @@ impl CFrame {
             assert_eq!(sw_surface_create(&params, &mut surface), SW_OK);
         }
         assert_eq!(
-            sw_surface_drop(surface, n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0),
+            sw_surface_drop_at(surface, n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0),
             SW_OK
         );
         Self {
@@ -123,7 +123,7 @@ impl CFrame {
         self.frames += 1;
         if self.frames.is_multiple_of(120) {
             assert_eq!(
-                sw_surface_drop(s, self.centre, self.centre, 1.0, 4.0),
+                sw_surface_drop_at(s, self.centre, self.centre, 1.0, 4.0),
                 SW_OK
             );
         }

@@ -15,6 +15,10 @@ typedef int32_t SwBoundary;
 
 // The model's parameters; `sw_params_default()` gives the seed's defaults.
 typedef struct SwParams {
+  // `sizeof(SwParams)`, set by `sw_params_default()`: calls that read the struct refuse any
+  // other value (a struct not started from `sw_params_default()`, or built with a header of
+  // another version than the library's).
+  uint32_t struct_size;
   // Nodes per row (at least 2).
   uint32_t cols;
   // Rows of nodes (at least 2).
@@ -52,6 +56,10 @@ typedef struct SwParams {
 // The view-dependent LOD index buffer's parameters; `sw_lod_params_default()` gives the
 // defaults.
 typedef struct SwLodParams {
+  // `sizeof(SwLodParams)`, set by `sw_lod_params_default()`: calls that read the struct refuse any
+  // other value (a struct not started from `sw_lod_params_default()`, or built with a header of
+  // another version than the library's).
+  uint32_t struct_size;
   // Patch size in cells, a power of two from 1 to 4096.
   uint32_t patch_cells;
   // Number of levels, 1 to log2(patch_cells) + 1.
@@ -66,6 +74,10 @@ typedef struct SwLodParams {
 // The eye and the bottom for the refraction texture coordinates;
 // `sw_refraction_default()` gives the defaults (set the eye).
 typedef struct SwRefraction {
+  // `sizeof(SwRefraction)`, set by `sw_refraction_default()`: calls that read the struct refuse any
+  // other value (a struct not started from `sw_refraction_default()`, or built with a header of
+  // another version than the library's).
+  uint32_t struct_size;
   // The eye in the water's local space, x.
   float eye_x;
   // The eye, y (up).
@@ -124,8 +136,13 @@ typedef int32_t SwShape;
 
 // A floating body: `sw_floater_sphere()` and `sw_floater_box()` make one at rest with the
 // default drag. Plain data: hand it to `sw_surface_add_floater`, read it back with
-// `sw_surface_get_floater`.
+// `sw_surface_floater`.
 typedef struct SwFloater {
+  // `sizeof(SwFloater)`, set by `sw_floater_sphere()`, `sw_floater_box()` and
+  // `sw_surface_floater()`: calls that read the struct refuse any
+  // other value (a struct not started from one of them, or built with a header of
+  // another version than the library's).
+  uint32_t struct_size;
   // `SW_SHAPE_SPHERE` or `SW_SHAPE_BOX`.
   SwShape shape;
   // The sphere's radius, world units (> 0, at most 1e9). Ignored for a box, read back as
@@ -156,6 +173,10 @@ typedef struct SwFloater {
 
 // The world the bodies of a surface float in; `sw_buoyancy_default()` gives the defaults.
 typedef struct SwBuoyancy {
+  // `sizeof(SwBuoyancy)`, set by `sw_buoyancy_default()` and `sw_surface_buoyancy()`: calls that read the struct refuse any
+  // other value (a struct not started from one of them, or built with a header of
+  // another version than the library's).
+  uint32_t struct_size;
   // Gravity pulling bodies down (−y), world units per unit of model time² (0 to 1e6;
   // default 0.1).
   float gravity;
@@ -198,6 +219,10 @@ typedef void (*SwFinishTaskFn)(void *user_task, void *user_context);
 // it skipped themselves, on the calling thread. `finish_task` must not return before
 // every item it was given has returned.
 typedef struct SwJobSystem {
+  // `sizeof(SwJobSystem)`, set by `sw_job_system_default()`: `sw_surface_set_job_system`
+  // refuses any other value (a struct not started from it, or built with a header of
+  // another version than the library's).
+  uint32_t struct_size;
   // Workers that run items at once (1 to 4096): the engine cuts about four bands per
   // worker.
   uint32_t worker_count;
@@ -363,6 +388,13 @@ SwStatus sw_surface_step(struct SwSurface *surface, uint32_t steps);
 // Drops water at world `(x, z)`: adds `height · exp(−d²/radius²)` to the height of every
 // free node, `d` its rest distance from the point. `radius` > 0; a drop steeper than one
 // height per radius may fold the surface.
+SwStatus sw_surface_drop_at(struct SwSurface *surface,
+                            float x,
+                            float z,
+                            float height,
+                            float radius);
+
+// Deprecated: the earlier name of `sw_surface_drop_at`, which it calls.
 SwStatus sw_surface_drop(struct SwSurface *surface, float x, float z, float height, float radius);
 
 // Adds the force `(fx, fy, fz)` at world `(x, z)` for the next step, spread onto the
@@ -577,6 +609,13 @@ SwStatus sw_surface_remove_floater(struct SwSurface *surface, SwFloaterId id);
 // # Safety
 //
 // `out` is NULL or a valid pointer.
+SwStatus sw_surface_floater(const struct SwSurface *surface, SwFloaterId id, struct SwFloater *out);
+
+// Deprecated: the earlier name of `sw_surface_floater`, which it calls.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
 SwStatus sw_surface_get_floater(const struct SwSurface *surface,
                                 SwFloaterId id,
                                 struct SwFloater *out);
@@ -628,6 +667,13 @@ SwStatus sw_surface_floater_ids(const struct SwSurface *surface,
 // # Safety
 //
 // `out` is NULL or a valid pointer.
+SwStatus sw_surface_buoyancy(const struct SwSurface *surface, struct SwBuoyancy *out);
+
+// Deprecated: the earlier name of `sw_surface_buoyancy`, which it calls.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
 SwStatus sw_surface_get_buoyancy(const struct SwSurface *surface, struct SwBuoyancy *out);
 
 // Sets the gravity and water density for every body of the surface. Refused (nothing
@@ -638,6 +684,10 @@ SwStatus sw_surface_get_buoyancy(const struct SwSurface *surface, struct SwBuoya
 //
 // `buoyancy` is NULL or a valid pointer.
 SwStatus sw_surface_set_buoyancy(struct SwSurface *surface, const struct SwBuoyancy *buoyancy);
+
+// An empty job system with its size set: fill in `worker_count`, the two callbacks and
+// `user_context`, then hand it to `sw_surface_set_job_system`.
+struct SwJobSystem sw_job_system_default(void);
 
 // Runs the surface's steps and its normals, refraction and vertex buffers on the host's job
 // system (`jobs`), or on the library's built-in thread pool again when `jobs` is NULL. The

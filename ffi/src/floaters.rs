@@ -5,7 +5,7 @@
 
 use crate::handle;
 use crate::status::{guard, Failure, Outcome, SwStatus};
-use crate::{out_ref, read_into, write_sized, SwSurface};
+use crate::{input, out_ref, read_into, write_sized, Input, SwSurface};
 use glam::Vec3;
 use springwater::{Buoyancy, Floater, FloaterId, Shape};
 
@@ -22,10 +22,15 @@ pub type SwFloaterId = u64;
 
 /// A floating body: `sw_floater_sphere()` and `sw_floater_box()` make one at rest with the
 /// default drag. Plain data: hand it to `sw_surface_add_floater`, read it back with
-/// `sw_surface_get_floater`.
+/// `sw_surface_floater`.
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SwFloater {
+    /// `sizeof(SwFloater)`, set by `sw_floater_sphere()`, `sw_floater_box()` and
+    /// `sw_surface_floater()`: calls that read the struct refuse any
+    /// other value (a struct not started from one of them, or built with a header of
+    /// another version than the library's).
+    pub struct_size: u32,
     /// `SW_SHAPE_SPHERE` or `SW_SHAPE_BOX`.
     pub shape: SwShape,
     /// The sphere's radius, world units (> 0, at most 1e9). Ignored for a box, read back as
@@ -58,6 +63,10 @@ pub struct SwFloater {
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SwBuoyancy {
+    /// `sizeof(SwBuoyancy)`, set by `sw_buoyancy_default()` and `sw_surface_buoyancy()`: calls that read the struct refuse any
+    /// other value (a struct not started from one of them, or built with a header of
+    /// another version than the library's).
+    pub struct_size: u32,
     /// Gravity pulling bodies down (−y), world units per unit of model time² (0 to 1e6;
     /// default 0.1).
     pub gravity: f32,
@@ -65,6 +74,19 @@ pub struct SwBuoyancy {
     /// seed's node mass 4 per cell is a layer 4 cells deep).
     pub density: f32,
 }
+
+impl Input for SwFloater {
+    const MAKER: &'static str = "sw_floater_sphere() or sw_floater_box()";
+}
+
+impl Input for SwBuoyancy {
+    const MAKER: &'static str = "sw_buoyancy_default()";
+}
+
+const _: () = {
+    assert!(std::mem::offset_of!(SwFloater, struct_size) == 0);
+    assert!(std::mem::offset_of!(SwBuoyancy, struct_size) == 0);
+};
 
 /// A sphere of `radius` and `mass` centred at `(x, y, z)`, at rest, with the default drag
 /// (0.25). Not checked here: `sw_surface_add_floater` checks it.
@@ -111,8 +133,8 @@ pub unsafe extern "C" fn sw_surface_add_floater(
     id: *mut SwFloaterId,
 ) -> SwStatus {
     guard(|| {
-        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
-        let body = rust_floater(unsafe { floater.as_ref() })?;
+        // SAFETY: the caller gives NULL or a valid pointer.
+        let body = rust_floater(unsafe { input(floater, "floater") }?)?;
         let id = out_ref(id, "id")?;
         *id = handle::with(surface, |w| Ok(w.surface.add_floater(body)?.0))?;
         Ok(())
@@ -138,7 +160,7 @@ pub extern "C" fn sw_surface_remove_floater(surface: *mut SwSurface, id: SwFloat
 ///
 /// `out` is NULL or a valid pointer.
 #[no_mangle]
-pub unsafe extern "C" fn sw_surface_get_floater(
+pub unsafe extern "C" fn sw_surface_floater(
     surface: *const SwSurface,
     id: SwFloaterId,
     out: *mut SwFloater,
@@ -146,6 +168,21 @@ pub unsafe extern "C" fn sw_surface_get_floater(
     read_into(surface, out, |w| {
         Ok(c_floater(w.surface.floater(FloaterId(id))?))
     })
+}
+
+/// Deprecated: the earlier name of `sw_surface_floater`, which it calls.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_get_floater(
+    surface: *const SwSurface,
+    id: SwFloaterId,
+    out: *mut SwFloater,
+) -> SwStatus {
+    // SAFETY: the caller's promise, passed on.
+    unsafe { sw_surface_floater(surface, id, out) }
 }
 
 /// Replaces a floating body's state (teleport it, change its velocity, mass, drag or
@@ -163,8 +200,8 @@ pub unsafe extern "C" fn sw_surface_set_floater(
     floater: *const SwFloater,
 ) -> SwStatus {
     guard(|| {
-        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
-        let body = rust_floater(unsafe { floater.as_ref() })?;
+        // SAFETY: the caller gives NULL or a valid pointer.
+        let body = rust_floater(unsafe { input(floater, "floater") }?)?;
         handle::with(surface, |w| {
             let id = FloaterId(id);
             let water_force = w.surface.floater(id)?.water_force;
@@ -248,11 +285,25 @@ pub unsafe extern "C" fn sw_surface_floater_ids(
 ///
 /// `out` is NULL or a valid pointer.
 #[no_mangle]
-pub unsafe extern "C" fn sw_surface_get_buoyancy(
+pub unsafe extern "C" fn sw_surface_buoyancy(
     surface: *const SwSurface,
     out: *mut SwBuoyancy,
 ) -> SwStatus {
     read_into(surface, out, |w| Ok(c_buoyancy(w.surface.buoyancy())))
+}
+
+/// Deprecated: the earlier name of `sw_surface_buoyancy`, which it calls.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_get_buoyancy(
+    surface: *const SwSurface,
+    out: *mut SwBuoyancy,
+) -> SwStatus {
+    // SAFETY: the caller's promise, passed on.
+    unsafe { sw_surface_buoyancy(surface, out) }
 }
 
 /// Sets the gravity and water density for every body of the surface. Refused (nothing
@@ -268,8 +319,8 @@ pub unsafe extern "C" fn sw_surface_set_buoyancy(
     buoyancy: *const SwBuoyancy,
 ) -> SwStatus {
     guard(|| {
-        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
-        let b = unsafe { buoyancy.as_ref() }.ok_or_else(|| Failure::null("buoyancy"))?;
+        // SAFETY: the caller gives NULL or a valid pointer.
+        let b = unsafe { input(buoyancy, "buoyancy") }?;
         let b = Buoyancy {
             gravity: b.gravity,
             density: b.density,
@@ -286,6 +337,7 @@ fn c_floater(f: &Floater) -> SwFloater {
         Shape::Box { half_extents } => (SW_SHAPE_BOX, 0.0, half_extents.to_array()),
     };
     SwFloater {
+        struct_size: size_of::<SwFloater>() as u32,
         shape,
         radius,
         half_extents,
@@ -300,8 +352,7 @@ fn c_floater(f: &Floater) -> SwFloater {
 
 /// The body `f` describes, with a zero water force; the library checks its fields when it
 /// takes it.
-fn rust_floater(f: Option<&SwFloater>) -> Outcome<Floater> {
-    let f = f.ok_or_else(|| Failure::null("floater"))?;
+fn rust_floater(f: SwFloater) -> Outcome<Floater> {
     let shape = match f.shape {
         SW_SHAPE_SPHERE => Shape::Sphere { radius: f.radius },
         SW_SHAPE_BOX => Shape::Box {
@@ -326,6 +377,7 @@ fn rust_floater(f: Option<&SwFloater>) -> Outcome<Floater> {
 
 fn c_buoyancy(b: Buoyancy) -> SwBuoyancy {
     SwBuoyancy {
+        struct_size: size_of::<SwBuoyancy>() as u32,
         gravity: b.gravity,
         density: b.density,
     }
@@ -347,7 +399,7 @@ mod tests {
                 ..f
             });
             assert_eq!(c.water_force, [0.0, 9.0, 0.0]);
-            assert_eq!(rust_floater(Some(&c)).unwrap(), f);
+            assert_eq!(rust_floater(c).unwrap(), f);
         }
         assert_eq!(c_floater(&ball).half_extents, [0.0; 3]);
         assert_eq!(c_floater(&boxy).radius, 0.0);
@@ -359,7 +411,6 @@ mod tests {
             shape: 2,
             ..c_floater(&ball)
         };
-        assert!(rust_floater(Some(&bad)).is_err());
-        assert!(rust_floater(None).is_err());
+        assert!(rust_floater(bad).is_err());
     }
 }

@@ -46,6 +46,10 @@ pub type SwFinishTaskFn =
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct SwJobSystem {
+    /// `sizeof(SwJobSystem)`, set by `sw_job_system_default()`: `sw_surface_set_job_system`
+    /// refuses any other value (a struct not started from it, or built with a header of
+    /// another version than the library's).
+    pub struct_size: u32,
     /// Workers that run items at once (1 to 4096): the engine cuts about four bands per
     /// worker.
     pub worker_count: u32,
@@ -55,6 +59,25 @@ pub struct SwJobSystem {
     pub finish_task: SwFinishTaskFn,
     /// Passed to both callbacks unchanged.
     pub user_context: *mut c_void,
+}
+
+impl crate::Input for SwJobSystem {
+    const MAKER: &'static str = "sw_job_system_default()";
+}
+
+const _: () = assert!(std::mem::offset_of!(SwJobSystem, struct_size) == 0);
+
+/// An empty job system with its size set: fill in `worker_count`, the two callbacks and
+/// `user_context`, then hand it to `sw_surface_set_job_system`.
+#[no_mangle]
+pub extern "C" fn sw_job_system_default() -> SwJobSystem {
+    SwJobSystem {
+        struct_size: size_of::<SwJobSystem>() as u32,
+        worker_count: 1,
+        enqueue_task: None,
+        finish_task: None,
+        user_context: std::ptr::null_mut(),
+    }
 }
 
 /// A validated [`SwJobSystem`].
@@ -140,7 +163,7 @@ pub unsafe extern "C" fn sw_surface_set_job_system(
             None
         } else {
             // SAFETY: non-NULL, and the caller gives a valid `SwJobSystem`.
-            let jobs = unsafe { *jobs };
+            let jobs = unsafe { crate::input(jobs, "jobs") }?;
             let (Some(enqueue), Some(finish)) = (jobs.enqueue_task, jobs.finish_task) else {
                 return Err(Failure::null("enqueue_task or finish_task"));
             };

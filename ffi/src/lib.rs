@@ -39,7 +39,10 @@ mod status;
 
 pub use floaters::*;
 pub use handle::SwSurface;
-pub use jobs::{sw_surface_set_job_system, SwEnqueueTaskFn, SwFinishTaskFn, SwJobSystem, SwTaskFn};
+pub use jobs::{
+    sw_job_system_default, sw_surface_set_job_system, SwEnqueueTaskFn, SwFinishTaskFn, SwJobSystem,
+    SwTaskFn,
+};
 pub use status::*;
 
 use handle::Water;
@@ -79,6 +82,10 @@ pub type SwBool = i32;
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct SwParams {
+    /// `sizeof(SwParams)`, set by `sw_params_default()`: calls that read the struct refuse any
+    /// other value (a struct not started from `sw_params_default()`, or built with a header of
+    /// another version than the library's).
+    pub struct_size: u32,
     /// Nodes per row (at least 2).
     pub cols: u32,
     /// Rows of nodes (at least 2).
@@ -118,6 +125,10 @@ pub struct SwParams {
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct SwLodParams {
+    /// `sizeof(SwLodParams)`, set by `sw_lod_params_default()`: calls that read the struct refuse any
+    /// other value (a struct not started from `sw_lod_params_default()`, or built with a header of
+    /// another version than the library's).
+    pub struct_size: u32,
     /// Patch size in cells, a power of two from 1 to 4096.
     pub patch_cells: u32,
     /// Number of levels, 1 to log2(patch_cells) + 1.
@@ -134,6 +145,10 @@ pub struct SwLodParams {
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct SwRefraction {
+    /// `sizeof(SwRefraction)`, set by `sw_refraction_default()`: calls that read the struct refuse any
+    /// other value (a struct not started from `sw_refraction_default()`, or built with a header of
+    /// another version than the library's).
+    pub struct_size: u32,
     /// The eye in the water's local space, x.
     pub eye_x: f32,
     /// The eye, y (up).
@@ -207,6 +222,7 @@ pub extern "C" fn sw_params_default() -> SwParams {
 pub extern "C" fn sw_lod_params_default() -> SwLodParams {
     let p = LodParams::default();
     SwLodParams {
+        struct_size: size_of::<SwLodParams>() as u32,
         patch_cells: p.patch_cells.min(u32::MAX as usize) as u32,
         levels: p.levels,
         first_range: p.first_range,
@@ -219,6 +235,7 @@ pub extern "C" fn sw_lod_params_default() -> SwLodParams {
 pub extern "C" fn sw_refraction_default() -> SwRefraction {
     let p = RefractionParams::default();
     SwRefraction {
+        struct_size: size_of::<SwRefraction>() as u32,
         eye_x: 0.0,
         eye_y: 0.0,
         eye_z: 0.0,
@@ -260,10 +277,10 @@ pub unsafe extern "C" fn sw_surface_create(
     out: *mut *mut SwSurface,
 ) -> SwStatus {
     guard(|| {
-        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
-        let params = unsafe { params.as_ref() }.ok_or_else(|| Failure::null("params"))?;
+        // SAFETY: the caller gives NULL or a valid pointer.
+        let params = unsafe { input(params, "params") }?;
         let out = out_ref(out, "out")?;
-        let surface = Surface::new(rust_params(params)?)?;
+        let surface = Surface::new(rust_params(&params)?)?;
         *out = handle::insert(Water::new(surface));
         Ok(())
     })
@@ -377,7 +394,7 @@ pub extern "C" fn sw_surface_step(surface: *mut SwSurface, steps: u32) -> SwStat
 /// free node, `d` its rest distance from the point. `radius` > 0; a drop steeper than one
 /// height per radius may fold the surface.
 #[no_mangle]
-pub extern "C" fn sw_surface_drop(
+pub extern "C" fn sw_surface_drop_at(
     surface: *mut SwSurface,
     x: f32,
     z: f32,
@@ -385,6 +402,18 @@ pub extern "C" fn sw_surface_drop(
     radius: f32,
 ) -> SwStatus {
     guard(|| handle::with(surface, |w| Ok(w.surface.drop_at(x, z, height, radius)?)))
+}
+
+/// Deprecated: the earlier name of `sw_surface_drop_at`, which it calls.
+#[no_mangle]
+pub extern "C" fn sw_surface_drop(
+    surface: *mut SwSurface,
+    x: f32,
+    z: f32,
+    height: f32,
+    radius: f32,
+) -> SwStatus {
+    sw_surface_drop_at(surface, x, z, height, radius)
 }
 
 /// Adds the force `(fx, fy, fz)` at world `(x, z)` for the next step, spread onto the
@@ -573,8 +602,8 @@ pub unsafe extern "C" fn sw_surface_write_refraction_uvs(
     len: usize,
 ) -> SwStatus {
     guard(|| {
-        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
-        let (eye, params) = refraction_params(unsafe { refraction.as_ref() })?;
+        // SAFETY: the caller gives NULL or a valid pointer.
+        let (eye, params) = refraction_params(unsafe { input(refraction, "refraction") }?)?;
         handle::with(surface, |w| {
             let n = w.surface.len();
             need(len, n * 2, "uv")?;
@@ -604,8 +633,8 @@ pub unsafe extern "C" fn sw_surface_write_vertices(
     len: usize,
 ) -> SwStatus {
     guard(|| {
-        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
-        let (eye, params) = refraction_params(unsafe { refraction.as_ref() })?;
+        // SAFETY: the caller gives NULL or a valid pointer.
+        let (eye, params) = refraction_params(unsafe { input(refraction, "refraction") }?)?;
         handle::with(surface, |w| {
             let n = w.surface.len();
             need(len, n, "vertices")?;
@@ -634,8 +663,8 @@ pub unsafe extern "C" fn sw_surface_set_lod_params(
     params: *const SwLodParams,
 ) -> SwStatus {
     guard(|| {
-        // SAFETY: checked for NULL; the caller gives a valid pointer otherwise.
-        let p = unsafe { params.as_ref() }.ok_or_else(|| Failure::null("params"))?;
+        // SAFETY: the caller gives NULL or a valid pointer.
+        let p = unsafe { input(params, "params") }?;
         let lod = LodMesh::new(LodParams {
             patch_cells: p.patch_cells as usize,
             levels: p.levels,
@@ -870,6 +899,7 @@ fn c_params(p: &Params) -> SwParams {
         Boundary::Absorbing { width } => (SW_BOUNDARY_ABSORBING, width),
     };
     SwParams {
+        struct_size: size_of::<SwParams>() as u32,
         cols: p.cols as u32,
         rows: p.rows as u32,
         spacing: p.spacing,
@@ -951,8 +981,7 @@ fn finite_eye(x: f32, y: f32, z: f32) -> Outcome<glam::Vec3> {
     }
 }
 
-fn refraction_params(r: Option<&SwRefraction>) -> Outcome<(glam::Vec3, RefractionParams)> {
-    let r = r.ok_or_else(|| Failure::null("refraction"))?;
+fn refraction_params(r: SwRefraction) -> Outcome<(glam::Vec3, RefractionParams)> {
     let eye = finite_eye(r.eye_x, r.eye_y, r.eye_z)?;
     let params = RefractionParams {
         depth: r.depth,
@@ -972,6 +1001,57 @@ fn need(len: usize, needed: usize, what: &str) -> Outcome {
             format!("{what} holds {len}, the call needs {needed}"),
         ))
     }
+}
+
+/// A struct the caller fills and hands to the library. Its first field is `struct_size`,
+/// which must be `sizeof` the struct of this library's version.
+pub(crate) trait Input: Copy {
+    /// The function that makes one with its size set.
+    const MAKER: &'static str;
+}
+
+impl Input for SwParams {
+    const MAKER: &'static str = "sw_params_default()";
+}
+
+impl Input for SwLodParams {
+    const MAKER: &'static str = "sw_lod_params_default()";
+}
+
+impl Input for SwRefraction {
+    const MAKER: &'static str = "sw_refraction_default()";
+}
+
+const _: () = {
+    assert!(std::mem::offset_of!(SwParams, struct_size) == 0);
+    assert!(std::mem::offset_of!(SwLodParams, struct_size) == 0);
+    assert!(std::mem::offset_of!(SwRefraction, struct_size) == 0);
+};
+
+/// Copies the struct the caller passed at `ptr` after checking it: not NULL, aligned, and
+/// its `struct_size` this version's. The size is read alone first, so that a smaller
+/// struct (from an older header) is never read past its end.
+///
+/// # Safety
+///
+/// `ptr` is NULL or points to a readable struct that starts with a `u32` size.
+pub(crate) unsafe fn input<T: Input>(ptr: *const T, what: &str) -> Outcome<T> {
+    aligned(ptr, what)?;
+    if ptr.is_null() {
+        return Err(Failure::null(what));
+    }
+    // SAFETY: non-NULL and aligned; every `Input` struct starts with its `u32` size.
+    let size = unsafe { ptr.cast::<u32>().read() };
+    let want = size_of::<T>();
+    if size as usize != want {
+        return Err(Failure::invalid(format!(
+            "{what}->struct_size is {size}, this library's struct is {want} bytes: start it \
+             from {} (a header of another version than the library's gives another size)",
+            T::MAKER
+        )));
+    }
+    // SAFETY: the caller's struct is as large as this version's (its size says so).
+    Ok(unsafe { ptr.read() })
 }
 
 /// An out-pointer the call must write.

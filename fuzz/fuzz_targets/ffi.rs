@@ -59,6 +59,7 @@ impl Body {
         }
         let [radius, hx, hy, hz, mass, drag] = self.size;
         SwFloater {
+            struct_size: size_of::<SwFloater>() as u32,
             shape: self.shape,
             radius,
             half_extents: [hx, hy, hz],
@@ -173,7 +174,7 @@ fn add(s: *mut SwSurface, body: &Body, ids: &mut Vec<(*mut SwSurface, u64)>) -> 
     ids.push((s, id));
     let mut back = SwFloater::default();
     // SAFETY: a valid out-pointer.
-    assert_eq!(unsafe { sw_surface_get_floater(s, id, &mut back) }, SW_OK);
+    assert_eq!(unsafe { sw_surface_floater(s, id, &mut back) }, SW_OK);
     assert_eq!(back.water_force, [0.0; 3]);
     assert_eq!((back.mass, back.position), (f.mass, f.position));
     Some(id)
@@ -183,7 +184,7 @@ fn remove(s: *mut SwSurface, id: u64) {
     if unchanged_unless_ok(s, || sw_surface_remove_floater(s, id)) == SW_OK {
         let mut back = SwFloater::default();
         // SAFETY: a valid out-pointer.
-        let status = unsafe { sw_surface_get_floater(s, id, &mut back) };
+        let status = unsafe { sw_surface_floater(s, id, &mut back) };
         assert_eq!(status, SW_ERROR_NO_SUCH_FLOATER);
     }
 }
@@ -191,7 +192,7 @@ fn remove(s: *mut SwSurface, id: u64) {
 fn get(s: *mut SwSurface, id: u64) {
     let mut back = SwFloater::default();
     // SAFETY: a valid out-pointer.
-    if unsafe { sw_surface_get_floater(s, id, &mut back) } == SW_OK {
+    if unsafe { sw_surface_floater(s, id, &mut back) } == SW_OK {
         assert!(finite(&back), "{back:?}");
     }
 }
@@ -200,12 +201,12 @@ fn set(s: *mut SwSurface, id: u64, body: &Body) {
     let f = body.floater();
     let mut before = SwFloater::default();
     // SAFETY (both): valid pointers; the handle and id may be anything.
-    let had = unsafe { sw_surface_get_floater(s, id, &mut before) } == SW_OK;
+    let had = unsafe { sw_surface_floater(s, id, &mut before) } == SW_OK;
     if unchanged_unless_ok(s, || unsafe { sw_surface_set_floater(s, id, &f) }) == SW_OK {
         assert!(had);
         let mut back = SwFloater::default();
         // SAFETY: a valid out-pointer.
-        assert_eq!(unsafe { sw_surface_get_floater(s, id, &mut back) }, SW_OK);
+        assert_eq!(unsafe { sw_surface_floater(s, id, &mut back) }, SW_OK);
         // The water force is output only: it keeps its value.
         assert_eq!(back.water_force, before.water_force);
         assert_eq!((back.velocity, back.push), (f.velocity, f.push));
@@ -366,7 +367,7 @@ fuzz_target!(|calls: Vec<Call>| {
                     sw_surface_step(pick(h, &live, &dead), *n as u32 % 8);
                 }
                 Call::Drop(h, [x, z, hgt, r]) => {
-                    sw_surface_drop(pick(h, &live, &dead), *x, *z, *hgt, *r);
+                    sw_surface_drop_at(pick(h, &live, &dead), *x, *z, *hgt, *r);
                 }
                 Call::Force(h, [x, z, fx, fy, fz]) => {
                     sw_surface_add_force_at(pick(h, &live, &dead), *x, *z, *fx, *fy, *fz);
@@ -547,10 +548,11 @@ fuzz_target!(|calls: Vec<Call>| {
                     let b = SwBuoyancy {
                         gravity: *gravity,
                         density: *density,
+                        ..sw_buoyancy_default()
                     };
                     if unchanged_unless_ok(s, || sw_surface_set_buoyancy(s, &b)) == SW_OK {
                         let mut back = SwBuoyancy::default();
-                        assert_eq!(sw_surface_get_buoyancy(s, &mut back), SW_OK);
+                        assert_eq!(sw_surface_buoyancy(s, &mut back), SW_OK);
                         assert_eq!(back, b);
                     }
                 }

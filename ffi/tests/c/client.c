@@ -164,7 +164,7 @@ static uint64_t floaters_fingerprint(SwSurface *surface) {
     float floats[8 * 18];
     for (size_t k = 0; k < count && k < 8; k++) {
         SwFloater f;
-        OK(sw_surface_get_floater(surface, ids[k], &f));
+        OK(sw_surface_floater(surface, ids[k], &f));
         floater_floats(&f, &floats[18 * k]);
     }
     return fingerprint(floats, 18 * (count < 8 ? count : 8));
@@ -207,8 +207,12 @@ static void floating_bodies(void) {
     CHECK(memcmp(&read_back, &params, sizeof params) == 0);
     sw_surface_destroy(again);
 
-    SwBuoyancy buoyancy = {0.0f, 0.0f};
-    OK(sw_surface_get_buoyancy(open, &buoyancy));
+    SwBuoyancy buoyancy = {0};
+    OK(sw_surface_buoyancy(open, &buoyancy));
+    CHECK(buoyancy.struct_size == sizeof buoyancy);
+    SwBuoyancy old_name = {0};
+    OK(sw_surface_get_buoyancy(open, &old_name)); /* the deprecated name, the same call */
+    CHECK(memcmp(&old_name, &buoyancy, sizeof buoyancy) == 0);
     SwBuoyancy defaults = sw_buoyancy_default();
     CHECK(memcmp(&buoyancy, &defaults, sizeof buoyancy) == 0);
     printf("buoyancy %08" PRIx32 " %08" PRIx32 "\n", float_bits(buoyancy.gravity),
@@ -236,7 +240,7 @@ static void floating_bodies(void) {
     CHECK(count == 3);
     OK(sw_surface_remove_floater(open, spare_id));
     FAILS(SW_ERROR_NO_SUCH_FLOATER, sw_surface_remove_floater(open, spare_id));
-    FAILS(SW_ERROR_NO_SUCH_FLOATER, sw_surface_get_floater(open, spare_id, &spare));
+    FAILS(SW_ERROR_NO_SUCH_FLOATER, sw_surface_floater(open, spare_id, &spare));
     SwFloaterId ids[4] = {7, 7, 7, 7};
     OK(sw_surface_floater_ids(open, NULL, 0, &count));
     CHECK(count == 2);
@@ -244,18 +248,18 @@ static void floating_bodies(void) {
     CHECK(count == 2 && ids[0] == ball_id && ids[1] == box_id && ids[2] == 7);
     /* Read back as added, with a zero water force. */
     SwFloater got;
-    OK(sw_surface_get_floater(open, ball_id, &got));
+    OK(sw_surface_floater(open, ball_id, &got));
     CHECK(memcmp(&got, &ball, sizeof got) == 0);
 
     /* Frames with a push, then a body set through get / set. */
-    OK(sw_surface_drop(open, 16.0f, 14.0f, 0.5f, 2.0f));
+    OK(sw_surface_drop_at(open, 16.0f, 14.0f, 0.5f, 2.0f));
     for (int frame = 0; frame < 40; frame++) {
         if (frame == 10) {
             OK(sw_surface_push_floater(open, ball_id, 0.5f, 0.0f, 0.2f));
         }
         OK(sw_surface_advance(open, 1.0f / 60.0f, NULL));
     }
-    OK(sw_surface_get_floater(open, box_id, &got));
+    OK(sw_surface_floater(open, box_id, &got));
     CHECK(got.water_force[1] > 0.0f);
     got.velocity[0] = 0.1f;
     got.drag = 1.0f;
@@ -281,13 +285,17 @@ static void floating_bodies(void) {
     OK(sw_surface_floater_ids(copy, ids, 4, &count));
     CHECK(count == 2 && ids[0] == ball_id && ids[1] == box_id);
     SwFloater mine, theirs;
-    OK(sw_surface_get_floater(open, box_id, &mine));
-    OK(sw_surface_get_floater(copy, box_id, &theirs));
+    OK(sw_surface_floater(open, box_id, &mine));
+    OK(sw_surface_floater(copy, box_id, &theirs));
     CHECK(memcmp(&mine, &theirs, sizeof mine) == 0);
     JobStats stats;
     atomic_init(&stats.enqueued, 0);
     atomic_init(&stats.items, 0);
-    SwJobSystem jobs = {WORKERS, enqueue_task, finish_task, &stats};
+    SwJobSystem jobs = sw_job_system_default();
+    jobs.worker_count = WORKERS;
+    jobs.enqueue_task = enqueue_task;
+    jobs.finish_task = finish_task;
+    jobs.user_context = &stats;
     OK(sw_surface_set_job_system(hosted, &jobs));
     OK(sw_surface_step(copy, 25));
     OK(sw_surface_step(hosted, 25));
@@ -302,9 +310,9 @@ static void floating_bodies(void) {
     /* Released on calm water, the bodies settle where buoyancy balances their weight. */
     OK(sw_surface_step(open, 2500));
     printf("settled %016" PRIx64 "\n", floaters_fingerprint(open));
-    OK(sw_surface_get_buoyancy(open, &buoyancy));
+    OK(sw_surface_buoyancy(open, &buoyancy));
     for (int k = 0; k < 2; k++) {
-        OK(sw_surface_get_floater(open, k == 0 ? ball_id : box_id, &got));
+        OK(sw_surface_floater(open, k == 0 ? ball_id : box_id, &got));
         float speed = sqrtf(got.velocity[0] * got.velocity[0] + got.velocity[1] * got.velocity[1] +
                             got.velocity[2] * got.velocity[2]);
         float weight = got.mass * buoyancy.gravity;
@@ -320,17 +328,17 @@ static void floating_bodies(void) {
 
     /* set_floater: water_force and the other shape's size fields are ignored. */
     SwFloater before_set;
-    OK(sw_surface_get_floater(open, ball_id, &before_set));
+    OK(sw_surface_floater(open, ball_id, &before_set));
     got = before_set;
     got.water_force[1] = NAN;
     got.half_extents[0] = NAN;
     OK(sw_surface_set_floater(open, ball_id, &got));
-    OK(sw_surface_get_floater(open, ball_id, &got));
+    OK(sw_surface_floater(open, ball_id, &got));
     CHECK(memcmp(&got, &before_set, sizeof got) == 0);
     /* Pushes add up until the next step; a sum that overflows is refused. */
     OK(sw_surface_push_floater(open, ball_id, FLT_MAX, 0.0f, 0.0f));
     FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_push_floater(open, ball_id, FLT_MAX, 0.0f, 0.0f));
-    OK(sw_surface_get_floater(open, ball_id, &got));
+    OK(sw_surface_floater(open, ball_id, &got));
     CHECK(got.push[0] == FLT_MAX);
     OK(sw_surface_set_floater(open, ball_id, &before_set));
 
@@ -371,11 +379,11 @@ static void floating_bodies(void) {
     CHECK(id == 99);
     FAILS(SW_ERROR_NULL_POINTER, sw_surface_set_floater(open, box_id, NULL));
     FAILS(SW_ERROR_NO_SUCH_FLOATER, sw_surface_set_floater(open, 12345, &ball));
-    FAILS(SW_ERROR_NO_SUCH_FLOATER, sw_surface_get_floater(open, 12345, &got));
+    FAILS(SW_ERROR_NO_SUCH_FLOATER, sw_surface_floater(open, 12345, &got));
     FAILS(SW_ERROR_NO_SUCH_FLOATER, sw_surface_remove_floater(open, UINT64_MAX));
     FAILS(SW_ERROR_NO_SUCH_FLOATER, sw_surface_push_floater(open, spare_id, 1.0f, 0.0f, 0.0f));
-    FAILS(SW_ERROR_NULL_POINTER, sw_surface_get_floater(open, ball_id, NULL));
-    FAILS(SW_ERROR_INVALID_HANDLE, sw_surface_get_floater(made_up, ball_id, &got));
+    FAILS(SW_ERROR_NULL_POINTER, sw_surface_floater(open, ball_id, NULL));
+    FAILS(SW_ERROR_INVALID_HANDLE, sw_surface_floater(made_up, ball_id, &got));
     FAILS(SW_ERROR_INVALID_HANDLE, sw_surface_remove_floater(made_up, ball_id));
     FAILS(SW_ERROR_NULL_POINTER, sw_surface_push_floater(NULL, ball_id, 1.0f, 0.0f, 0.0f));
     FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_push_floater(open, ball_id, NAN, 0.0f, 0.0f));
@@ -386,10 +394,11 @@ static void floating_bodies(void) {
     FAILS(SW_ERROR_BUFFER_TOO_SMALL, sw_surface_floater_ids(open, ids, 1, &count));
     CHECK(count == 2 && ids[0] == 7);
     FAILS(SW_ERROR_NULL_POINTER, sw_surface_floater_ids(open, ids, 4, NULL));
-    FAILS(SW_ERROR_NULL_POINTER, sw_surface_get_buoyancy(open, NULL));
+    FAILS(SW_ERROR_NULL_POINTER, sw_surface_buoyancy(open, NULL));
     FAILS(SW_ERROR_NULL_POINTER, sw_surface_set_buoyancy(open, NULL));
     FAILS(SW_ERROR_INVALID_HANDLE, sw_surface_set_buoyancy(made_up, &buoyancy));
-    SwBuoyancy bad_buoyancy = {-1.0f, 1.0f};
+    SwBuoyancy bad_buoyancy = sw_buoyancy_default();
+    bad_buoyancy.gravity = -1.0f;
     FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_set_buoyancy(open, &bad_buoyancy));
     bad_buoyancy.gravity = 0.1f;
     bad_buoyancy.density = NAN;
@@ -456,7 +465,7 @@ static void floating_bodies(void) {
 
     /* A destroyed surface's bodies are gone with it. */
     sw_surface_destroy(open);
-    FAILS(SW_ERROR_INVALID_HANDLE, sw_surface_get_floater(open, ball_id, &got));
+    FAILS(SW_ERROR_INVALID_HANDLE, sw_surface_floater(open, ball_id, &got));
     FAILS(SW_ERROR_INVALID_HANDLE, sw_surface_push_floater(open, ball_id, 1.0f, 0.0f, 0.0f));
     free(xyz);
     free(snapshot);
@@ -470,7 +479,7 @@ static SwSurface *make_surface(void) {
     params.rows = 40;
     SwSurface *surface = NULL;
     OK(sw_surface_create(&params, &surface));
-    OK(sw_surface_drop(surface, 20.0f, 15.0f, 1.0f, 3.0f));
+    OK(sw_surface_drop_at(surface, 20.0f, 15.0f, 1.0f, 3.0f));
     return surface;
 }
 
@@ -483,6 +492,64 @@ static void run_frames(SwSurface *surface, int frames) {
         OK(sw_surface_advance(surface, 1.0f / 60.0f, &substeps));
         CHECK(substeps == 1);
     }
+}
+
+/* ---- Structs that cross carry their size: the makers set it, a wrong one is refused. ---- */
+
+static void struct_sizes(void) {
+    SwParams params = sw_params_default();
+    SwLodParams lod = sw_lod_params_default();
+    SwRefraction view = sw_refraction_default();
+    SwFloater ball = sw_floater_sphere(1.0f, 1.0f, 10.0f, 0.5f, 10.0f);
+    SwBuoyancy buoyancy = sw_buoyancy_default();
+    SwJobSystem jobs = sw_job_system_default();
+    CHECK(params.struct_size == sizeof params && lod.struct_size == sizeof lod);
+    CHECK(view.struct_size == sizeof view && ball.struct_size == sizeof ball);
+    CHECK(buoyancy.struct_size == sizeof buoyancy && jobs.struct_size == sizeof jobs);
+
+    params.cols = 24;
+    params.rows = 20;
+    SwSurface *surface = NULL;
+    OK(sw_surface_create(&params, &surface));
+    SwParams unset = params;
+    unset.struct_size = 0; /* as if built field by field, without sw_params_default() */
+    SwSurface *none = NULL;
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_create(&unset, &none));
+    CHECK(none == NULL);
+    unset.struct_size = sizeof params - 4; /* a header of another version */
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_create(&unset, &none));
+    lod.struct_size += 4;
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_set_lod_params(surface, &lod));
+    view.struct_size = 0;
+    float uv[2 * 24 * 20];
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_write_refraction_uvs(surface, &view, uv, 2 * 24 * 20));
+    SwFloaterId id = 0;
+    SwFloater bad_ball = ball;
+    bad_ball.struct_size = 0;
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_add_floater(surface, &bad_ball, &id));
+    buoyancy.struct_size = 1;
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_set_buoyancy(surface, &buoyancy));
+    jobs.worker_count = 2;
+    jobs.enqueue_task = enqueue_task;
+    jobs.finish_task = finish_task;
+    jobs.struct_size = 0;
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_set_job_system(surface, &jobs));
+
+    /* The deprecated names call the new ones. */
+    OK(sw_surface_add_floater(surface, &ball, &id));
+    SwSurface *twin = NULL;
+    OK(sw_surface_create(&params, &twin));
+    OK(sw_surface_add_floater(twin, &ball, &id));
+    OK(sw_surface_drop_at(surface, 12.0f, 10.0f, 1.0f, 3.0f));
+    OK(sw_surface_drop(twin, 12.0f, 10.0f, 1.0f, 3.0f));
+    OK(sw_surface_step(surface, 5));
+    OK(sw_surface_step(twin, 5));
+    SwFloater a = {0}, b = {0};
+    OK(sw_surface_floater(surface, id, &a));
+    OK(sw_surface_get_floater(twin, id, &b));
+    CHECK(a.struct_size == sizeof a && memcmp(&a, &b, sizeof a) == 0);
+    sw_surface_destroy(twin);
+    sw_surface_destroy(surface);
 }
 
 /* ---- The fixed-step clock: 144 Hz frames step every 2.4 frames, the cap drops a stall. ---- */
@@ -623,7 +690,11 @@ int main(void) {
     JobStats stats;
     atomic_init(&stats.enqueued, 0);
     atomic_init(&stats.items, 0);
-    SwJobSystem jobs = {WORKERS, enqueue_task, finish_task, &stats};
+    SwJobSystem jobs = sw_job_system_default();
+    jobs.worker_count = WORKERS;
+    jobs.enqueue_task = enqueue_task;
+    jobs.finish_task = finish_task;
+    jobs.user_context = &stats;
     SwSurface *hosted = NULL;
     OK(sw_surface_load(snapshot, size, &hosted));
     OK(sw_surface_set_job_system(hosted, &jobs));
@@ -665,8 +736,8 @@ int main(void) {
     FAILS(SW_ERROR_INVALID_HANDLE, sw_surface_advance((SwSurface *)(uintptr_t)0x7777, 0.016f, NULL));
     FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_advance(water, NAN, NULL));
     FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_advance(water, -1.0f, NULL));
-    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_drop(water, 20.0f, 15.0f, NAN, 3.0f));
-    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_drop(water, 20.0f, 15.0f, 1.0f, 0.0f));
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_drop_at(water, 20.0f, 15.0f, NAN, 3.0f));
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_drop_at(water, 20.0f, 15.0f, 1.0f, 0.0f));
     FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_add_force_at(water, 10.0f, 10.0f, 0.0f, INFINITY, 0.0f));
     FAILS(SW_ERROR_OUTSIDE_GRID, sw_surface_add_force_at(water, -1.0f, 10.0f, 0.0f, 1.0f, 0.0f));
     FAILS(SW_ERROR_OUTSIDE_GRID, sw_surface_height_at(water, 100.0f, 0.0f, &height));
@@ -707,7 +778,11 @@ int main(void) {
     FAILS(SW_ERROR_NULL_POINTER, sw_surface_load(NULL, size, &none));
     CHECK(none == NULL);
     FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_set_simd_level(water, 9, NULL));
-    SwJobSystem bad_jobs = {0, enqueue_task, finish_task, &stats};
+    SwJobSystem bad_jobs = sw_job_system_default();
+    bad_jobs.worker_count = 0;
+    bad_jobs.enqueue_task = enqueue_task;
+    bad_jobs.finish_task = finish_task;
+    bad_jobs.user_context = &stats;
     FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_set_job_system(water, &bad_jobs));
     bad_jobs.worker_count = 2;
     bad_jobs.finish_task = NULL;
@@ -715,7 +790,10 @@ int main(void) {
     FAILS(SW_ERROR_NULL_POINTER, sw_surface_energy(water, NULL));
 
     /* A job system that runs nothing fails the step and changes nothing. */
-    SwJobSystem lazy = {2, enqueue_nothing, finish_task, &stats};
+    SwJobSystem lazy = bad_jobs;
+    lazy.worker_count = 2;
+    lazy.enqueue_task = enqueue_nothing;
+    lazy.finish_task = finish_task;
     OK(sw_surface_set_job_system(water, &lazy));
     FAILS(SW_ERROR_JOB_SYSTEM, sw_surface_step(water, 4));
     FAILS(SW_ERROR_JOB_SYSTEM, sw_surface_advance(water, 0.1f, NULL));
@@ -744,6 +822,7 @@ int main(void) {
     sw_surface_destroy(water);
     floating_bodies();
     clock_frames();
+    struct_sizes();
     free(xyz);
     free(xyz_copy);
     free(normals);
