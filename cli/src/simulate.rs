@@ -159,6 +159,13 @@ pub fn print_summary(s: &Surface, steps_run: u64, seconds: f64) -> CliResult<()>
         let rate = s.len() as f64 * steps_run as f64 / seconds;
         say!("wall time   {seconds:.3} s ({rate:.3e} node updates/s)");
     }
+    if let Some(peak) = peak_memory() {
+        let per_node = peak as f64 / s.len() as f64;
+        say!(
+            "memory      {:.1} MB peak ({per_node:.1} bytes per node)",
+            peak as f64 / 1e6
+        );
+    }
     say!(
         "simd        {} (the CPU's widest: {})",
         s.simd_level(),
@@ -177,6 +184,15 @@ pub fn print_summary(s: &Surface, steps_run: u64, seconds: f64) -> CliResult<()>
         );
     }
     Ok(())
+}
+
+/// The process's peak resident memory in bytes (`VmHWM` of `/proc/self/status`), where the
+/// system reports it (Linux).
+fn peak_memory() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
+    Some(kib * 1024)
 }
 
 /// Creates an output file, with a one-line error naming it.

@@ -104,7 +104,8 @@ pub(crate) fn step(
                     let (a, b) = if family == Family::SW { (j, i) } else { (i, j) };
                     let pa = [state.pos[0][a], state.pos[1][a], state.pos[2][a]];
                     let pb = [state.pos[0][b], state.pos[1][b], state.pos[2][b]];
-                    spring_force(pa, pb, springs.coef[fam][i], springs.rest[fam][i])
+                    let (coef, rest) = springs.get(family, i);
+                    spring_force(pa, pb, coef, rest)
                 }
                 None => [0.0; 3],
             };

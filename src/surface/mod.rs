@@ -828,11 +828,8 @@ impl Surface {
     pub fn spring(&self, id: SpringId) -> Option<Spring> {
         (id.origin < self.len() && self.grid().spring_end(id.family, id.origin).is_some()).then(
             || {
-                let f = id.family as usize;
-                Spring {
-                    rest: self.springs.rest[f][id.origin],
-                    stiffness: self.springs.coef[f][id.origin],
-                }
+                let (stiffness, rest) = self.springs.get(id.family, id.origin);
+                Spring { rest, stiffness }
             },
         )
     }
@@ -905,9 +902,9 @@ impl Surface {
                 .map(|k| (s.pos[k][j] as f64 - s.pos[k][i] as f64).powi(2))
                 .sum::<f64>()
                 .sqrt();
-            let f = id.family as usize;
-            let stretch = l - self.springs.rest[f][i] as f64;
-            potential += 0.5 * self.springs.coef[f][i] as f64 * stretch * stretch;
+            let (coef, rest) = self.springs.get(id.family, i);
+            let stretch = l - rest as f64;
+            potential += 0.5 * coef as f64 * stretch * stretch;
         }
         Energy { kinetic, potential }
     }

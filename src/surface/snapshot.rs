@@ -4,7 +4,7 @@
 use super::Surface;
 use crate::error::{Error, Result};
 use crate::floater::{Buoyancy, Floater, FloaterId, Shape};
-use crate::grid::Grid;
+use crate::grid::{Family, Grid};
 use crate::params::{self, Boundary, Params, MAX_NODES};
 use crate::simd::Floats;
 use crate::springs::Springs;
@@ -676,7 +676,18 @@ impl Surface {
         let n = self.len();
         let s = &self.state;
         let cut3 = |a: &[Floats; 3]| [a[0][..n].to_vec(), a[1][..n].to_vec(), a[2][..n].to_vec()];
-        let cut4 = |a: &[Floats; 4]| std::array::from_fn(|f| a[f][..n].to_vec());
+        let grid = self.grid();
+        // Every spring's value, 0 where the grid has no spring (as the format says).
+        let table = |value: fn((f32, f32)) -> f32| -> [Vec<f32>; 4] {
+            Family::ALL.map(|family| {
+                (0..n)
+                    .map(|i| match grid.spring_end(family, i) {
+                        Some(_) => value(self.springs.get(family, i)),
+                        None => 0.0,
+                    })
+                    .collect()
+            })
+        };
         Snapshot {
             params: *self.params(),
             steps: self.steps(),
@@ -691,8 +702,8 @@ impl Surface {
             mass: s.mass[..n].to_vec(),
             viscosity: s.viscosity[..n].to_vec(),
             pinned: s.pinned.clone(),
-            rest: cut4(&self.springs.rest),
-            stiffness: cut4(&self.springs.coef),
+            rest: table(|(_, rest)| rest),
+            stiffness: table(|(coef, _)| coef),
             floaters: self.floaters.bodies.clone(),
             next_floater_id: self.floaters.next_id,
             buoyancy: self.floaters.buoyancy,
@@ -706,7 +717,6 @@ impl Surface {
         let p = snap.params;
         let n = p.cols * p.rows;
         let mut state = State::new(&p);
-        let mut springs = Springs::new(&p);
         let fill3 = |dst: &mut [Floats; 3], src: &[Vec<f32>; 3]| {
             for (d, s) in dst.iter_mut().zip(src) {
                 d[..n].copy_from_slice(s);
@@ -723,13 +733,13 @@ impl Surface {
         state.viscosity[..n].copy_from_slice(&snap.viscosity);
         state.pinned.copy_from_slice(&snap.pinned);
         state.refresh_inv_mass();
-        for f in 0..4 {
-            springs.rest[f][..n].copy_from_slice(&snap.rest[f]);
-            springs.coef[f][..n].copy_from_slice(&snap.stiffness[f]);
-        }
         // The engine reads a family's shared (c, L0) while all its springs agree: derived
-        // from the tables, so recomputed rather than stored.
-        springs.refresh(Grid::new(p.cols, p.rows));
+        // from the tables, so recomputed rather than stored (and no tables kept then).
+        let springs = Springs::from_tables(
+            Grid::new(p.cols, p.rows),
+            std::array::from_fn(|f| snap.rest[f].as_slice()),
+            std::array::from_fn(|f| snap.stiffness[f].as_slice()),
+        );
         let bounds = [snap.min_mass, snap.max_stiffness, snap.max_viscosity];
         let mut surface = Surface::from_parts(p, state, springs, bounds, (snap.steps, snap.time));
         surface.floaters.bodies = snap.floaters;

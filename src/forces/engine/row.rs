@@ -33,7 +33,7 @@ use super::scratch::{Group, Row, RowForces};
 use super::StepConfig;
 use crate::grid::Family;
 use crate::simd::{Chunks, ChunksMut, Task, Vector};
-use crate::springs::Springs;
+use crate::springs::{Springs, Tables as SpringTables};
 
 /// The cache line the non-temporal stores fill, in bytes (x86-64).
 const CACHE_LINE: usize = 64;
@@ -413,7 +413,7 @@ impl<'a, V: Vector> Table<'a, V> {
     /// lower end, one column west of its origin, so that table is read one node on. (The
     /// tables are padded past the last node by more than a chunk.)
     #[inline(always)]
-    fn of(sp: &'a Springs, fam: Family, base: usize, chunks: usize) -> Self {
+    fn of(sp: &'a SpringTables, fam: Family, base: usize, chunks: usize) -> Self {
         let start = base + usize::from(fam == Family::SW);
         Table {
             coef: Chunks::new(&sp.coef[fam as usize], start, chunks),
@@ -424,7 +424,7 @@ impl<'a, V: Vector> Table<'a, V> {
     /// [`Table::of`] for every family. (Written out: a closure passed to `array::map`
     /// is compiled on its own, and became four calls per row.)
     #[inline(always)]
-    fn all(sp: &'a Springs, base: usize, chunks: usize) -> [Self; 4] {
+    fn all(sp: &'a SpringTables, base: usize, chunks: usize) -> [Self; 4] {
         let [e, s, se, sw] = Family::ALL;
         [
             Self::of(sp, e, base, chunks),
@@ -513,10 +513,28 @@ pub(super) fn down_springs<V: Vector>(
     }
 }
 
-/// [`down_springs`] from row `here` to row `down`, the springs' values read from their
-/// tables. (Shared values are the tables' values bit for bit, and this runs once per band
-/// and level: a second copy that keeps them in registers, as [`RowKernel::advance`] does,
-/// added a quarter to the crate's compile time for no measurable speed.)
+/// Where [`springs_down`] takes its values: the tables if the springs have them, else the
+/// shared values. One copy of the loop for both, with a branch per chunk: this runs once
+/// per band and level, and a second copy of the loop, as [`RowKernel::advance`] has,
+/// added a quarter to the crate's compile time for no measurable speed.
+enum DownValues<'a, V> {
+    Tables(Tables<'a, V>),
+    Shared(Shared<V>),
+}
+
+impl<V: Vector> SpringValues<V> for DownValues<'_, V> {
+    #[inline(always)]
+    unsafe fn at(&self, fam: Family, k: usize) -> (V, V) {
+        match self {
+            // SAFETY: the caller's contract, passed on.
+            Self::Tables(t) => unsafe { t.at(fam, k) },
+            // SAFETY: as above.
+            Self::Shared(s) => unsafe { s.at(fam, k) },
+        }
+    }
+}
+
+/// [`down_springs`] from row `here` to row `down`.
 #[inline(always)]
 fn springs_down<V: Vector, S: Source<V>>(
     inp: &Inputs<V>,
@@ -526,7 +544,11 @@ fn springs_down<V: Vector, S: Source<V>>(
     out: &mut RowForces<V>,
 ) {
     let chunks = inp.chunks();
-    let springs = Tables(Table::all(inp.springs, r * inp.cols, chunks));
+    let springs = match (inp.springs.tables(), inp.uniform) {
+        (Some(t), _) => DownValues::Tables(Tables(Table::all(t, r * inp.cols, chunks))),
+        (None, Some(shared)) => DownValues::Shared(Shared::new(shared)),
+        (None, None) => unreachable!("springs that differ have tables"),
+    };
     let edges = Edges::<V>::new(inp.cols);
     let groups = out.groups_mut(inp.cols);
     for (k, group) in groups[1..=chunks].iter_mut().enumerate() {
@@ -696,7 +718,14 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             }),
             None => V::enter(RowRun {
                 kernel: self,
-                springs: Tables(Table::all(self.inp.springs, self.base, self.chunks)),
+                springs: Tables(Table::all(
+                    self.inp
+                        .springs
+                        .tables()
+                        .expect("springs that differ have tables"),
+                    self.base,
+                    self.chunks,
+                )),
                 sent,
                 dst,
             }),
