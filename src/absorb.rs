@@ -24,15 +24,17 @@
 //!
 //! `docs/open-water.md` has the ring tests behind the choice (a bump at the centre or near
 //! a corner, compared with the same bump on a grid padded so far that nothing returns,
-//! the reflected energy taken at every step of a 300-step run): linear ramps and
-//! (1 − cos) or smoothstep onsets reflect from the front of the frame, cubic ones and
-//! lower peaks let the wave reach the pinned ring and come back, a first-order Mur
-//! condition alone reflects 0.4–4%. A quadratic frame of 32 cells with the seed's
-//! parameters reflects at most 9.5·10⁻⁴ of a 4-cell bump's energy and 1.4·10⁻⁴ of a
-//! 2-cell one's at any step (the aims are 2·10⁻³ and 5·10⁻⁴); powers between 1.8 and
-//! 2.3 do no better than 0.85 of the quadratic's worst case, so the profile stays
-//! quadratic. [`Boundary::ABSORBING_WIDTH`](crate::Boundary::ABSORBING_WIDTH) is 32.
-//! `tests/absorbing.rs` repeats the ring test on every run.
+//! the reflected energy taken after every step of a 300-step run). A frame sends waves
+//! back two ways: from its inner edge, where the damping starts (early, and worse the
+//! faster the profile rises there), and from the pinned ring behind it (late, and worse
+//! the less damping the frame holds). Linear ramps and (1 − cos) or smoothstep onsets lose
+//! on the first, cubic ones and lower peaks on the second, a first-order Mur condition
+//! alone reflects 0.4–4%. A quadratic frame of 32 cells with the seed's parameters
+//! reflects at most 9.5·10⁻⁴ of a 4-cell bump's energy and 1.4·10⁻⁴ of a 2-cell one's at
+//! any step (the aims are 2·10⁻³ and 5·10⁻⁴); the best power measured (2.2) gains 13% on
+//! the worst case, less than growing the grid from 192 to 200 nodes changes the corner
+//! case (22%), so the profile stays quadratic. [`Boundary::ABSORBING_WIDTH`](crate::Boundary::ABSORBING_WIDTH) is
+//! 32. `tests/absorbing.rs` repeats the ring test on every run.
 //!
 //! # The default width on small grids
 //!
@@ -43,8 +45,8 @@
 //! nodes across (grids of 98 nodes and more), otherwise the widest frame that leaves a
 //! middle of 32 nodes or, on grids narrower than 66 nodes, half of what lies inside the
 //! pinned ring; at least one ring. A 64² grid gets 15 rings and a 32-node middle, a 16²
-//! grid 3 rings and an 8-node middle. Narrow frames reflect more (about 5·10⁻³ of a 4-cell
-//! bump's energy at 16 rings): the fitted default is open water as good as the grid
+//! grid 3 rings and an 8-node middle. Narrow frames reflect more (about 1.2·10⁻² of a
+//! bump's energy at 15 rings): the fitted default is open water as good as the grid
 //! allows, not the 32-ring figure. Any other width is used as given and refused when it
 //! does not fit.
 //!
