@@ -15,9 +15,10 @@ pub enum Boundary {
     /// Open water: waves leave the patch instead of coming back. The outer ring is pinned
     /// and the `width` rings inside it damp outgoing waves with a quadratic viscosity
     /// profile; the frame lies inside the grid, so the undamped water is the
-    /// `(cols − 2·width) × (rows − 2·width)` middle. The default width
-    /// ([`Boundary::absorbing`], a width of [`Boundary::ABSORBING_WIDTH`]) reflects below
-    /// 10⁻³ of a ring wave's energy at every step, and fits itself to the grid: 32 rings
+    /// `(cols − 2·width) × (rows − 2·width)` middle. With 32 rings it sends back at most
+    /// 1.2·10⁻³ of a ring wave's energy at any step of the ring tests in
+    /// `docs/open-water.md`. The default width ([`Boundary::absorbing`], a width of
+    /// [`Boundary::ABSORBING_WIDTH`]) fits itself to the grid: 32 rings
     /// where that leaves a middle of at least 32 nodes (grids of 98 nodes across or more),
     /// otherwise the widest frame that leaves 32 nodes, or half of what lies inside the
     /// pinned ring on grids narrower than 66 (15 rings on a 64² grid, 3 on 16²). Any other
