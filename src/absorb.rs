@@ -33,13 +33,14 @@
 //! reflects at most 9.5·10⁻⁴ of a 4-cell bump's energy and 1.4·10⁻⁴ of a 2-cell one's at
 //! any step (the aims are 2·10⁻³ and 5·10⁻⁴); the best power measured (2.2) gains 13% on
 //! the worst case, less than growing the grid from 192 to 200 nodes changes the corner
-//! case (22%), so the profile stays quadratic. [`Boundary::ABSORBING_WIDTH`](crate::Boundary::ABSORBING_WIDTH) is
-//! 32. `tests/absorbing.rs` repeats the ring test on every run.
+//! case (22%), so the profile stays quadratic.
+//! [`Boundary::ABSORBING_WIDTH`](crate::Boundary::ABSORBING_WIDTH) is 32.
+//! `tests/absorbing.rs` repeats the ring test on every run.
 //!
 //! # The default width on small grids
 //!
-//! A frame of 32 rings needs a grid of at least 66 nodes across and leaves nothing
-//! undamped there. The default width ([`Boundary::absorbing`](crate::Boundary::absorbing),
+//! A frame of 32 rings needs a grid of at least 66 nodes across and leaves a middle of 2
+//! nodes there. The default width ([`Boundary::absorbing`](crate::Boundary::absorbing),
 //! a width equal to `ABSORBING_WIDTH`) therefore fits itself to the grid
 //! ([`default_width`]): 32 rings where that leaves an undamped middle of at least 32
 //! nodes across (grids of 98 nodes and more), otherwise the widest frame that leaves a
