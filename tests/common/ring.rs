@@ -11,9 +11,9 @@
 
 use springwater::{Boundary, Params, Surface};
 
-/// Steps in the time window (the ring crosses about 0.65 cells per step: in 300 steps the
-/// ring from a bump at the centre of a 128-node middle reaches the pinned ring 32 cells
-/// further out, and what the wall sends back is inside the middle again by step 200).
+/// Steps in the time window (the ring crosses about 0.65 cells per step: from the centre
+/// of a 192² grid with a 32-ring frame, what the pinned ring sends back is inside the
+/// undamped middle again by step 250).
 pub const WINDOW: usize = 300;
 /// Steps between the samples of the plot (`examples/ring_test.rs`); the reflection is
 /// taken at every step.
