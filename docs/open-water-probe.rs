@@ -2,6 +2,12 @@
 //! reference run). Measurement code, not shipped. See the report for the method.
 //!
 //! Usage: absorb-probe <mode>   mode = limit | pad | walls | sweep | mur | all
+//!        absorb-probe instant N STEPS W GMAX SHAPE   (SHAPE = a power, cos, smooth, f<share>)
+//!
+//! `instant` is the 300-step table of docs/open-water.md: the reflected energy after every
+//! step (its largest value, the largest over every 4th step, the step it peaks at) for the
+//! four cases, and at the last step the measures it was compared with (rms height of the
+//! difference in the middle against a pinned wall's, energy against the wall's).
 use springwater::{Boundary, Params, Surface};
 
 const M: f64 = 4.0;
@@ -432,6 +438,16 @@ fn main() {
             },
             &ws,
         ),
+        "instant" => {
+            let a: Vec<String> = std::env::args().collect();
+            let shape = match a[6].as_str() {
+                "cos" => Shape::Cos,
+                "smooth" => Shape::Smooth,
+                x if x.starts_with('f') => Shape::Onset(x[1..].parse().unwrap()),
+                x => Shape::Power(x.parse().unwrap()),
+            };
+            instant(a[2].parse().unwrap(), a[3].parse().unwrap(), a[4].parse().unwrap(), a[5].parse().unwrap(), shape);
+        }
         "cands" => {
             // CANDS="frame:28:2:2.4,mur:24:2:1.2"
             let list: Vec<Edge> = std::env::var("CANDS").unwrap().split(',').map(|c| {
@@ -449,4 +465,103 @@ fn main() {
             pad_check();
         }
     }
+}
+
+/// Shapes of the frame's profile over `s = (W − d)/W` (0 at the frame's inner edge, 1 at
+/// the pinned ring), each times γmax.
+#[derive(Clone, Copy, Debug)]
+enum Shape {
+    /// `s^p`.
+    Power(f64),
+    /// `(1 − cos πs)/2`: zero slope at both ends.
+    Cos,
+    /// `3s² − 2s³` (smoothstep).
+    Smooth,
+    /// Smoothstep over the inner `share` of the frame, flat at γmax beyond.
+    Onset(f64),
+}
+
+fn shaped(shape: Shape, w: usize, gmax: f32, d: usize) -> f32 {
+    if d == 0 || d >= w {
+        return 0.0;
+    }
+    let s = (w - d) as f64 / w as f64;
+    let v = match shape {
+        Shape::Power(p) => s.powf(p),
+        Shape::Cos => 0.5 * (1.0 - (std::f64::consts::PI * s).cos()),
+        Shape::Smooth => s * s * (3.0 - 2.0 * s),
+        Shape::Onset(f) => {
+            let t = (s / f).min(1.0);
+            t * t * (3.0 - 2.0 * t)
+        }
+    };
+    (gmax as f64 * v) as f32
+}
+
+/// The ring test taken at every step: the frame (`shape`, width `w`, `gmax`) on an `n × n`
+/// grid, a pinned pool of the same size and the padded reference stepped side by side.
+fn instant(n: usize, steps: usize, w: usize, gmax: f32, shape: Shape) {
+    let mut line = format!("n {n} steps {steps} W {w} gmax {gmax} {shape:?}:");
+    for (radius, pos) in [(4.0f32, Pos::Centre), (4.0, Pos::Corner), (2.0, Pos::Centre), (2.0, Pos::Corner)] {
+        let (sx, sz) = source(n, w, pos);
+        let reach = VMAX * steps as f64 - sx as f64 - w.max(1) as f64;
+        let pad = (reach / 2.0).max(0.0).ceil() as usize + 12;
+        let big = n + 2 * pad;
+        let mut refr = Surface::new(base_params(big, Boundary::Pinned)).unwrap();
+        refr.drop_at(sx + pad as f32, sz + pad as f32, height(), radius).unwrap();
+        let all = |_: usize, _: usize| true;
+        let (y0, v0) = window(&refr, big, 0);
+        let e0 = lin_energy(big, &y0, &v0, &all);
+        let mut open = Surface::new(base_params(n, Boundary::Pinned)).unwrap();
+        let mut wall = Surface::new(base_params(n, Boundary::Pinned)).unwrap();
+        for r in 0..n {
+            for c in 0..n {
+                open.set_viscosity(r * n + c, shaped(shape, w, gmax, dist_edge(n, c, r))).unwrap();
+            }
+        }
+        open.drop_at(sx, sz, height(), radius).unwrap();
+        wall.drop_at(sx, sz, height(), radius).unwrap();
+        let middle = |c: usize, r: usize| dist_edge(n, c, r) >= w.max(1);
+        let diff = |s: &Surface, refr: &Surface| {
+            let ((y, v), (ry, rv)) = (window(s, n, 0), window(refr, n, pad));
+            let dy: Vec<f64> = y.iter().zip(&ry).map(|(a, b)| a - b).collect();
+            let dv: Vec<f64> = v.iter().zip(&rv).map(|(a, b)| a - b).collect();
+            (dy, dv)
+        };
+        let (mut worst, mut every4, mut at) = (0.0f64, 0.0f64, 0);
+        for t in 1..=steps {
+            refr.step().unwrap();
+            open.step().unwrap();
+            wall.step().unwrap();
+            let (dy, dv) = diff(&open, &refr);
+            let e = lin_energy(n, &dy, &dv, &middle) / e0;
+            if e > worst {
+                worst = e;
+                at = t;
+            }
+            if t % SAMPLE == 0 {
+                every4 = every4.max(e);
+            }
+        }
+        let ((ay, av), (wy, wv)) = (diff(&open, &refr), diff(&wall, &refr));
+        let rms = |y: &[f64]| {
+            let mut s = 0.0;
+            for r in 0..n {
+                for c in 0..n {
+                    if middle(c, r) {
+                        s += y[r * n + c] * y[r * n + c];
+                    }
+                }
+            }
+            s
+        };
+        let (ea, ew) = (lin_energy(n, &ay, &av, &middle), lin_energy(n, &wy, &wv, &middle));
+        line += &format!(
+            " | r{radius} {pos:?}: worst {worst:.2e} (step {at}), every 4th {every4:.2e}; last step: rms height vs wall {:.3}, energy vs wall {:.1e}, energy vs bump {:.1e}",
+            (rms(&ay) / rms(&wy)).sqrt(),
+            ea / ew,
+            ea / e0
+        );
+    }
+    println!("{line}");
 }

@@ -23,13 +23,33 @@
 //! # Chosen by measurement
 //!
 //! `docs/open-water.md` has the ring tests behind the choice (a bump at the centre or near
-//! a corner, compared with the same bump on a grid padded so far that nothing returns):
-//! linear ramps reflect from where the damping starts, cubic ones need more damping than
-//! the timestep allows, a first-order Mur condition alone reflects 0.4–4%. A quadratic
-//! frame of 32 cells with the seed's parameters reflects at most 9.5·10⁻⁴ of a 4-cell
-//! bump's energy and 1.3·10⁻⁴ of a 2-cell one; 28 cells just meet the same bars (2·10⁻³,
-//! 5·10⁻⁴), so [`Boundary::ABSORBING_WIDTH`](crate::Boundary::ABSORBING_WIDTH) is 32.
+//! a corner, compared with the same bump on a grid padded so far that nothing returns,
+//! the reflected energy taken after every step of a 300-step run). A frame sends waves
+//! back two ways: from its inner edge, where the damping starts (early, and worse the
+//! faster the profile rises there), and from the pinned ring behind it (late, and worse
+//! the less damping the frame holds). Linear ramps and (1 − cos) or smoothstep onsets lose
+//! on the first, cubic ones and lower peaks on the second, a first-order Mur condition
+//! alone reflects 0.4–4%. A quadratic frame of 32 cells with the seed's parameters
+//! reflects at most 9.5·10⁻⁴ of a 4-cell bump's energy and 1.4·10⁻⁴ of a 2-cell one's at
+//! any step (the aims are 2·10⁻³ and 5·10⁻⁴); the best power measured (2.2) gains 13% on
+//! the worst case, less than growing the grid from 192 to 200 nodes changes the corner
+//! case (22%), so the profile stays quadratic.
+//! [`Boundary::ABSORBING_WIDTH`](crate::Boundary::ABSORBING_WIDTH) is 32.
 //! `tests/absorbing.rs` repeats the ring test on every run.
+//!
+//! # The default width on small grids
+//!
+//! A frame of 32 rings needs a grid of at least 66 nodes across and leaves a middle of 2
+//! nodes there. The default width ([`Boundary::absorbing`](crate::Boundary::absorbing),
+//! a width equal to `ABSORBING_WIDTH`) therefore fits itself to the grid
+//! ([`default_width`]): 32 rings where that leaves an undamped middle of at least 32
+//! nodes across (grids of 98 nodes and more), otherwise the widest frame that leaves a
+//! middle of 32 nodes or, on grids narrower than 66 nodes, half of what lies inside the
+//! pinned ring; at least one ring. A 64² grid gets 15 rings and a 32-node middle, a 16²
+//! grid 3 rings and an 8-node middle. Narrow frames reflect more (about 1.2·10⁻² of a
+//! bump's energy at 15 rings): the fitted default is open water as good as the grid
+//! allows, not the 32-ring figure. Any other width is used as given and refused when it
+//! does not fit.
 //!
 //! # The peak damping and the critical timestep
 //!
@@ -62,6 +82,31 @@ pub(crate) struct Frame {
     pub peak: f32,
 }
 
+/// Smallest undamped middle, in nodes across, that the default width leaves on grids of
+/// 66 nodes or more.
+const MIN_MIDDLE: usize = 32;
+
+/// The default frame's width on a grid whose narrower side is `across` nodes: 32 rings, or
+/// the widest frame that leaves a middle of `min(32, (across − 2) / 2)` nodes (at least 1
+/// ring). `None` when no frame fits (fewer than 4 nodes across).
+pub(crate) fn default_width(across: usize) -> Option<usize> {
+    let inside = across.checked_sub(2)?;
+    let middle = MIN_MIDDLE.min(inside / 2);
+    let width = ((inside - middle) / 2).clamp(1, crate::Boundary::ABSORBING_WIDTH);
+    (2 * width + 2 <= across).then_some(width)
+}
+
+/// The frame width an absorbing boundary asking for `width` rings gets on a `cols × rows`
+/// grid: [`default_width`] for the default width, `width` itself otherwise (validation
+/// refuses widths that do not fit).
+pub(crate) fn frame_width(width: usize, cols: usize, rows: usize) -> usize {
+    if width == crate::Boundary::ABSORBING_WIDTH {
+        default_width(cols.min(rows)).unwrap_or(width)
+    } else {
+        width
+    }
+}
+
 /// Peak damping rate `b = γ/m` of the seed's lattice, per unit of model time: the measured
 /// best of `docs/open-water.md`.
 const SEED_PEAK_RATE: f64 = 0.6;
@@ -70,8 +115,10 @@ const SEED_PEAK_RATE: f64 = 0.6;
 const LIMIT_SHARE: f64 = 0.75;
 
 impl Frame {
-    /// The frame of an absorbing boundary `width` cells wide for `params`.
+    /// The frame of an absorbing boundary asking for `width` cells for `params` (the default
+    /// width fitted to the grid, see [`frame_width`]).
     pub fn new(params: &Params, width: usize) -> Self {
+        let width = frame_width(width, params.cols, params.rows);
         let (m, c, dt) = (
             params.mass as f64,
             params.stiffness as f64,
@@ -89,7 +136,8 @@ impl Frame {
         }
     }
 
-    /// Extra viscosity `d` cells from the outer edge (0 from `d = W` on).
+    /// Extra viscosity `d` cells from the outer edge (0 from `d = W` on): the profile is a
+    /// function of the distance from the edge only.
     pub fn viscosity(&self, d: usize) -> f32 {
         if d >= self.width {
             return 0.0;

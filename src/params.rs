@@ -15,11 +15,17 @@ pub enum Boundary {
     /// Open water: waves leave the patch instead of coming back. The outer ring is pinned
     /// and the `width` rings inside it damp outgoing waves with a quadratic viscosity
     /// profile; the frame lies inside the grid, so the undamped water is the
-    /// `(cols − 2·width) × (rows − 2·width)` middle. It reflects below 10⁻³ of a ring
-    /// wave's energy at the default width ([`Boundary::ABSORBING_WIDTH`]). The
-    /// frame's damping is fitted to the timestep, so it never makes a valid timestep
-    /// invalid; the grid must be at least `2·width + 2` nodes across. How it works and how
-    /// it was chosen: see the crate's `absorb` module source and `docs/open-water.md`.
+    /// `(cols − 2·width) × (rows − 2·width)` middle. With 32 rings it sends back at most
+    /// 1.2·10⁻³ of a ring wave's energy at any step of the ring tests in
+    /// `docs/open-water.md`. The default width ([`Boundary::absorbing`], a width of
+    /// [`Boundary::ABSORBING_WIDTH`]) fits itself to the grid: 32 rings
+    /// where that leaves a middle of at least 32 nodes (grids of 98 nodes across or more),
+    /// otherwise the widest frame that leaves 32 nodes, or half of what lies inside the
+    /// pinned ring on grids narrower than 66 (15 rings on a 64² grid, 3 on 16²). Any other
+    /// width is used as given; the grid must then be at least `2·width + 2` nodes across.
+    /// The frame's damping is fitted to the timestep, so it never makes a valid timestep
+    /// invalid. How it works and how it was chosen: see the crate's `absorb` module source
+    /// and `docs/open-water.md`.
     Absorbing {
         /// Rings of damping inside the pinned outer ring (≥ 1).
         width: usize,
@@ -27,10 +33,12 @@ pub enum Boundary {
 }
 
 impl Boundary {
-    /// The default width of an absorbing frame: 32 rings.
+    /// The default width of an absorbing frame: 32 rings, narrower on grids under 98 nodes
+    /// across (see [`Boundary::Absorbing`]).
     pub const ABSORBING_WIDTH: usize = 32;
 
-    /// An absorbing boundary with the default frame width.
+    /// An absorbing boundary with the default frame width, fitted to the grid (see
+    /// [`Boundary::Absorbing`]).
     pub const fn absorbing() -> Self {
         Self::Absorbing {
             width: Self::ABSORBING_WIDTH,
@@ -272,11 +280,12 @@ impl Params {
         positive("time_scale", self.time_scale)?;
         if let Boundary::Absorbing { width } = self.boundary {
             let across = self.cols.min(self.rows);
-            if width == 0 || across < width.saturating_mul(2).saturating_add(2) {
+            let fitted = crate::absorb::frame_width(width, self.cols, self.rows);
+            if fitted == 0 || across < fitted.saturating_mul(2).saturating_add(2) {
                 return Err(Error::InvalidParam {
                     name: "absorbing width",
                     value: width as f64,
-                    expected: "at least 1, and at most (min(cols, rows) − 2) / 2 so that some water is left undamped",
+                    expected: "at least 1 and at most (min(cols, rows) − 2) / 2: choose a narrower frame or a larger grid, or the default width, which fits itself to grids of 4 nodes across or more",
                 });
             }
         }
