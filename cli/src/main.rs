@@ -48,7 +48,8 @@ model flags (seed defaults):
   --spacing H          grid step (1.0)
   --boundary pinned|free|absorbing[:W]
                        edge condition (pinned); absorbing: open water, a damping
-                       frame W cells wide inside the grid (32)
+                       frame W cells wide inside the grid (32, fewer on grids
+                       under 98 nodes across)
   --drop COL,ROW,HEIGHT,RADIUS   add a drop (repeatable)
   --threads N          worker threads (all cores)
 

@@ -314,7 +314,7 @@ fn a_run_that_goes_non_finite_fails_in_one_line_and_leaves_no_outputs() {
 fn open_water_and_floater_flags_are_checked() {
     refused(&["simulate", "--boundary", "absorbing:0"], "--boundary");
     refused(
-        &["simulate", "--size", "40x40", "--boundary", "absorbing"],
+        &["simulate", "--size", "40x40", "--boundary", "absorbing:20"],
         "absorbing width",
     );
     refused(&["simulate", "--boundary", "absorbing:x"], "WIDTH");

@@ -48,8 +48,10 @@ typedef struct SwParams {
   SwBoundary boundary;
   // Rings of damping of an `SW_BOUNDARY_ABSORBING` boundary, inside its pinned outer
   // ring: at least 1, and the grid must be at least `2 · absorbing_width + 2` nodes
-  // across (32 in `sw_params_default()`, the width that reflects below 10⁻³ of a ring
-  // wave's energy). Ignored by the other boundaries, which read it back as 32.
+  // across. 32 in `sw_params_default()`: the default width, which fits itself to grids
+  // under 98 nodes across (15 rings on 64², 3 on 16²) and reflects at most 1.2·10⁻³ of a
+  // ring wave's energy at 32 rings. Ignored by the other boundaries, which read it back
+  // as 32.
   uint32_t absorbing_width;
 } SwParams;
 
