@@ -11,6 +11,7 @@ macro_rules! say {
 }
 
 mod args;
+mod bake;
 mod bench;
 mod export;
 mod image;
@@ -36,6 +37,11 @@ commands:
   export     write the frame as a Wavefront OBJ (positions, normals, refraction UVs,
              LOD triangles)   --eye X,Y,Z --depth D [--ior N] --obj FILE
                               [--patch-cells N] [--first-range R] [--levels L]
+  bake       write an animation cache for Blender, game engines and DCC tools
+             --frames N (48) --fps F (24) --out FILE.glb | FILE.mdd | FILE.pc2 | DIR
+             [--eye X,Y,Z: LOD triangles for that eye, refraction UVs seen from it]
+             [--depth D] [--ior N] [--floater X,Z,MASS,RADIUS] [--rain RATE]
+             [--seed S] [--wake] [--load FILE]; --steps N: warm-up steps (0)
 
 model flags (seed defaults):
   --size COLSxROWS     grid size (128x128)
@@ -113,9 +119,10 @@ fn run() -> args::CliResult<()> {
         "bench" => bench::run(&mut p),
         "render" => render::run(&mut p),
         "export" => export::run(&mut p),
+        "bake" => bake::run(&mut p),
         "help" => write_out(format_args!("{USAGE}")),
         other => Err(format!(
-            "unknown command '{other}' (render, simulate, bench, export; see springwater --help)"
+            "unknown command '{other}' (render, simulate, bench, export, bake; see springwater --help)"
         )),
     }
 }

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 /// Model flags whose values a snapshot already holds.
-const MODEL_FLAGS: [&str; 8] = [
+pub const MODEL_FLAGS: [&str; 8] = [
     "size",
     "dt",
     "mass",
