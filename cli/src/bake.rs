@@ -177,6 +177,8 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         w
     });
 
+    let calm = model.drops.is_empty() && floaters.is_empty() && rain.is_none() && wake.is_none();
+    let calm = calm && load.is_none();
     let params = *surface.params();
     let (cols, rows) = (params.cols, params.rows);
     let width = (cols - 1) as f32 * h;
@@ -281,6 +283,12 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     }
     if format == Format::Directory {
         say!("wrote {frames} OBJ files to {}", out.display());
+    }
+    if calm {
+        eprintln!(
+            "springwater: note: nothing disturbed the water (no --drop, --rain, --wake, \
+             --floater or --load): every frame is the calm surface"
+        );
     }
     Ok(())
 }
