@@ -186,6 +186,12 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     // Without --eye the texture coordinates are seen from straight above the middle.
     let uv_eye = glam::Vec3::from(eye.unwrap_or([0.5 * width, width.max(length), 0.5 * length]));
 
+    // An unwritable path fails now, before any step (the writers create the files again
+    // once the rest frame is known, after the warm-up steps).
+    if let Err(e) = probe(&out, format) {
+        remove_outputs(&out, format);
+        return Err(e.to_string());
+    }
     let started = Instant::now();
     let bar = progress(frames as u64, "frames");
     let outcome = model.with_threads(|| -> CliResult<()> {
@@ -304,6 +310,18 @@ fn outputs(out: &Path, format: Format) -> Vec<PathBuf> {
         Format::Glb => vec![out.to_path_buf()],
         Format::Mdd | Format::Pc2 => vec![out.to_path_buf(), rest_obj_path(out)],
         Format::Directory => Vec::new(),
+    }
+}
+
+/// Creates the outputs (empty) or the directory, to find an unwritable path early.
+fn probe(out: &Path, format: Format) -> std::io::Result<()> {
+    match format {
+        Format::Directory => std::fs::create_dir_all(out).map_err(|e| {
+            std::io::Error::new(e.kind(), format!("cannot create {}: {e}", out.display()))
+        }),
+        _ => outputs(out, format)
+            .iter()
+            .try_for_each(|path| create_io(path).map(drop)),
     }
 }
 

@@ -407,3 +407,55 @@ fn the_khronos_validator_finds_no_error_and_no_warning() {
         assert!(report.contains("errors 0 warnings 0"), "{report}");
     }
 }
+
+#[test]
+fn a_bake_continues_from_a_snapshot() {
+    let snap = scratch("start.snap");
+    ok(&[
+        "simulate",
+        "--size",
+        "33x21",
+        "--drop",
+        "16,10,1,3",
+        "--steps",
+        "4",
+        "--save",
+        snap.to_str().unwrap(),
+    ]);
+    let cache = scratch("loaded.pc2");
+    ok(&[
+        "bake",
+        "--load",
+        snap.to_str().unwrap(),
+        "--frames",
+        "3",
+        "--fps",
+        "60",
+        "--out",
+        cache.to_str().unwrap(),
+    ]);
+    let csv = scratch("loaded.csv");
+    ok(&[
+        "simulate",
+        "--load",
+        snap.to_str().unwrap(),
+        "--steps",
+        "3",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    let want: Vec<f32> = std::fs::read_to_string(&csv)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .flat_map(|l| {
+            l.split(',')
+                .skip(2)
+                .map(|s| s.parse::<f32>().unwrap())
+                .collect::<Vec<_>>()
+        })
+        .collect();
+    let bytes = std::fs::read(&cache).unwrap();
+    let last = &bytes[32 + 2 * NODES * 12..];
+    assert_eq!(f32s(last, false), want, "frame 3 after the snapshot");
+}
