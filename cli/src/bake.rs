@@ -193,6 +193,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         return Err(e.to_string());
     }
     let started = Instant::now();
+    let interrupted = crate::simulate::on_interrupt();
     let bar = progress(frames as u64, "frames");
     let outcome = model.with_threads(|| -> CliResult<()> {
         if model.steps > 0 {
@@ -254,6 +255,12 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             Format::Directory => Box::new(obj::Sequence::create(&out, &rest).map_err(&fail)?),
         };
         for k in 1..=frames {
+            // A cache cut short would not say it was: Ctrl-C leaves no file behind.
+            if interrupted.load(std::sync::atomic::Ordering::Relaxed) {
+                return Err(format!(
+                    "interrupted at frame {k} of {frames}; the partial cache was removed"
+                ));
+            }
             let step = match (&mut rain, &mut wake) {
                 (None, None) => surface.advance(1.0 / fps),
                 _ => surface.advance_with(1.0 / fps, &mut (&mut rain, &mut wake)),

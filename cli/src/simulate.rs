@@ -134,7 +134,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
 
 /// A flag that Ctrl-C (SIGINT, or SIGTERM) raises: the steps stop at the next one and the
 /// outputs are written as the run left them. A second Ctrl-C ends the process at once.
-fn on_interrupt() -> Arc<AtomicBool> {
+pub fn on_interrupt() -> Arc<AtomicBool> {
     let flag = Arc::new(AtomicBool::new(false));
     let raised = flag.clone();
     // Without a handler (it cannot be installed twice) Ctrl-C ends the run as before.

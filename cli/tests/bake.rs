@@ -459,3 +459,38 @@ fn a_bake_continues_from_a_snapshot() {
     let last = &bytes[32 + 2 * NODES * 12..];
     assert_eq!(f32s(last, false), want, "frame 3 after the snapshot");
 }
+
+#[test]
+fn ctrl_c_stops_a_bake_and_leaves_no_partial_file() {
+    let cache = scratch("interrupted.pc2");
+    let child = Command::new(env!("CARGO_BIN_EXE_springwater"))
+        .args([
+            "bake",
+            "--size",
+            "9x9",
+            "--drop",
+            "4,4,1,2",
+            "--frames",
+            "900000",
+            "--fps",
+            "60",
+            "--out",
+            cache.to_str().unwrap(),
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(600));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("interrupted at frame"), "{err}");
+    assert!(!cache.exists() && !cache.with_extension("obj").exists());
+}
