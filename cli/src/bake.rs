@@ -199,31 +199,19 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         if model.steps > 0 {
             crate::simulate::run_steps(&mut surface, model.steps)?;
         }
-        let mut normals = Normals::new();
-        let mut uv = Refraction::default();
+        let mut shading = Shading::new(uv_eye, optics);
+        shading.update(&surface)?;
+        // The triangles: full detail, or for a .glb baked for an eye, that eye's LOD.
+        let levels = if eye.is_some() && format == Format::Glb {
+            LodParams::default().levels
+        } else {
+            1
+        };
         let mut lod = LodMesh::new(LodParams {
-            levels: if eye.is_some() && format == Format::Glb {
-                LodParams::default().levels
-            } else {
-                1
-            },
+            levels,
             ..LodParams::default()
         })
         .map_err(lib_error)?;
-        let mut centres: Vec<[f32; 3]> = Vec::new();
-        let shade = |s: &Surface,
-                     normals: &mut Normals,
-                     uv: &mut Refraction,
-                     centres: &mut Vec<[f32; 3]>|
-         -> CliResult<()> {
-            let view = s.mesh_view();
-            compute_normals(&view, normals);
-            refract(&view, normals, uv_eye, &optics, uv).map_err(|e| format!("bake: {e}"))?;
-            centres.clear();
-            centres.extend(s.floaters().map(|(_, f)| f.position.to_array()));
-            Ok(())
-        };
-        shade(&surface, &mut normals, &mut uv, &mut centres)?;
         lod.update(&surface.mesh_view(), uv_eye);
         let rest = Rest {
             indices: lod.indices().to_vec(),
@@ -231,12 +219,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             rows,
         };
         let fail = |e: std::io::Error| e.to_string();
-        let first = Frame {
-            positions: surface.positions(),
-            normals: &normals,
-            uv: &uv,
-            floaters: &centres,
-        };
+        let first = shading.frame(&surface);
         let mut writer: Box<dyn Writer> = match format {
             Format::Glb => {
                 Box::new(glb::Glb::create(&out, &rest, &first, frames, fps).map_err(&fail)?)
@@ -266,15 +249,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                 _ => surface.advance_with(1.0 / fps, &mut (&mut rain, &mut wake)),
             };
             step.map_err(|e| format!("frame {k}: {e}"))?;
-            shade(&surface, &mut normals, &mut uv, &mut centres)?;
-            let frame = Frame {
-                positions: surface.positions(),
-                normals: &normals,
-                uv: &uv,
-                floaters: &centres,
-            };
+            shading.update(&surface)?;
             writer
-                .frame(k, &frame)
+                .frame(k, &shading.frame(&surface))
                 .map_err(|e| format!("frame {k}: {}", fail(e)))?;
             bar.inc(1);
         }
@@ -304,6 +281,50 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         );
     }
     Ok(())
+}
+
+/// What a frame needs beyond the positions, computed from the surface after each frame
+/// into buffers that keep their capacity.
+struct Shading {
+    eye: glam::Vec3,
+    optics: RefractionParams,
+    normals: Normals,
+    uv: Refraction,
+    floaters: Vec<[f32; 3]>,
+}
+
+impl Shading {
+    fn new(eye: glam::Vec3, optics: RefractionParams) -> Self {
+        Self {
+            eye,
+            optics,
+            normals: Normals::new(),
+            uv: Refraction::default(),
+            floaters: Vec::new(),
+        }
+    }
+
+    /// Normals, refraction UVs and floater centres for the surface as it is.
+    fn update(&mut self, s: &Surface) -> CliResult<()> {
+        let view = s.mesh_view();
+        compute_normals(&view, &mut self.normals);
+        refract(&view, &self.normals, self.eye, &self.optics, &mut self.uv)
+            .map_err(|e| format!("bake: {e}"))?;
+        self.floaters.clear();
+        self.floaters
+            .extend(s.floaters().map(|(_, f)| f.position.to_array()));
+        Ok(())
+    }
+
+    /// The frame the writers take: `s`'s positions with what [`Shading::update`] computed.
+    fn frame<'a>(&'a self, s: &'a Surface) -> Frame<'a> {
+        Frame {
+            positions: s.positions(),
+            normals: &self.normals,
+            uv: &self.uv,
+            floaters: &self.floaters,
+        }
+    }
 }
 
 /// The rest mesh OBJ written beside a point cache: `water.mdd` → `water.obj`.

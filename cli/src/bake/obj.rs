@@ -36,7 +36,7 @@ pub fn write(path: &Path, title: &str, rest: &Rest, frame: &Frame) -> std::io::R
 /// One OBJ per frame in a directory.
 pub struct Sequence {
     dir: PathBuf,
-    indices: Rest,
+    rest: Rest,
 }
 
 impl Sequence {
@@ -49,7 +49,7 @@ impl Sequence {
         create_io(&first)?;
         Ok(Self {
             dir: dir.to_path_buf(),
-            indices: Rest {
+            rest: Rest {
                 indices: rest.indices.clone(),
                 cols: rest.cols,
                 rows: rest.rows,
@@ -66,7 +66,7 @@ pub fn frame_path(dir: &Path, k: usize) -> PathBuf {
 impl Writer for Sequence {
     fn frame(&mut self, k: usize, frame: &Frame) -> std::io::Result<()> {
         let title = format!("springwater bake: frame {k}");
-        write(&frame_path(&self.dir, k), &title, &self.indices, frame)
+        write(&frame_path(&self.dir, k), &title, &self.rest, frame)
     }
 
     fn finish(self: Box<Self>) -> std::io::Result<()> {
