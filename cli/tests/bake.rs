@@ -494,3 +494,52 @@ fn ctrl_c_stops_a_bake_and_leaves_no_partial_file() {
     assert!(err.contains("interrupted at frame"), "{err}");
     assert!(!cache.exists() && !cache.with_extension("obj").exists());
 }
+
+#[test]
+fn a_frame_is_the_substeps_advance_takes() {
+    // At 24 fps a frame is several substeps shorter than the timestep: the bake says how
+    // many and how long, and `simulate` with that timestep lands on the same bits.
+    let dir = scratch("fps24");
+    let report = ok(&[
+        "bake",
+        "--size",
+        "17x17",
+        "--drop",
+        "8,8,1,2",
+        "--frames",
+        "2",
+        "--fps",
+        "24",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    let words: Vec<&str> = report.split_whitespace().collect();
+    let at = words.iter().position(|&w| w == "substeps").unwrap();
+    let (substeps, dt): (usize, &str) = (words[at - 1].parse().unwrap(), words[at + 2]);
+    assert!(substeps > 1, "{report}");
+    let csv = scratch("fps24.csv");
+    let steps = (2 * substeps).to_string();
+    ok(&[
+        "simulate",
+        "--size",
+        "17x17",
+        "--drop",
+        "8,8,1,2",
+        "--steps",
+        &steps,
+        "--dt",
+        dt,
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    let want: Vec<[f32; 3]> = std::fs::read_to_string(&csv)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let f: Vec<f32> = l.split(',').skip(2).map(|s| s.parse().unwrap()).collect();
+            [f[0], f[1], f[2]]
+        })
+        .collect();
+    assert_eq!(obj_positions(&dir.join("water_0002.obj")), want);
+}
