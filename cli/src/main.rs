@@ -31,6 +31,8 @@ commands:
              floating balls: --floater X,Z,MASS,RADIUS (repeatable; world units,
              released at rest on the calm surface; one summary line each)
              continue from a snapshot: simulate --load FILE --steps N [--drop …]
+             a progress bar on a terminal; Ctrl-C stops at the step reached and
+             still writes --csv and --save
   bench      time the step against the scalar reference, a naive AoS
              baseline and a memory-bandwidth floor    [--repeats N] [--compare LIST]
                                                       [--band-rows H]
@@ -56,7 +58,7 @@ model flags (seed defaults):
                        edge condition (pinned); absorbing: open water, a damping
                        frame W cells wide inside the grid (32)
   --drop COL,ROW,HEIGHT,RADIUS   add a drop (repeatable)
-  --threads N          worker threads (all cores)
+  --threads N          worker threads (all cores; more than the cores are capped)
 
 render flags (defaults in brackets):
   --out FILE.gif       the animation (a looping GIF, one median-cut palette)

@@ -467,13 +467,14 @@ fn ctrl_c_stops_a_bake_and_leaves_no_partial_file() {
         .args([
             "bake",
             "--size",
-            "9x9",
+            "5x5",
             "--drop",
-            "4,4,1,2",
+            "2,2,1,1",
             "--frames",
             "900000",
+            // 1200 steps a frame: a few thousand frames a second, a few MB a second.
             "--fps",
-            "60",
+            "0.05",
             "--out",
             cache.to_str().unwrap(),
         ])
@@ -481,7 +482,7 @@ fn ctrl_c_stops_a_bake_and_leaves_no_partial_file() {
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(600));
+    std::thread::sleep(std::time::Duration::from_millis(1500));
     let status = Command::new("kill")
         .args(["-INT", &child.id().to_string()])
         .status()
