@@ -52,8 +52,9 @@ pub enum Error {
 
     /// The timestep is at or past the critical timestep of the lattice.
     #[error(
-        "timestep {dt} is at or past the critical timestep {critical:.4} for these parameters; \
-         use dt < {critical:.4} (for example {suggest:.3}), raise the mass or lower the stiffness"
+        "timestep {dt} is at or past the critical timestep {} for these parameters; \
+         use dt < {} (for example {}), raise the mass or lower the stiffness",
+        Decimals(*.critical, 4), Decimals(*.critical, 4), Decimals(*.suggest, 3)
     )]
     TimestepTooLarge {
         /// The timestep that was asked for.
@@ -227,5 +228,21 @@ pub(crate) fn same_length(what: &'static str, got: usize, expected: usize) -> Re
             got,
             expected,
         })
+    }
+}
+
+/// A number for a message: `digits` decimals, or, where that would leave fewer than three
+/// significant digits (a critical timestep of 1e-16 is not "0.0000"), three significant
+/// digits in exponent notation.
+struct Decimals(f32, usize);
+
+impl std::fmt::Display for Decimals {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let Decimals(v, digits) = *self;
+        if v == 0.0 || !v.is_finite() || v.abs() >= 10f32.powi(2 - digits as i32) {
+            write!(f, "{v:.digits$}")
+        } else {
+            write!(f, "{v:.2e}")
+        }
     }
 }

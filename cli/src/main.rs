@@ -11,6 +11,7 @@ macro_rules! say {
 }
 
 mod args;
+mod bake;
 mod bench;
 mod export;
 mod image;
@@ -30,12 +31,19 @@ commands:
              floating balls: --floater X,Z,MASS,RADIUS (repeatable; world units,
              released at rest on the calm surface; one summary line each)
              continue from a snapshot: simulate --load FILE --steps N [--drop …]
+             a progress bar on a terminal; Ctrl-C stops at the step reached and
+             still writes --csv and --save
   bench      time the step against the scalar reference, a naive AoS
              baseline and a memory-bandwidth floor    [--repeats N] [--compare LIST]
                                                       [--band-rows H]
   export     write the frame as a Wavefront OBJ (positions, normals, refraction UVs,
              LOD triangles)   --eye X,Y,Z --depth D [--ior N] --obj FILE
                               [--patch-cells N] [--first-range R] [--levels L]
+  bake       write an animation cache for Blender, game engines and DCC tools
+             --frames N (48) --fps F (24) --out FILE.glb | FILE.mdd | FILE.pc2 | DIR
+             [--eye X,Y,Z: LOD triangles for that eye, refraction UVs seen from it]
+             [--depth D] [--ior N] [--floater X,Z,MASS,RADIUS] [--rain RATE]
+             [--seed S] [--wake] [--load FILE]; --steps N: warm-up steps (0)
 
 model flags (seed defaults):
   --size COLSxROWS     grid size (128x128)
@@ -51,7 +59,7 @@ model flags (seed defaults):
                        frame W cells wide inside the grid (32, fewer on grids
                        under 98 nodes across)
   --drop COL,ROW,HEIGHT,RADIUS   add a drop (repeatable)
-  --threads N          worker threads (all cores)
+  --threads N          worker threads (all cores; more than the cores are capped)
 
 render flags (defaults in brackets):
   --out FILE.gif       the animation (a looping GIF, one median-cut palette)
@@ -114,9 +122,10 @@ fn run() -> args::CliResult<()> {
         "bench" => bench::run(&mut p),
         "render" => render::run(&mut p),
         "export" => export::run(&mut p),
+        "bake" => bake::run(&mut p),
         "help" => write_out(format_args!("{USAGE}")),
         other => Err(format!(
-            "unknown command '{other}' (render, simulate, bench, export; see springwater --help)"
+            "unknown command '{other}' (render, simulate, bench, export, bake; see springwater --help)"
         )),
     }
 }

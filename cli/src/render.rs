@@ -189,7 +189,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         .unwrap_or(KEEP_FRAMES_BYTES);
     let two_pass = gif_file.is_some() && frame_bytes * o.frames as u64 > keep;
     let passes = if two_pass { 2 } else { 1 };
-    let bar = progress(o.frames as u64 * passes);
+    let bar = progress(o.frames as u64 * passes, "frames");
     let start = Instant::now();
     let mut clock = Clock::default();
     let mut frames: Vec<Vec<u8>> = Vec::new();
@@ -478,18 +478,19 @@ fn frame_path(dir: &std::path::Path, k: usize) -> PathBuf {
     dir.join(format!("frame_{k:04}.png"))
 }
 
-/// A progress bar on stderr; indicatif draws nothing when stderr is not a terminal.
-fn progress(frames: u64) -> ProgressBar {
-    let bar = ProgressBar::with_draw_target(Some(frames), ProgressDrawTarget::stderr());
-    if let Ok(style) = ProgressStyle::with_template(
-        "{bar:40.cyan/blue} {pos}/{len} frames {elapsed_precise} (eta {eta}) {msg}",
-    ) {
+/// A progress bar on stderr counting `unit`s; indicatif draws nothing when stderr is not a terminal.
+pub fn progress(count: u64, unit: &str) -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(Some(count), ProgressDrawTarget::stderr());
+    let template = format!(
+        "{{bar:40.cyan/blue}} {{pos}}/{{len}} {unit} {{elapsed_precise}} (eta {{eta}}) {{msg}}"
+    );
+    if let Ok(style) = ProgressStyle::with_template(&template) {
         bar.set_style(style);
     }
     bar
 }
 
-fn ranged<T: PartialOrd + std::fmt::Display>(v: T, lo: T, hi: T, flag: &str) -> CliResult<T> {
+pub fn ranged<T: PartialOrd + std::fmt::Display>(v: T, lo: T, hi: T, flag: &str) -> CliResult<T> {
     if v < lo || v > hi {
         Err(format!("{flag} must be between {lo} and {hi}, got {v}"))
     } else {
@@ -497,7 +498,7 @@ fn ranged<T: PartialOrd + std::fmt::Display>(v: T, lo: T, hi: T, flag: &str) -> 
     }
 }
 
-fn positive(v: f32, flag: &str) -> CliResult<f32> {
+pub fn positive(v: f32, flag: &str) -> CliResult<f32> {
     if v.is_finite() && v > 0.0 {
         Ok(v)
     } else {

@@ -6,15 +6,17 @@
 //! `--steps`, `--drop` (added to the loaded state before the steps), `--threads`, `--csv`
 //! and `--save` apply as usual.
 
-use crate::args::{list, next_flag, string, unexpected, CliResult, Flag, ModelArgs};
+use crate::args::{list, next_flag, string, unexpected, CliResult, Flag, ModelArgs, Short};
 use lexopt::Parser;
 use springwater::{Floater, Surface};
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Arc;
 use std::time::Instant;
 
 /// Model flags whose values a snapshot already holds.
-const MODEL_FLAGS: [&str; 8] = [
+pub const MODEL_FLAGS: [&str; 8] = [
     "size",
     "dt",
     "mass",
@@ -78,7 +80,11 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         .map(|path| create(&path).map(|file| (path, file)))
         .transpose()?;
     let start = Instant::now();
-    let outcome = model.with_threads(|| run_steps(&mut surface, model.steps));
+    let interrupted = on_interrupt();
+    let bar = crate::render::progress(model.steps, "steps");
+    let outcome =
+        model.with_threads(|| run_steps_until(&mut surface, model.steps, &interrupted, &bar));
+    bar.finish_and_clear();
     if let Err(e) | Ok(Err(e)) = outcome {
         // Leave no empty output behind that a later --load would only call truncated.
         for (path, _) in csv.iter().chain(&save) {
@@ -86,6 +92,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         }
         return Err(e);
     }
+    let steps_run = outcome.unwrap_or(Ok(0)).unwrap_or(0);
     let seconds = start.elapsed().as_secs_f64();
     // The files before the report: a report that cannot be printed leaves them complete.
     let mut wrote = Vec::new();
@@ -99,11 +106,64 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
         wrote.push(path);
     }
-    print_summary(&surface, model.steps, seconds)?;
-    for path in wrote {
+    print_summary(&surface, steps_run, seconds)?;
+    for path in &wrote {
         say!("wrote {}", path.display());
     }
+    if steps_run < model.steps {
+        eprintln!(
+            "springwater: interrupted after {steps_run} of {} steps; {}",
+            model.steps,
+            if wrote.is_empty() {
+                "the summary is the state reached".to_owned()
+            } else {
+                format!(
+                    "{} the state reached",
+                    if wrote.len() == 1 {
+                        "the file holds"
+                    } else {
+                        "the files hold"
+                    }
+                )
+            }
+        );
+        std::process::exit(130);
+    }
     Ok(())
+}
+
+/// A flag that Ctrl-C (SIGINT, or SIGTERM) raises: the steps stop at the next one and the
+/// outputs are written as the run left them. A second Ctrl-C ends the process at once.
+pub fn on_interrupt() -> Arc<AtomicBool> {
+    let flag = Arc::new(AtomicBool::new(false));
+    let raised = flag.clone();
+    // Without a handler (it cannot be installed twice) Ctrl-C ends the run as before.
+    let _ = ctrlc::set_handler(move || {
+        if raised.swap(true, Ordering::SeqCst) {
+            std::process::exit(130);
+        }
+    });
+    flag
+}
+
+/// Steps up to `steps` times, stopping early when `stop` is raised; returns the steps
+/// taken. The bar (drawn only on a terminal) moves every 64 steps.
+fn run_steps_until(
+    surface: &mut Surface,
+    steps: u64,
+    stop: &AtomicBool,
+    bar: &indicatif::ProgressBar,
+) -> CliResult<u64> {
+    for done in 0..steps {
+        if stop.load(Ordering::Relaxed) {
+            return Ok(done);
+        }
+        surface.step().map_err(|e| e.to_string())?;
+        if done % 64 == 63 {
+            bar.set_position(done + 1);
+        }
+    }
+    Ok(steps)
 }
 
 /// Reads a snapshot file, naming it in the error.
@@ -175,12 +235,12 @@ pub fn print_summary(s: &Surface, steps_run: u64, seconds: f64) -> CliResult<()>
         let (p, v) = (f.position, f.velocity);
         say!(
             "floater {k} position {} {} {} velocity {} {} {}",
-            p.x,
-            p.y,
-            p.z,
-            v.x,
-            v.y,
-            v.z
+            Short(p.x),
+            Short(p.y),
+            Short(p.z),
+            Short(v.x),
+            Short(v.y),
+            Short(v.z)
         );
     }
     Ok(())
@@ -207,7 +267,7 @@ pub fn write_csv(s: &Surface, file: std::fs::File) -> std::io::Result<()> {
     let [x, y, z] = s.positions();
     for i in 0..grid.len() {
         let (c, r) = grid.coords(i);
-        writeln!(w, "{c},{r},{},{},{}", x[i], y[i], z[i])?;
+        writeln!(w, "{c},{r},{},{},{}", Short(x[i]), Short(y[i]), Short(z[i]))?;
     }
     w.flush()
 }

@@ -1,0 +1,375 @@
+//! glTF 2.0 binary (`.glb`): one mesh whose base is the rest frame (positions, normals,
+//! refraction UVs as `TEXCOORD_0`, the triangles), one morph target per frame (the
+//! position and normal offsets from the rest frame) and an animation that weighs frame k's
+//! target 1 at time k/fps and the others 0; each floater is a node with a translation
+//! animation on the same clock.
+//!
+//! **Interpolation: LINEAR.** At the keys the two are the same (one weight is 1); between
+//! keys, linear weights blend two neighbouring frames' offsets, which is the linear
+//! interpolation of the positions, so the water moves smoothly when a game engine or a
+//! Blender scene plays at another rate than the bake's; STEP would hold each frame and
+//! stutter. The weights output (frames+1 keys of `frames` weights each, all 0 but one)
+//! is a sparse accessor, so it costs 8 bytes a frame instead of growing as frames².
+//!
+//! **Streaming.** A GLB puts its JSON chunk (which needs every accessor's length and
+//! `min`/`max`) before its binary chunk, so the binary data is written frame by frame to
+//! a temporary file beside the output (`FILE.glb.part`), and at the end the header and
+//! JSON are written and the binary data copied after them: memory stays the size of one
+//! frame whatever `--frames` is, at the cost of writing the data twice. (Reserving room
+//! for the JSON at the front and seeking back would avoid the copy, but the JSON's length
+//! grows with the frames and the floaters; the copy keeps the writer simple.)
+//!
+//! **The JSON is written by hand.** The document has one fixed shape (a scene, nodes, one
+//! mesh, one animation, accessors and buffer views); `gltf-json` would bring serde,
+//! serde_json and two proc-macro crates to the command line (it has no serde today) for
+//! a few dozen lines of `format!`. Floats are printed in Rust's shortest round-trip form,
+//! so `min`/`max` match the data exactly, as the Khronos validator checks.
+
+use super::{named, Frame, Rest, Writer};
+use std::fmt::Write as _;
+use std::fs::File;
+use std::io::{BufWriter, Seek, Write};
+use std::path::{Path, PathBuf};
+
+const FLOAT: u32 = 5126;
+const UNSIGNED_INT: u32 = 5125;
+const ARRAY_BUFFER: u32 = 34962;
+const ELEMENT_ARRAY_BUFFER: u32 = 34963;
+
+/// The temporary file that holds the binary chunk while frames are written.
+pub fn part_path(out: &Path) -> PathBuf {
+    let mut name = out.as_os_str().to_owned();
+    name.push(".part");
+    PathBuf::from(name)
+}
+
+pub struct Glb {
+    path: PathBuf,
+    out: File,
+    part_path: PathBuf,
+    part: BufWriter<File>,
+    /// Bytes written to `part`.
+    offset: u64,
+    frames: usize,
+    fps: f32,
+    /// The rest frame, which every target is an offset from.
+    base: [Vec<f32>; 6],
+    /// Buffer views (JSON objects), in order.
+    views: Vec<String>,
+    /// Accessors (JSON objects), in order.
+    accessors: Vec<String>,
+    /// Per frame, its target's position and normal accessors.
+    targets: Vec<[usize; 2]>,
+    /// Per floater, its centre at every key.
+    tracks: Vec<Vec<[f32; 3]>>,
+}
+
+impl Glb {
+    pub fn create(
+        path: &Path,
+        rest: &Rest,
+        first: &Frame,
+        frames: usize,
+        fps: f32,
+    ) -> std::io::Result<Self> {
+        let n = rest.cols * rest.rows;
+        // A GLB's lengths are 32-bit: refuse a bake that cannot fit before any work.
+        let bytes = n as u64 * 32
+            + rest.indices.len() as u64 * 4
+            + frames as u64 * (n as u64 * 24 + 12 + 12 * first.floaters.len() as u64)
+            + frames as u64 * 200;
+        if bytes > u32::MAX as u64 - (1 << 20) {
+            return Err(std::io::Error::new(
+                std::io::ErrorKind::InvalidInput,
+                format!(
+                    "{}: a .glb holds at most 4 GiB and this bake needs about {:.1} GiB; \
+                     bake fewer frames or a smaller grid, or write .pc2 or .mdd",
+                    path.display(),
+                    bytes as f64 / (1u64 << 30) as f64
+                ),
+            ));
+        }
+        let out = File::create(path).map_err(|e| named(path, e))?;
+        let part_path = part_path(path);
+        // Read back at the end, so opened for reading too.
+        let part = std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create(true)
+            .truncate(true)
+            .open(&part_path)
+            .map_err(|e| named(&part_path, e))?;
+        let [x, y, z] = first.positions;
+        let normals = first.normals;
+        let mut glb = Self {
+            path: path.to_path_buf(),
+            out,
+            part_path,
+            part: BufWriter::new(part),
+            offset: 0,
+            frames,
+            fps,
+            base: [
+                x[..n].to_vec(),
+                y[..n].to_vec(),
+                z[..n].to_vec(),
+                normals.x[..n].to_vec(),
+                normals.y[..n].to_vec(),
+                normals.z[..n].to_vec(),
+            ],
+            views: Vec::new(),
+            accessors: Vec::new(),
+            targets: Vec::with_capacity(frames),
+            tracks: first.floaters.iter().map(|&c| vec![c]).collect(),
+        };
+        let result = (|| {
+            let [x, y, z, nx, ny, nz] = glb.base.clone();
+            glb.vec3s(n, |i| [x[i], y[i], z[i]], true)?;
+            glb.vec3s(n, |i| [nx[i], ny[i], nz[i]], false)?;
+            let (u, v) = (&first.uv.u, &first.uv.v);
+            let view = glb.view(n as u64 * 8, Some(ARRAY_BUFFER), |w| {
+                for i in 0..n {
+                    w.write_all(&u[i].to_le_bytes())?;
+                    w.write_all(&v[i].to_le_bytes())?;
+                }
+                Ok(())
+            })?;
+            glb.accessor(format!(
+                r#"{{"bufferView":{view},"componentType":{FLOAT},"count":{n},"type":"VEC2"}}"#
+            ));
+            let indices = &rest.indices;
+            let view = glb.view(indices.len() as u64 * 4, Some(ELEMENT_ARRAY_BUFFER), |w| {
+                indices
+                    .iter()
+                    .try_for_each(|i| w.write_all(&i.to_le_bytes()))
+            })?;
+            glb.accessor(format!(
+                r#"{{"bufferView":{view},"componentType":{UNSIGNED_INT},"count":{},"type":"SCALAR"}}"#,
+                indices.len()
+            ));
+            Ok(())
+        })();
+        result.map_err(|e| named(&glb.part_path, e))?;
+        Ok(glb)
+    }
+
+    /// Appends a buffer view of `length` bytes that `write` fills; returns its index.
+    fn view(
+        &mut self,
+        length: u64,
+        target: Option<u32>,
+        write: impl FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
+    ) -> std::io::Result<usize> {
+        write(&mut self.part)?;
+        let mut json = format!(
+            r#"{{"buffer":0,"byteOffset":{},"byteLength":{length}"#,
+            self.offset
+        );
+        if let Some(t) = target {
+            let _ = write!(json, r#","target":{t}"#);
+        }
+        json.push('}');
+        self.offset += length;
+        self.views.push(json);
+        Ok(self.views.len() - 1)
+    }
+
+    fn accessor(&mut self, json: String) -> usize {
+        self.accessors.push(json);
+        self.accessors.len() - 1
+    }
+
+    /// Writes `n` float triples as a vertex attribute accessor (with `min`/`max` when
+    /// `bounds`, as POSITION needs); returns the accessor's index.
+    fn vec3s(
+        &mut self,
+        n: usize,
+        at: impl Fn(usize) -> [f32; 3],
+        bounds: bool,
+    ) -> std::io::Result<usize> {
+        let mut lo = [f32::INFINITY; 3];
+        let mut hi = [f32::NEG_INFINITY; 3];
+        let view = self.view(n as u64 * 12, Some(ARRAY_BUFFER), |w| {
+            for i in 0..n {
+                let v = at(i);
+                for a in 0..3 {
+                    // -0.0 is written as 0.0: the bounds then print as the data reads.
+                    let c = v[a] + 0.0;
+                    lo[a] = lo[a].min(c);
+                    hi[a] = hi[a].max(c);
+                    w.write_all(&c.to_le_bytes())?;
+                }
+            }
+            Ok(())
+        })?;
+        let mut json =
+            format!(r#"{{"bufferView":{view},"componentType":{FLOAT},"count":{n},"type":"VEC3""#);
+        if bounds {
+            let _ = write!(
+                json,
+                r#","min":[{},{},{}],"max":[{},{},{}]"#,
+                lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]
+            );
+        }
+        json.push('}');
+        Ok(self.accessor(json))
+    }
+
+    /// The tail of the binary chunk (times, weights, floater paths) and the JSON.
+    fn write_animation(&mut self) -> std::io::Result<String> {
+        let frames = self.frames;
+        let keys = frames + 1;
+        let fps = self.fps;
+        let time = |k: usize| k as f32 / fps;
+        let view = self.view(keys as u64 * 4, None, |w| {
+            (0..keys).try_for_each(|k| w.write_all(&time(k).to_le_bytes()))
+        })?;
+        let times = self.accessor(format!(
+            r#"{{"bufferView":{view},"componentType":{FLOAT},"count":{keys},"type":"SCALAR","min":[0],"max":[{}]}}"#,
+            time(frames)
+        ));
+        // Key k (from 1) weighs target k − 1 (frame k) 1: element k·frames + k − 1.
+        let indices = self.view(frames as u64 * 4, None, |w| {
+            (1..=frames).try_for_each(|k| w.write_all(&((k * frames + k - 1) as u32).to_le_bytes()))
+        })?;
+        let ones = self.view(frames as u64 * 4, None, |w| {
+            (0..frames).try_for_each(|_| w.write_all(&1f32.to_le_bytes()))
+        })?;
+        let weights = self.accessor(format!(
+            r#"{{"componentType":{FLOAT},"count":{},"type":"SCALAR","sparse":{{"count":{frames},"indices":{{"bufferView":{indices},"componentType":{UNSIGNED_INT}}},"values":{{"bufferView":{ones}}}}}}}"#,
+            keys * frames
+        ));
+        let tracks = std::mem::take(&mut self.tracks);
+        let mut paths = Vec::new();
+        for track in &tracks {
+            let view = self.view(keys as u64 * 12, None, |w| {
+                track
+                    .iter()
+                    .flatten()
+                    .try_for_each(|c| w.write_all(&c.to_le_bytes()))
+            })?;
+            paths.push(self.accessor(format!(
+                r#"{{"bufferView":{view},"componentType":{FLOAT},"count":{keys},"type":"VEC3"}}"#
+            )));
+        }
+
+        let list = |items: &mut dyn Iterator<Item = String>| items.collect::<Vec<_>>().join(",");
+        let nodes = 1 + tracks.len();
+        let mut node_json = vec![r#"{"name":"water","mesh":0}"#.to_owned()];
+        for (k, track) in tracks.iter().enumerate() {
+            let [x, y, z] = track[0];
+            node_json.push(format!(
+                r#"{{"name":"floater {k}","translation":[{x},{y},{z}]}}"#
+            ));
+        }
+        let targets = list(
+            &mut self
+                .targets
+                .iter()
+                .map(|[p, n]| format!(r#"{{"POSITION":{p},"NORMAL":{n}}}"#)),
+        );
+        let zeros = list(&mut (0..frames).map(|_| "0".to_owned()));
+        let names = list(&mut (1..=frames).map(|k| format!(r#""frame {k}""#)));
+        let mut samplers = vec![format!(
+            r#"{{"input":{times},"output":{weights},"interpolation":"LINEAR"}}"#
+        )];
+        let mut channels = vec![r#"{"sampler":0,"target":{"node":0,"path":"weights"}}"#.to_owned()];
+        for (k, path) in paths.iter().enumerate() {
+            samplers.push(format!(
+                r#"{{"input":{times},"output":{path},"interpolation":"LINEAR"}}"#
+            ));
+            channels.push(format!(
+                r#"{{"sampler":{},"target":{{"node":{},"path":"translation"}}}}"#,
+                k + 1,
+                k + 1
+            ));
+        }
+        Ok(format!(
+            concat!(
+                r#"{{"asset":{{"version":"2.0","generator":"springwater bake {version}"}},"#,
+                r#""scene":0,"scenes":[{{"name":"water","nodes":[{scene}]}}],"#,
+                r#""nodes":[{nodes}],"#,
+                r#""meshes":[{{"name":"water","primitives":[{{"attributes":{{"POSITION":0,"NORMAL":1,"TEXCOORD_0":2}},"indices":3,"mode":4,"targets":[{targets}]}}],"weights":[{zeros}],"extras":{{"targetNames":[{names}]}}}}],"#,
+                r#""animations":[{{"name":"water","samplers":[{samplers}],"channels":[{channels}]}}],"#,
+                r#""accessors":[{accessors}],"bufferViews":[{views}],"buffers":[{{"byteLength":{length}}}]}}"#
+            ),
+            version = env!("CARGO_PKG_VERSION"),
+            scene = list(&mut (0..nodes).map(|k| k.to_string())),
+            nodes = node_json.join(","),
+            targets = targets,
+            zeros = zeros,
+            names = names,
+            samplers = samplers.join(","),
+            channels = channels.join(","),
+            accessors = self.accessors.join(","),
+            views = self.views.join(","),
+            length = self.offset,
+        ))
+    }
+}
+
+impl Writer for Glb {
+    fn frame(&mut self, _k: usize, frame: &Frame) -> std::io::Result<()> {
+        let n = self.base[0].len();
+        let [x, y, z] = frame.positions;
+        let normals = frame.normals;
+        let base = std::mem::take(&mut self.base);
+        let result = (|| {
+            let [bx, by, bz, bnx, bny, bnz] = &base;
+            let p = self.vec3s(n, |i| [x[i] - bx[i], y[i] - by[i], z[i] - bz[i]], true)?;
+            let q = self.vec3s(
+                n,
+                |i| {
+                    [
+                        normals.x[i] - bnx[i],
+                        normals.y[i] - bny[i],
+                        normals.z[i] - bnz[i],
+                    ]
+                },
+                false,
+            )?;
+            self.targets.push([p, q]);
+            Ok(())
+        })();
+        self.base = base;
+        for (track, &c) in self.tracks.iter_mut().zip(frame.floaters) {
+            track.push(c);
+        }
+        result.map_err(|e| named(&self.part_path, e))
+    }
+
+    fn finish(mut self: Box<Self>) -> std::io::Result<()> {
+        let json = self
+            .write_animation()
+            .and_then(|json| self.part.flush().map(|()| json))
+            .map_err(|e| named(&self.part_path, e))?;
+        let result = (|| {
+            let mut json = json.into_bytes();
+            while json.len() % 4 != 0 {
+                json.push(b' ');
+            }
+            let bin = self.offset; // a multiple of 4: every element is 4 bytes
+            let total = 12 + 8 + json.len() as u64 + 8 + bin;
+            let total = u32::try_from(total).map_err(|_| {
+                std::io::Error::new(std::io::ErrorKind::InvalidData, "larger than 4 GiB")
+            })?;
+            let mut w = BufWriter::new(&self.out);
+            w.write_all(b"glTF")?;
+            w.write_all(&2u32.to_le_bytes())?;
+            w.write_all(&total.to_le_bytes())?;
+            w.write_all(&(json.len() as u32).to_le_bytes())?;
+            w.write_all(b"JSON")?;
+            w.write_all(&json)?;
+            w.write_all(&(bin as u32).to_le_bytes())?;
+            w.write_all(b"BIN\0")?;
+            let mut part = self.part.get_ref();
+            part.rewind()?;
+            std::io::copy(&mut part, &mut w)?;
+            w.flush()?;
+            drop(w);
+            self.out.sync_all()
+        })();
+        let _ = std::fs::remove_file(&self.part_path);
+        result.map_err(|e| named(&self.path, e))
+    }
+}
