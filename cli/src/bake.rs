@@ -3,7 +3,12 @@
 //! (DESIGN.md §3): `.glb` (glTF 2.0, morph targets), `.mdd` or `.pc2` (point caches beside
 //! an OBJ of the rest mesh), or a directory of one OBJ per frame.
 //!
-//! Frame k (from 1) is the state after k frames' substeps; the rest mesh (frame 0) is the
+//! `advance` runs the game's fixed-step clock: a frame takes the whole steps of `dt` its
+//! time completes, so frames whose length is not a whole number of steps alternate (2 and
+//! 3 steps at 24 fps and the default time scale) and the cache equals `simulate --steps`
+//! with the steps the bake reports, bit for bit.
+//!
+//! Frame k (from 1) is the state after k frames' steps; the rest mesh (frame 0) is the
 //! state before the first frame (after `--steps` warm-up steps, 0 by default, and the
 //! drops). Vertex order is the nodes' row-major order in every format. Every writer
 //! streams: a frame goes to disk as soon as it is computed, so memory does not grow with
@@ -156,9 +161,8 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             .add_floater(Floater::sphere(radius, mass, [x, 0.0, z]))
             .map_err(|e| format!("--floater {x},{z},{mass},{radius}: {e}"))?;
     }
-    let (substeps, substep_dt) = surface
-        .split_frame(1.0 / fps)
-        .map_err(|e| format!("--fps {fps}: {e}"))?;
+    let dt = surface.params().dt;
+    let mut steps = 0usize;
 
     // Rain and wake sized in cells, as `render` makes them.
     let h = surface.params().spacing;
@@ -248,7 +252,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                 (None, None) => surface.advance(1.0 / fps),
                 _ => surface.advance_with(1.0 / fps, &mut (&mut rain, &mut wake)),
             };
-            step.map_err(|e| format!("frame {k}: {e}"))?;
+            steps += step.map_err(|e| format!("frame {k}: {e}"))?;
             shading.update(&surface)?;
             writer
                 .frame(k, &shading.frame(&surface))
@@ -264,7 +268,8 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     }
     let seconds = started.elapsed().as_secs_f64();
     say!(
-        "baked {frames} frames at {fps} fps of a {cols}x{rows} surface: {substeps} substeps of {substep_dt} per frame, {:.2} s",
+        "baked {frames} frames at {fps} fps of a {cols}x{rows} surface: {steps} steps of {dt} ({:.2} per frame), {:.2} s",
+        steps as f64 / frames as f64,
         seconds
     );
     for path in outputs(&out, format) {

@@ -497,9 +497,10 @@ fn ctrl_c_stops_a_bake_and_leaves_no_partial_file() {
 }
 
 #[test]
-fn a_frame_is_the_substeps_advance_takes() {
-    // At 24 fps a frame is several substeps shorter than the timestep: the bake says how
-    // many and how long, and `simulate` with that timestep lands on the same bits.
+fn a_frame_is_the_steps_advance_takes() {
+    // At 24 fps and the default time scale a frame is 2.5 steps: the clock takes 2 and 3
+    // in turn, the bake says how many in all, and `simulate` with that many steps lands
+    // on the same bits.
     let dir = scratch("fps24");
     let report = ok(&[
         "bake",
@@ -515,11 +516,11 @@ fn a_frame_is_the_substeps_advance_takes() {
         dir.to_str().unwrap(),
     ]);
     let words: Vec<&str> = report.split_whitespace().collect();
-    let at = words.iter().position(|&w| w == "substeps").unwrap();
-    let (substeps, dt): (usize, &str) = (words[at - 1].parse().unwrap(), words[at + 2]);
-    assert!(substeps > 1, "{report}");
+    let at = words.iter().position(|&w| w == "steps").unwrap();
+    let (steps, dt): (usize, &str) = (words[at - 1].parse().unwrap(), words[at + 2]);
+    assert_eq!((steps, dt), (5, "0.4"), "{report}");
     let csv = scratch("fps24.csv");
-    let steps = (2 * substeps).to_string();
+    let steps = steps.to_string();
     ok(&[
         "simulate",
         "--size",
