@@ -6,8 +6,10 @@ mod disturbance;
 mod floaters;
 pub(crate) mod query;
 pub(crate) mod snapshot;
+pub mod window;
 
 pub use disturbance::Disturbance;
+pub use window::{FarField, MAX_ORIGIN_CELLS};
 
 use crate::error::{same_length, Error, Result};
 use crate::forces::engine::{PassEnd, Workspace};
@@ -89,6 +91,8 @@ pub struct Surface {
     pub(crate) host: Option<Host>,
     /// Floating bodies and their world.
     pub(crate) floaters: floaters::Floaters,
+    /// Whole cells the window has travelled, `[cols, rows]` (see [`window`]).
+    pub(crate) window_origin: [i64; 2],
 }
 
 impl Surface {
@@ -165,6 +169,7 @@ impl Surface {
             params,
             host: None,
             floaters: Default::default(),
+            window_origin: [0, 0],
         }
     }
 
@@ -555,12 +560,15 @@ impl Surface {
         params::positive("drop radius", radius)?;
         let grid = self.grid();
         let h = self.params.spacing;
+        let [oc, or] = self.window_origin;
         let inv_r2 = 1.0 / (radius * radius);
         // `d2 * inv_r2` is 0 × ∞ = NaN at the centre when radius² underflows: the weight
         // there is 1 by definition.
         let lift = |y: &[f32], i: usize| {
             let (c, r) = grid.coords(i);
-            let d2 = (c as f32 * h - x).powi(2) + (r as f32 * h - z).powi(2);
+            // Rest place in the water frame (see `window`).
+            let (c, r) = ((c as i64 + oc) as f32, (r as i64 + or) as f32);
+            let d2 = (c * h - x).powi(2) + (r * h - z).powi(2);
             let w = if d2 == 0.0 { 1.0 } else { (-d2 * inv_r2).exp() };
             y[i] + height * w
         };
@@ -569,13 +577,14 @@ impl Surface {
         // get `y + height · 0`, which leaves y as it is except that it turns a −0 into +0
         // when `height ≥ 0` (kept, so the result is the formula's to the bit).
         const CUT: f32 = 10.954_452; // sqrt(120)
-        let span = |centre: f32, n: usize| {
+        let span = |centre: f32, n: usize, origin: i64| {
             let reach = CUT * radius / h;
+            let centre = centre - origin as f32 * h;
             let lo = ((centre / h - reach).floor().max(0.0) as usize).min(n);
             let hi = ((centre / h + reach).ceil().clamp(0.0, n as f32) as usize + 1).min(n);
             lo..hi
         };
-        let (cols, rows) = (span(x, grid.cols), span(z, grid.rows));
+        let (cols, rows) = (span(x, grid.cols, oc), span(z, grid.rows, or));
         let near = |i: usize| {
             let (c, r) = grid.coords(i);
             cols.contains(&c) && rows.contains(&r)

@@ -13,8 +13,8 @@ use std::io::{Read, Write};
 
 /// The first eight bytes of every snapshot.
 pub(crate) const MAGIC: [u8; 8] = *b"SPRWATER";
-/// The format version this build writes. It reads versions 1 to 3 (see [`Snapshot`]).
-pub(crate) const VERSION: u32 = 3;
+/// The format version this build writes. It reads versions 1 to 4 (see [`Snapshot`]).
+pub(crate) const VERSION: u32 = 4;
 /// Bytes before the per-node arrays in versions 1 and 2.
 const HEADER_V2: usize = 112;
 /// Bytes before the per-node arrays.
@@ -25,6 +25,8 @@ const PER_FLOATER: usize = 80;
 const PER_NODE: usize = 11 * 4 + 1 + 8 * 4;
 /// Trailing checksum.
 const CRC: usize = 4;
+/// The window's origin in cells (two `i64`) before the checksum, from version 4.
+const ORIGIN: usize = 16;
 const FLAG_FORCES_PENDING: u32 = 1;
 
 /// The complete state of a [`Surface`] as plain data, saved and restored bitwise.
@@ -40,7 +42,7 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// [`Surface::snapshot`] and back with [`Surface::from_snapshot`]; with the `serde` feature
 /// it implements `Serialize` and `Deserialize`. Both paths run the same validation.
 ///
-/// # Format (version 3)
+/// # Format (version 4)
 ///
 /// Little-endian throughout; `n = cols × rows`, `f` floating bodies. Per-node arrays hold
 /// exactly `n` values (no SIMD padding); spring tables are indexed by origin node, with
@@ -49,7 +51,7 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// | offset | size | field |
 /// |---|---|---|
 /// | 0 | 8 | magic `b"SPRWATER"` |
-/// | 8 | 4 | format version `u32` (3; versions 1 and 2 are read too) |
+/// | 8 | 4 | format version `u32` (4; versions 1 to 3 are read too) |
 /// | 12 | 4 | flags `u32`: bit 0 = external forces pending; other bits 0 |
 /// | 16 | 8 | total length in bytes `u64`, checksum included |
 /// | 24 | 8, 8 | `cols`, `rows` as `u64` |
@@ -69,9 +71,11 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// | | n | pinned per node, `u8` 0 or 1 |
 /// | | 8 × 4n | rest length then stiffness, for families E, S, SE, SW |
 /// | | 80 f | per body: id `u64`, shape `u32` (0 = sphere, 1 = box), size (radius, 0, 0 or half extents), mass, drag, position, velocity, push, water force (`f32`) |
+/// | end − 20 | 2 × 8 | the window's origin in cells, columns then rows (`i64`, [`Surface::origin_cells`]) |
 /// | end − 4 | 4 | CRC-32 (IEEE) of every byte before it |
 ///
-/// The total is `140 + 77 n + 80 f` bytes. Versions 1 and 2 end the header at offset 112
+/// The total is `156 + 77 n + 80 f` bytes. Version 3 has no origin (read as `[0, 0]`: a
+/// window that never moved). Versions 1 and 2 end the header at offset 112
 /// (no bodies, no absorbing boundary; version 1 has no `time_scale` either: such
 /// snapshots get the default). Loading refuses, with [`Error::Snapshot`] and a message
 /// that says what is wrong: a wrong magic or version, a total length that disagrees with
@@ -131,6 +135,9 @@ pub struct Snapshot {
     /// Gravity and water density for the bodies.
     #[cfg_attr(feature = "serde", serde(default))]
     pub buoyancy: Buoyancy,
+    /// Whole cells the window has travelled, `[cols, rows]` ([`Surface::origin_cells`]).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub origin_cells: [i64; 2],
 }
 
 /// The absorbing frame's width as stored (0 for the other boundaries), if it fits a `u32`.
@@ -145,10 +152,11 @@ fn frame_width(boundary: Boundary) -> Option<u32> {
 /// layout, or `None` on overflow.
 fn encoded_len(version: u32, nodes: usize, floaters: usize) -> Option<usize> {
     let header = if version < 3 { HEADER_V2 } else { HEADER };
+    let origin = if version < 4 { 0 } else { ORIGIN };
     nodes
         .checked_mul(PER_NODE)?
         .checked_add(floaters.checked_mul(PER_FLOATER)?)?
-        .checked_add(header + CRC)
+        .checked_add(header + origin + CRC)
 }
 
 fn bad(msg: impl Into<String>) -> Error {
@@ -158,8 +166,9 @@ fn bad(msg: impl Into<String>) -> Error {
 impl Snapshot {
     /// The first eight bytes of every binary snapshot.
     pub const MAGIC: [u8; 8] = MAGIC;
-    /// The binary format version this build writes. It reads this one and version 1
-    /// (which had no `time_scale`: such snapshots get the default).
+    /// The binary format version this build writes. It reads this one and versions 1 to 3
+    /// (version 1 had no `time_scale`, version 3 no window origin: such snapshots get the
+    /// default and `[0, 0]`).
     pub const VERSION: u32 = VERSION;
 
     /// Encodes the snapshot in the binary format of the module docs.
@@ -271,6 +280,9 @@ impl Snapshot {
                 .chain([body.mass, body.drag])
                 .chain(vectors.iter().flat_map(|v| v.to_array()));
             floats.for_each(|v| b.extend_from_slice(&v.to_le_bytes()));
+        }
+        for c in self.origin_cells {
+            b.extend_from_slice(&c.to_le_bytes());
         }
         let crc = crc32fast::hash(&b);
         b.extend_from_slice(&crc.to_le_bytes());
@@ -428,6 +440,11 @@ impl Snapshot {
                 },
             ));
         }
+        let origin_cells = if version < 4 {
+            [0, 0]
+        } else {
+            [(); 2].map(|_| r.u64() as i64)
+        };
         debug_assert_eq!(r.at, body.len());
         Ok(Self {
             params,
@@ -448,6 +465,7 @@ impl Snapshot {
             floaters,
             next_floater_id,
             buoyancy,
+            origin_cells,
         })
     }
 
@@ -573,6 +591,16 @@ impl Snapshot {
             }
             previous = Some(id.0);
         }
+        if let Some(&o) = self
+            .origin_cells
+            .iter()
+            .find(|o| o.unsigned_abs() > super::MAX_ORIGIN_CELLS as u64)
+        {
+            return Err(bad(format!(
+                "window origin {o} cells is past the limit of {} cells",
+                super::MAX_ORIGIN_CELLS
+            )));
+        }
         let extra = if self.floaters.is_empty() {
             0.0
         } else {
@@ -696,6 +724,7 @@ impl Surface {
             floaters: self.floaters.bodies.clone(),
             next_floater_id: self.floaters.next_id,
             buoyancy: self.floaters.buoyancy,
+            origin_cells: self.window_origin,
         }
     }
 
@@ -735,6 +764,7 @@ impl Surface {
         surface.floaters.bodies = snap.floaters;
         surface.floaters.next_id = snap.next_floater_id;
         surface.floaters.buoyancy = snap.buoyancy;
+        surface.window_origin = snap.origin_cells;
         surface.with_env_simd()
     }
 
