@@ -93,6 +93,9 @@ pub struct Surface {
     pub(crate) floaters: floaters::Floaters,
     /// Whole cells the window has travelled, `[cols, rows]` (see [`window`]).
     pub(crate) window_origin: [i64; 2],
+    /// Whether a per-node mass, viscosity or pin may differ from its place's default (a
+    /// shift then moves them; see [`window`]).
+    pub(crate) window_custom: bool,
 }
 
 impl Surface {
@@ -170,6 +173,7 @@ impl Surface {
             host: None,
             floaters: Default::default(),
             window_origin: [0, 0],
+            window_custom: false,
         }
     }
 
@@ -704,6 +708,7 @@ impl Surface {
     pub fn set_pinned(&mut self, node: usize, pinned: bool) -> Result<()> {
         self.check_node(node)?;
         self.state.pinned[node] = pinned;
+        self.window_custom = true;
         if pinned {
             for v in &mut self.state.vel {
                 v[node] = 0.0;
@@ -742,6 +747,7 @@ impl Surface {
         )?;
         self.min_mass = min_mass;
         self.state.mass[node] = mass;
+        self.window_custom = true;
         if !self.state.pinned[node] {
             self.state.inv_mass[node] = 1.0 / mass;
         }
@@ -761,6 +767,7 @@ impl Surface {
         )?;
         self.max_viscosity = max_viscosity;
         self.state.viscosity[node] = viscosity;
+        self.window_custom = true;
         Ok(())
     }
 

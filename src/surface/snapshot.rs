@@ -765,6 +765,7 @@ impl Surface {
         surface.floaters.next_id = snap.next_floater_id;
         surface.floaters.buoyancy = snap.buoyancy;
         surface.window_origin = snap.origin_cells;
+        surface.window_custom = true;
         surface.with_env_simd()
     }
 

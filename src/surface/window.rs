@@ -68,7 +68,11 @@ use super::Surface;
 use crate::absorb::Frame;
 use crate::error::{Error, Result};
 use crate::grid::{Family, Grid};
+use crate::jobs::Runner;
 use crate::params::{self, Boundary};
+use crate::simd::Floats;
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::Mutex;
 
 /// The farthest the window may travel from the water frame's origin, in cells along each
 /// axis (2²⁴ − 2²⁰): every cell index up to 2²⁴ is an exact `f32`, so every rest position
@@ -147,7 +151,7 @@ impl Move {
 
     /// Moves the overlap of `buf` (row-major, at least `grid.len()` long) to its new
     /// place; the incoming nodes keep whatever they held (the caller fills them).
-    fn apply<T: Copy>(&self, buf: &mut [T]) {
+    fn apply<T: Copy + Default>(&self, buf: &mut [T]) {
         let (cols, rows) = (self.grid.cols, self.grid.rows);
         let kept = self.kept_cols();
         if kept.is_empty() {
@@ -156,11 +160,36 @@ impl Move {
         // Destination `d` reads source `d + delta`: walking the rows away from the
         // side the data comes from never reads a row already overwritten.
         let delta = self.dr * cols as isize + self.dc;
+        if self.dc == 0 {
+            // Whole rows: one move of the kept rows.
+            let kept_rows = rows - self.dr.unsigned_abs().min(rows);
+            let (src, dst) = if self.dr > 0 {
+                (self.dr as usize * cols, 0)
+            } else {
+                (0, self.dr.unsigned_abs() * cols)
+            };
+            buf.copy_within(src..src + kept_rows * cols, dst);
+            return;
+        }
+        // Rows go through a small buffer in pieces: a direct copy whose source and
+        // destination lie a multiple of 4 KiB apart plus a few bytes (a shift of one
+        // column on a 1024-wide grid) makes every load wait on the store before it
+        // (4K aliasing), which measured three times slower.
+        let mut piece = [T::default(); 256];
         let mut copy_row = |r: usize| {
             if let Some(src_row) = r.checked_add_signed(self.dr).filter(|&s| s < rows) {
                 let dst = r * cols + kept.start;
                 let src = src_row * cols + kept.start.wrapping_add_signed(self.dc);
-                buf.copy_within(src..src + kept.len(), dst);
+                let order: Box<dyn Iterator<Item = usize>> = if self.dc > 0 {
+                    Box::new((0..kept.len()).step_by(piece.len()))
+                } else {
+                    Box::new((0..kept.len()).step_by(piece.len()).rev())
+                };
+                for at in order {
+                    let len = piece.len().min(kept.len() - at);
+                    piece[..len].copy_from_slice(&buf[src + at..src + at + len]);
+                    buf[dst + at..dst + at + len].copy_from_slice(&piece[..len]);
+                }
             }
         };
         if delta > 0 {
@@ -170,16 +199,37 @@ impl Move {
         }
     }
 
-    /// Calls `f` on every node of the new window that was not in the old one.
-    fn for_incoming(&self, mut f: impl FnMut(usize)) {
+    /// Calls `f(row, cols)` on every run of columns of a row that was not in the old
+    /// window, rows in order.
+    fn for_incoming_runs(&self, mut f: impl FnMut(usize, std::ops::Range<usize>)) {
         let (cols, rows) = (self.grid.cols, self.grid.rows);
         let kept = self.kept_cols();
         for r in 0..rows {
-            let row_kept = r.checked_add_signed(self.dr).is_some_and(|s| s < rows);
-            for c in 0..cols {
-                if !row_kept || !kept.contains(&c) {
-                    f(r * cols + c);
+            if r.checked_add_signed(self.dr).is_some_and(|s| s < rows) && !kept.is_empty() {
+                for run in [0..kept.start, kept.end..cols] {
+                    if !run.is_empty() {
+                        f(r, run);
+                    }
                 }
+            } else {
+                f(r, 0..cols);
+            }
+        }
+    }
+
+    /// Calls `f(index, col, row)` on every node of the new window that was not in the old
+    /// one, in row-major order.
+    fn for_incoming(&self, mut f: impl FnMut(usize, usize, usize)) {
+        let (cols, rows) = (self.grid.cols, self.grid.rows);
+        let kept = self.kept_cols();
+        for r in 0..rows {
+            let row = r * cols;
+            if r.checked_add_signed(self.dr).is_some_and(|s| s < rows) && !kept.is_empty() {
+                (0..kept.start)
+                    .chain(kept.end..cols)
+                    .for_each(|c| f(row + c, c, r));
+            } else {
+                (0..cols).for_each(|c| f(row + c, c, r));
             }
         }
     }
@@ -239,7 +289,7 @@ impl Surface {
     /// # Ok::<(), springwater::Error>(())
     /// ```
     pub fn shift(&mut self, dcols: i32, drows: i32) -> Result<()> {
-        self.shift_with(dcols, drows, Calm)
+        self.shift_filled(dcols, drows, None::<&mut Calm>)
     }
 
     /// Like [`Surface::shift`], but the incoming strip's free nodes take their height and
@@ -264,6 +314,16 @@ impl Surface {
         drows: i32,
         mut far_field: F,
     ) -> Result<()> {
+        self.shift_filled(dcols, drows, Some(&mut far_field))
+    }
+
+    /// [`Surface::shift_with`], with `None` for calm water (no far field asked).
+    fn shift_filled<F: FarField>(
+        &mut self,
+        dcols: i32,
+        drows: i32,
+        mut far_field: Option<&mut F>,
+    ) -> Result<()> {
         let origin = shifted_origin(self.window_origin, dcols, drows)?;
         if dcols == 0 && drows == 0 {
             return Ok(());
@@ -276,8 +336,7 @@ impl Surface {
             dr: drows as isize,
         };
         let pins_border = self.params.boundary.pins_border();
-        let rest = |i: usize| {
-            let (c, r) = grid.coords(i);
+        let rest = |c: usize, r: usize| {
             (
                 (c as i64 + origin[0]) as f32 * h,
                 (r as i64 + origin[1]) as f32 * h,
@@ -286,11 +345,15 @@ impl Surface {
         // Ask the far field first: a value it refuses leaves the surface unchanged.
         let mut incoming = Vec::new();
         let mut bad = None;
-        mv.for_incoming(|i| {
-            if pins_border && grid.is_border(i) {
+        let border = |c, r| c == 0 || r == 0 || c == grid.cols - 1 || r == grid.rows - 1;
+        mv.for_incoming(|i, c, r| {
+            let Some(far_field) = far_field.as_mut() else {
+                return;
+            };
+            if pins_border && border(c, r) {
                 return;
             }
-            let (x, z) = rest(i);
+            let (x, z) = rest(c, r);
             let (y, vy) = (far_field.height(x, z), far_field.vertical_velocity(x, z));
             if !(y.is_finite() && vy.is_finite()) && bad.is_none() {
                 bad = Some(if y.is_finite() { vy } else { y });
@@ -308,21 +371,30 @@ impl Surface {
         // Per-node parameters: a default stays with its place, a set value travels.
         let defaults = Defaults::of(self);
         let was_pinned = self.state.pinned.clone();
-        let params_moved = self.move_parameters(mv, &defaults);
+        let params_moved = self.window_custom && self.move_parameters(mv, &defaults);
+        self.window_custom = params_moved;
+
+        for family in Family::ALL {
+            let default = defaults.spring(family);
+            self.springs
+                .shift_family(family, grid, |i| mv.source(i), default);
+        }
 
         // The water itself.
+        let runner = Runner::of(self.host.as_ref());
         let state = &mut self.state;
-        for k in 0..3 {
-            mv.apply(&mut state.pos[k][..]);
-            mv.apply(&mut state.vel[k][..]);
-        }
-        mv.for_incoming(|i| {
-            let (x, z) = rest(i);
-            state.pos[0][i] = x;
-            state.pos[1][i] = 0.0;
-            state.pos[2][i] = z;
+        let (pos, vel) = (&mut state.pos, &mut state.vel);
+        move_arrays(runner, mv, pos.iter_mut().chain(vel.iter_mut()));
+        mv.for_incoming_runs(|r, cs| {
+            let run = r * grid.cols + cs.start..r * grid.cols + cs.end;
+            state.pos[1][run.clone()].fill(0.0);
             for v in &mut state.vel {
-                v[i] = 0.0;
+                v[run.clone()].fill(0.0);
+            }
+            let z = rest(0, r).1;
+            state.pos[2][run.clone()].fill(z);
+            for (x, c) in state.pos[0][run].iter_mut().zip(cs) {
+                *x = rest(c, r).0;
             }
         });
         for (i, y, vy) in incoming {
@@ -330,12 +402,10 @@ impl Surface {
             state.vel[1][i] = vy;
         }
         if state.ext_pending {
-            for k in 0..3 {
-                mv.apply(&mut state.ext[k][..]);
-            }
-            mv.for_incoming(|i| {
+            move_arrays(runner, mv, state.ext.iter_mut());
+            mv.for_incoming_runs(|r, cs| {
                 for e in &mut state.ext {
-                    e[i] = 0.0;
+                    e[r * grid.cols + cs.start..r * grid.cols + cs.end].fill(0.0);
                 }
             });
             if let Some(nodes) = &mut state.ext_nodes {
@@ -351,15 +421,20 @@ impl Surface {
         // new surface.
         let pinned_now: Vec<usize> = if params_moved {
             (0..grid.len()).filter(|&i| state.pinned[i]).collect()
+        } else if pins_border {
+            // The outer ring only.
+            let (cols, rows) = (grid.cols, grid.rows);
+            let sides = (0..rows).flat_map(|r| [r * cols, r * cols + cols - 1]);
+            let ends = (1..cols - 1).flat_map(|c| [c, (rows - 1) * cols + c]);
+            sides.chain(ends).collect()
         } else {
-            (0..grid.len())
-                .filter(|&i| pins_border && grid.is_border(i))
-                .collect()
+            Vec::new()
         };
         for i in pinned_now {
             let was = mv.source(i).is_some_and(|s| was_pinned[s]);
             if !was {
-                let (x, z) = rest(i);
+                let (c, r) = grid.coords(i);
+                let (x, z) = rest(c, r);
                 state.pos[0][i] = x;
                 state.pos[1][i] = 0.0;
                 state.pos[2][i] = z;
@@ -372,13 +447,13 @@ impl Surface {
         Ok(())
     }
 
-    /// Moves mass, viscosity, pins and spring tables where a caller set values; returns
-    /// whether the pins or masses had any (and `inv_mass` was rebuilt).
+    /// Moves mass, viscosity and pins where a caller set values; returns whether any node
+    /// holds a value other than its place's default.
     fn move_parameters(&mut self, mv: Move, defaults: &Defaults) -> bool {
         let n = mv.grid.len();
         let state = &mut self.state;
         let mass_moved = move_param(&mut state.mass[..n], mv, |_| defaults.mass, same_f32);
-        move_param(
+        let visc_moved = move_param(
             &mut state.viscosity[..n],
             mv,
             |i| defaults.viscosity(mv.grid, i),
@@ -393,11 +468,7 @@ impl Surface {
         if mass_moved || pins_moved {
             state.refresh_inv_mass();
         }
-        for family in Family::ALL {
-            self.springs
-                .shift_family(family, mv.grid, |i| mv.source(i), defaults.spring(family));
-        }
-        mass_moved || pins_moved
+        mass_moved || pins_moved || visc_moved
     }
 
     /// Shifts the window so that the world point `(x, z)` (water frame) is back near its
@@ -459,6 +530,23 @@ impl Surface {
     }
 }
 
+/// Moves the overlap of every array in `arrays`, one task per array on the host's threads
+/// (copies only: the same bits on any number of threads). Each array moves exactly once,
+/// whatever the runner does with the tasks: a task claims its array first, and the calling
+/// thread moves any array no task claimed.
+fn move_arrays<'a>(runner: Runner<'_>, mv: Move, arrays: impl Iterator<Item = &'a mut Floats>) {
+    let arrays: Vec<Mutex<&mut Floats>> = arrays.map(Mutex::new).collect();
+    let claimed: Vec<AtomicBool> = arrays.iter().map(|_| AtomicBool::new(false)).collect();
+    let task = |k: usize| {
+        if k < arrays.len() && !claimed[k].swap(true, Ordering::AcqRel) {
+            let mut a = arrays[k].lock().unwrap_or_else(|e| e.into_inner());
+            mv.apply(&mut a[..]);
+        }
+    };
+    runner.run(arrays.len(), &task);
+    (0..arrays.len()).for_each(task);
+}
+
 /// Bitwise equality of two floats (a set `-0.0` or NaN pattern is a value like any other).
 fn same_f32(a: f32, b: f32) -> bool {
     a.to_bits() == b.to_bits()
@@ -467,7 +555,7 @@ fn same_f32(a: f32, b: f32) -> bool {
 /// Moves the nodes of `buf` that differ from their place's default with the water; every
 /// other node takes its new place's default. Returns false (and changes nothing) when every
 /// node holds its default, which is the common case: uniform parameters cost no copy.
-fn move_param<T: Copy>(
+fn move_param<T: Copy + Default>(
     buf: &mut [T],
     mv: Move,
     default: impl Fn(usize) -> T,
@@ -480,7 +568,7 @@ fn move_param<T: Copy>(
         .map(|i| (!same(buf[i], default(i))).then_some(buf[i]))
         .collect();
     mv.apply(&mut set);
-    mv.for_incoming(|i| set[i] = None);
+    mv.for_incoming(|i, _, _| set[i] = None);
     for (i, v) in set.into_iter().enumerate() {
         buf[i] = v.unwrap_or_else(|| default(i));
     }
