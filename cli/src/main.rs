@@ -30,6 +30,8 @@ commands:
              floating balls: --floater X,Z,MASS,RADIUS (repeatable; world units,
              released at rest on the calm surface; one summary line each)
              continue from a snapshot: simulate --load FILE --steps N [--drop …]
+             move the window after the steps: --follow-shift DC,DR (whole cells;
+             the CSV's x, z stay world positions, the strip that comes in is calm)
   bench      time the step against the scalar reference, a naive AoS
              baseline and a memory-bandwidth floor    [--repeats N] [--compare LIST]
                                                       [--band-rows H]

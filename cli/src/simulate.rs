@@ -5,8 +5,13 @@
 //! count) comes from the snapshot, so the flags that define a model are refused next to it;
 //! `--steps`, `--drop` (added to the loaded state before the steps), `--threads`, `--csv`
 //! and `--save` apply as usual.
+//!
+//! `--follow-shift DC,DR` moves the window by whole cells after the steps, before the CSV
+//! and the snapshot are written (`Surface::shift`): the CSV's `x`, `z` are positions in the
+//! water frame, so a node of the overlap appears with the bits of an unshifted run's node
+//! `(col + DC, row + DR)`, and the strip that came in is calm.
 
-use crate::args::{list, next_flag, string, unexpected, CliResult, Flag, ModelArgs};
+use crate::args::{list, next_flag, number, string, unexpected, CliResult, Flag, ModelArgs};
 use lexopt::Parser;
 use springwater::{Floater, Surface};
 use std::io::Write;
@@ -32,6 +37,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut load: Option<PathBuf> = None;
     let mut model_flag: Option<String> = None;
     let mut floaters: Vec<[f32; 4]> = Vec::new();
+    let mut follow_shift: Option<[i32; 2]> = None;
     while let Some(arg) = next_flag(p)? {
         if let Flag::Long(l) = &arg {
             if MODEL_FLAGS.contains(&l.as_str()) {
@@ -45,6 +51,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             Flag::Long(l) if l == "csv" => csv = Some(string(p, "--csv")?.into()),
             Flag::Long(l) if l == "save" => save = Some(string(p, "--save")?.into()),
             Flag::Long(l) if l == "load" => load = Some(string(p, "--load")?.into()),
+            Flag::Long(l) if l == "follow-shift" => {
+                follow_shift = Some(cells(&string(p, "--follow-shift")?)?)
+            }
             Flag::Long(l) if l == "floater" => {
                 floaters.push(list(&string(p, "--floater")?, "--floater X,Z,MASS,RADIUS")?)
             }
@@ -55,7 +64,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         (Some(_), Some(flag)) => {
             return Err(format!(
                 "--{flag} cannot be combined with --load: the model comes from the snapshot \
-                 (only --steps, --drop, --threads, --csv and --save apply)"
+                 (only --steps, --drop, --threads, --follow-shift, --csv and --save apply)"
             ))
         }
         (Some(path), None) => {
@@ -78,7 +87,15 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         .map(|path| create(&path).map(|file| (path, file)))
         .transpose()?;
     let start = Instant::now();
-    let outcome = model.with_threads(|| run_steps(&mut surface, model.steps));
+    let outcome = model.with_threads(|| {
+        run_steps(&mut surface, model.steps)?;
+        match follow_shift {
+            Some([dc, dr]) => surface
+                .shift(dc, dr)
+                .map_err(|e| format!("--follow-shift {dc},{dr}: {e}")),
+            None => Ok(()),
+        }
+    });
     if let Err(e) | Ok(Err(e)) = outcome {
         // Leave no empty output behind that a later --load would only call truncated.
         for (path, _) in csv.iter().chain(&save) {
@@ -104,6 +121,17 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         say!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// Parses `DC,DR`: two whole numbers of cells (signed).
+fn cells(v: &str) -> CliResult<[i32; 2]> {
+    const WHAT: &str = "--follow-shift DC,DR";
+    match v.split(',').collect::<Vec<_>>()[..] {
+        [dc, dr] => Ok([number(dc, WHAT)?, number(dr, WHAT)?]),
+        _ => Err(format!(
+            "{WHAT} expects 2 comma-separated whole numbers, got '{v}'"
+        )),
+    }
 }
 
 /// Reads a snapshot file, naming it in the error.
