@@ -60,9 +60,13 @@
 //! make the shift free, but the engine streams whole rows through SIMD lanes with
 //! neighbours one lane over: a seam inside a row would cut every row the window crosses,
 //! and every kernel, query and view would pay for the indirection on every step and
-//! frame. Moving rows costs one pass over about 24 bytes read and written per node in the
-//! common case (no pending forces, uniform parameters), measured in `benches/window.rs`
-//! below one step of the same grid (see `docs/performance.md`).
+//! frame. Moving rows costs one pass over the six position and velocity arrays (48 bytes
+//! read and written per node, against a step's 104) in the common case (no pending forces,
+//! uniform parameters), the arrays as tasks on the host's threads. Measured with
+//! `benches/window.rs` (AMD EPYC Zen 4, 2 threads): 0.57–0.75 of one step at 512², about
+//! one step at 1024² (`docs/performance.md`). Folding the shift into the next step's reads
+//! (the step writes a second buffer anyway) would make it free without a seam, at the
+//! price of every kernel's addressing.
 
 use super::Surface;
 use crate::absorb::Frame;
