@@ -344,7 +344,10 @@ fn bad_input_changes_nothing() {
     // A shift of zero is nothing; one past the grid replaces all of the water with calm.
     s.shift(0, 0).unwrap();
     assert!(same(&s, &before));
-    s.shift(-500, 300).unwrap();
+    for (dc, dr) in [(0, 500), (0, -113), (128, 0), (-500, 300)] {
+        s.shift(dc, dr).unwrap();
+    }
+    assert_eq!(s.origin_cells(), [2 - 372, 2 + 687]);
     assert!(s.positions()[1].iter().all(|&y| y == 0.0));
     assert!(s.velocities().iter().all(|v| v.iter().all(|&v| v == 0.0)));
     s.step().unwrap();
@@ -400,4 +403,29 @@ fn crc32(bytes: &[u8]) -> u32 {
         }
     }
     !crc
+}
+
+#[test]
+fn a_body_left_behind_floats_on_calm_water() {
+    let mut s = open_water();
+    let id = s
+        .add_floater(Floater::sphere(1.0, 1.5, [20.0, 0.0, 20.0]))
+        .unwrap();
+    s.step_n(10).unwrap();
+    s.shift(60, 50).unwrap(); // the ball is now 40 cells outside the window
+    assert!(!s.contains(20.0, 20.0));
+    for _ in 0..200 {
+        s.step().unwrap();
+    }
+    let b = s.floater(id).unwrap();
+    assert!(
+        b.position.is_finite() && b.position.y.abs() < 1.0,
+        "{:?}",
+        b.position
+    );
+    assert_eq!([b.position.x, b.position.z], [20.0, 20.0]);
+    // Back in the window, it meets the water again.
+    s.shift(-60, -50).unwrap();
+    s.step().unwrap();
+    assert!(s.floater(id).unwrap().water_force.y > 0.0);
 }

@@ -48,8 +48,9 @@
 //!   parameters; or, through [`Surface::shift_with`], heights and vertical velocities from
 //!   the host's far field ([`FarField`]), for example a swell or a wake that was there.
 //! - Floating bodies keep their positions and velocities (they live in the water frame).
-//!   A body that the window leaves behind floats on nothing until the window comes back:
-//!   follow the body ([`Surface::follow`]) to keep it in the water.
+//!   A body that the window leaves behind floats on calm water (height 0, no flow, no
+//!   push back) until the window comes back: follow the body ([`Surface::follow`]) to keep
+//!   it in the simulated water.
 //!
 //! # Moving rows, not a ring buffer
 //!
@@ -167,6 +168,9 @@ impl Move {
         if self.dc == 0 {
             // Whole rows: one move of the kept rows.
             let kept_rows = rows - self.dr.unsigned_abs().min(rows);
+            if kept_rows == 0 {
+                return;
+            }
             let (src, dst) = if self.dr > 0 {
                 (self.dr as usize * cols, 0)
             } else {
