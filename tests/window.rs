@@ -429,3 +429,24 @@ fn a_body_left_behind_floats_on_calm_water() {
     s.step().unwrap();
     assert!(s.floater(id).unwrap().water_force.y > 0.0);
 }
+
+#[test]
+fn the_lod_follows_the_window() {
+    use springwater::glam::Vec3;
+    use springwater::mesh::{LodMesh, LodParams};
+    let mut s = Surface::new(Params::with_size(129, 97)).unwrap();
+    let eye = Vec3::new(30.0, 12.0, 70.0);
+    let mut lod = LodMesh::new(LodParams::default()).unwrap();
+    lod.update(&s.mesh_view(), eye);
+    let before = lod.indices().to_vec();
+    s.shift(40, -25).unwrap();
+    assert_eq!(s.mesh_view().origin(), [40.0, -25.0]);
+    // The same eye relative to the window draws the same triangles.
+    let mut moved = LodMesh::new(LodParams::default()).unwrap();
+    moved.update(&s.mesh_view(), eye + Vec3::new(40.0, 0.0, -25.0));
+    assert_eq!(moved.indices(), &before[..]);
+    // The eye where it was is now further from the window's far side: a different mesh.
+    let mut stay = LodMesh::new(LodParams::default()).unwrap();
+    stay.update(&s.mesh_view(), eye);
+    assert_ne!(stay.indices(), &before[..]);
+}

@@ -264,6 +264,7 @@ impl Surface {
             .expect("the surface's own buffers match its grid")
             .with_simd_level(self.simd)
             .with_runner(Runner::of(self.host.as_ref()))
+            .with_origin(self.origin())
     }
 
     /// Advances one step of `params().dt`, at the surface's SIMD level

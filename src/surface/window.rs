@@ -13,6 +13,12 @@
 //! transform) reads world positions directly; one that places it elsewhere adds that one
 //! fixed translation, which never changes as the window moves.
 //!
+//! The view carries the origin ([`MeshView::origin`](crate::MeshView::origin)): the LOD
+//! takes the eye in the water frame and measures it against the patches' rest footprints
+//! at the window's place. Refraction's bottom coordinates are the hit point in the water
+//! frame over the footprint's size, so a bottom texture that wraps stays put in the world
+//! as the window moves.
+//!
 //! A shift therefore leaves the stored positions of the overlap untouched, bit for bit:
 //! what moves is which array slot a node lives in, not its coordinates. That is what makes
 //! a shifted run the same computation as an unshifted one on the overlap (the spring
