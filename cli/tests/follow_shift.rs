@@ -122,3 +122,35 @@ fn bad_follow_shifts_are_one_line_errors() {
         assert!(err.contains("--follow-shift"), "{err}");
     }
 }
+
+#[test]
+fn render_follow_draws_a_ball_crossing_open_water() {
+    let dir = temp("frames");
+    let out = springwater(&[
+        "render",
+        "--size",
+        "96x64",
+        "--boundary",
+        "absorbing:12",
+        "--follow",
+        "--frames",
+        "40",
+        "--width",
+        "80",
+        "--height",
+        "60",
+        "--png",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let frames = std::fs::read_dir(&dir).unwrap().count();
+    assert_eq!(frames, 40);
+    // The last frame differs from the first (the water and its wake moved with the ball).
+    let first = std::fs::read(dir.join("frame_0000.png")).unwrap();
+    let last = std::fs::read(dir.join("frame_0039.png")).unwrap();
+    assert_ne!(first, last);
+}
