@@ -33,10 +33,13 @@
 //! sway (a few hundredths of a cell with the seed's parameters) is resolved only coarsely.
 //! Windows within about 10⁴ cells of the frame's origin are unaffected in practice. An
 //! open world larger than that keeps a floating origin, as engines do for every other
-//! object: when the host rebases its world, it rebuilds the window around the new origin
-//! (a fresh surface, or one restored from a snapshot, near `0`) — the mesh's coordinates
-//! are then small again and the host's transform, in `f64` or in its own rebased frame,
-//! carries the rest. Shifts never round anything: the window may travel up to
+//! object: when the host rebases its world, it starts a fresh surface in the new frame
+//! near `0` (the water there is calm or comes from its far field through
+//! [`Surface::shift_with`]; a snapshot keeps the old frame's coordinates, so it does not
+//! rebase) — the mesh's coordinates are then small again and the host's transform, in
+//! `f64` or in its own rebased frame, carries the rest. The crate has no in-place rebase
+//! yet: moving every stored coordinate by a whole number of cells rounds, so it would end
+//! the bit-for-bit equality with an unmoved run. Shifts never round anything: the window may travel up to
 //! [`MAX_ORIGIN_CELLS`] cells, the range in which every cell index is an exact `f32`.
 //!
 //! # What moves and what stays
