@@ -137,8 +137,10 @@ impl Disturbance for Rain {
                 let margin = radius.min(size / 2.0);
                 rng.range(margin, size - margin)
             };
-            let x = place(&mut self.rng, width);
-            let z = place(&mut self.rng, length);
+            // Over the window, wherever it is (its origin is 0 until it moves).
+            let [ox, oz] = surface.origin();
+            let x = ox + place(&mut self.rng, width);
+            let z = oz + place(&mut self.rng, length);
             surface.drop_at(x, z, -self.depth * radius, radius)?;
             self.fallen += 1;
             self.next += self.wait();
@@ -256,15 +258,19 @@ impl Disturbance for Wake {
         let reach = 3.0 * self.radius;
         let inv_r2 = 1.0 / (self.radius * self.radius);
         let peak = -self.strength * h * h;
+        // Rest positions are in the water frame: node (col, row) at origin + (col, row)·h.
+        let [ocol, orow] = surface.origin_cells();
+        let rest = |k: usize, o: i64| (k as i64 + o) as f32 * h;
         // The nodes whose rest position lies within `reach` of `p` along one axis.
-        let span = |p: f32, n: usize| {
+        let span = |p: f32, n: usize, o: i64| {
+            let p = p - o as f32 * h;
             let lo = ((p - reach) / h).ceil().max(0.0).min(n as f32) as usize;
             let hi = ((p + reach) / h).floor().max(-1.0).min(n as f32 - 1.0) as isize;
             lo..(hi + 1).max(0) as usize
         };
-        for row in span(pz, grid.rows) {
-            for col in span(px, grid.cols) {
-                let d2 = (col as f32 * h - px).powi(2) + (row as f32 * h - pz).powi(2);
+        for row in span(pz, grid.rows, orow) {
+            for col in span(px, grid.cols, ocol) {
+                let d2 = (rest(col, ocol) - px).powi(2) + (rest(row, orow) - pz).powi(2);
                 let f = peak * (-d2 * inv_r2).exp();
                 surface.add_force(row * grid.cols + col, [0.0, f, 0.0])?;
             }

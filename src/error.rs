@@ -120,13 +120,14 @@ pub enum Error {
 
     /// A query point is outside the surface's rest footprint.
     #[error(
-        "point (x {x}, z {z}) is outside the water's footprint [0, {width}] x [0, {length}]; \
-         check Surface::contains first or clamp the point into the footprint"
+        "point (x {x}, z {z}) from the window's origin is outside the water's footprint \
+         [0, {width}] x [0, {length}]; check Surface::contains first or clamp the point into \
+         the footprint"
     )]
     OutsideGrid {
-        /// The point's x.
+        /// The point's x less the window's origin ([`Surface::origin`](crate::Surface::origin)).
         x: f32,
-        /// The point's z.
+        /// The point's z less the window's origin.
         z: f32,
         /// `(cols − 1)·h`, the footprint's size along x.
         width: f32,

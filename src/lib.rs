@@ -125,7 +125,8 @@ pub use jobs::JobSystem;
 pub use params::{Boundary, Params, MAX_NODES};
 pub use simd::SimdLevel;
 pub use surface::snapshot::Snapshot;
-pub use surface::{Energy, Overflow, Spring, Surface};
+pub use surface::window;
+pub use surface::{Energy, FarField, Overflow, Spring, Surface, MAX_ORIGIN_CELLS};
 pub use view::MeshView;
 
 /// Unstable internals for the crate's command line, tests and benchmarks: the scalar

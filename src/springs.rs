@@ -206,6 +206,44 @@ impl Springs {
         }
     }
 
+    /// Moves one family's tables for a shift of the window: the spring between new nodes
+    /// `i` and `j` takes the values of the spring between `source(i)` and `source(j)` when
+    /// both were in the window, `default` (`(rest, coef)`) otherwise; springs that do not
+    /// exist hold 0. A family whose springs all hold `default` has nothing to move.
+    pub fn shift_family(
+        &mut self,
+        family: Family,
+        grid: Grid,
+        source: impl Fn(usize) -> Option<usize>,
+        default: (f32, f32),
+    ) {
+        let f = family as usize;
+        let same = |u: (f32, f32)| {
+            u.0.to_bits() == default.1.to_bits() && u.1.to_bits() == default.0.to_bits()
+        };
+        if self.uniform[f].is_some_and(same) {
+            return;
+        }
+        // Without tables every spring holds its family's first values, the defaults.
+        let Some(t) = self.tables.as_deref_mut() else {
+            return;
+        };
+        let n = grid.len();
+        let (rest, coef) = (t.rest[f][..n].to_vec(), t.coef[f][..n].to_vec());
+        for i in 0..n {
+            let (r, c) = match grid.spring_end(family, i) {
+                None => (0.0, 0.0),
+                Some(j) => match (source(i), source(j)) {
+                    (Some(s), Some(_)) => (rest[s], coef[s]),
+                    _ => default,
+                },
+            };
+            t.rest[f][i] = r;
+            t.coef[f][i] = c;
+        }
+        self.refresh();
+    }
+
     /// Every family's shared `(coefficient, rest length)`, if each family has one.
     pub fn all_uniform(&self) -> Option<[(f32, f32); 4]> {
         match self.uniform {

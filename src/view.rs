@@ -22,6 +22,8 @@ pub struct MeshView<'a> {
     simd: SimdLevel,
     /// Where the stages' parts run: the surface's host threads, else rayon's pool.
     runner: Runner<'a>,
+    /// Rest place `(x, z)` of node `(0, 0)` in the frame of the positions.
+    origin: [f32; 2],
 }
 
 // The view only reads the surface's buffers (its host is borrowed to hand work to):
@@ -52,7 +54,22 @@ impl<'a> MeshView<'a> {
             z,
             simd: SimdLevel::detect(),
             runner: Runner::Here,
+            origin: [0.0, 0.0],
         })
+    }
+
+    /// The same view of a grid whose node `(0, 0)` rests at `(origin[0], 0, origin[1])`
+    /// in the frame of the positions (a moving window: [`crate::Surface::origin`]; the
+    /// surface's own [`crate::Surface::mesh_view`] sets it). The LOD measures the eye's
+    /// distance to the patches' rest footprints in that frame. Default `[0, 0]`.
+    pub fn with_origin(mut self, origin: [f32; 2]) -> Self {
+        self.origin = origin;
+        self
+    }
+
+    /// The rest place `(x, z)` of node `(0, 0)` (see [`MeshView::with_origin`]).
+    pub fn origin(&self) -> [f32; 2] {
+        self.origin
     }
 
     /// The same view, read by the render-side stages at `level` (clamped to what the CPU

@@ -165,3 +165,27 @@ proptest! {
         prop_assert_eq!(s.dropped_seconds(), 0.0);
     }
 }
+
+#[test]
+fn snapshots_keep_the_accumulator_and_the_cap() {
+    let mut a = pool();
+    a.set_step_cap(5, Overflow::Carry).unwrap();
+    a.advance(0.01).unwrap();
+    a.advance(0.2).unwrap(); // 12.6 steps owed: 5 now, the rest carried
+    let mut b = Surface::from_bytes(&a.to_bytes()).unwrap();
+    assert_eq!(b.step_cap(), (5, Overflow::Carry));
+    assert_eq!(b.owed_seconds(), a.owed_seconds());
+    assert_eq!(b.interpolation(), a.interpolation());
+    for f in [0.0, 0.013, 0.0, 0.02] {
+        assert_eq!(a.advance(f).unwrap(), b.advance(f).unwrap());
+    }
+    assert!(state_bits(&a) == state_bits(&b));
+    // The plain-data form too, and a bad cap in it is refused.
+    let mut snap = a.snapshot();
+    assert_eq!(snap.step_cap, (5, Overflow::Carry));
+    snap.step_cap.0 = 0;
+    assert!(Surface::from_snapshot(snap).is_err());
+    let mut snap = a.snapshot();
+    snap.owed_time = f64::NAN;
+    assert!(Surface::from_snapshot(snap).is_err());
+}

@@ -172,10 +172,10 @@ fn wrong_magic_and_version_are_refused() {
     assert!(m.contains("version 0"), "{m}");
 }
 
-/// The bytes of a version 3 snapshot without bodies or frame, in the layout of `version`
-/// (1 or 2: the header ends at offset 112).
-fn downgrade(v3: &[u8], version: u32) -> Vec<u8> {
-    let mut b = [&v3[..112], &v3[136..]].concat();
+/// The bytes of a snapshot without bodies, frame or shift, in the layout of `version`
+/// (1 or 2: the header ends at offset 112 and there is no origin before the checksum).
+fn downgrade(v4: &[u8], version: u32) -> Vec<u8> {
+    let mut b = [&v4[..112], &v4[136..v4.len() - 44], &[0; 4]].concat();
     b[8..12].copy_from_slice(&version.to_le_bytes());
     let len = b.len() as u64;
     b[16..24].copy_from_slice(&len.to_le_bytes());
@@ -201,7 +201,7 @@ fn version_1_snapshots_load_with_the_default_time_scale() {
     assert_eq!(
         downgrade(&loaded.to_bytes(), 2),
         v2,
-        "read as version 2, written as 3"
+        "read as version 2, written as 4"
     );
     let mut v1 = v2.clone();
     v1[8..12].copy_from_slice(&1u32.to_le_bytes());
@@ -229,7 +229,7 @@ fn lying_lengths_are_refused_without_allocating() {
     let mut b = bytes.clone();
     b[24..32].copy_from_slice(&(1u64 << 13).to_le_bytes());
     b[32..40].copy_from_slice(&(1u64 << 13).to_le_bytes());
-    b[16..24].copy_from_slice(&(140u64 + 77 * (1 << 26)).to_le_bytes());
+    b[16..24].copy_from_slice(&(180u64 + 77 * (1 << 26)).to_le_bytes());
     assert!(message(&b).contains("truncated"));
     assert!(Surface::load(&b[..]).is_err());
     // A floater count the bytes do not hold.
@@ -345,7 +345,7 @@ fn free_boundary_and_snapshot_of_fresh_surface() {
     p.boundary = Boundary::Free;
     let s = Surface::new(p).unwrap();
     let bytes = s.to_bytes();
-    assert_eq!(bytes.len(), 140 + 77 * 4);
+    assert_eq!(bytes.len(), 180 + 77 * 4);
     assert_eq!(Surface::from_bytes(&bytes).unwrap().to_bytes(), bytes);
 }
 

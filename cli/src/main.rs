@@ -33,6 +33,8 @@ commands:
              continue from a snapshot: simulate --load FILE --steps N [--drop …]
              a progress bar on a terminal; Ctrl-C stops at the step reached and
              still writes --csv and --save
+             move the window after the steps: --follow-shift DC,DR (whole cells;
+             the CSV's x, z stay world positions, the strip that comes in is calm)
   bench      time the step against the scalar reference, a naive AoS
              baseline and a memory-bandwidth floor    [--repeats N] [--compare LIST]
                                                       [--band-rows H]
@@ -80,6 +82,8 @@ render flags (defaults in brackets):
   --rain RATE          raindrops per unit of model time, 0 for none (0.3)
   --seed S             random seed of the rain (1); same seed, same file
   --wake               a ball circling the pool, leaving a wake
+  --follow             a ball crossing open water in a straight line, the window and
+                       the camera following it (use with --boundary absorbing)
   --floaters N         N balls floating on the water, bobbing in the rain (0)
   --wireframe          overlay the LOD triangles, coloured by level
   --orbit DEGREES      turn the camera about the target over the animation (0)

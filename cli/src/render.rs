@@ -32,6 +32,7 @@ struct Options {
     rain: f32,
     seed: u64,
     wake: bool,
+    follow: bool,
     floaters: usize,
     wireframe: bool,
     orbit: f32,
@@ -58,6 +59,7 @@ impl Default for Options {
             rain: 0.3,
             seed: 1,
             wake: false,
+            follow: false,
             floaters: 0,
             wireframe: false,
             orbit: 0.0,
@@ -100,6 +102,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             "rain" => o.rain = value(p, "--rain")?,
             "seed" => o.seed = value(p, "--seed")?,
             "wake" => o.wake = true,
+            "follow" => o.follow = true,
             "floaters" => o.floaters = ranged(value(p, "--floaters")?, 0, 1000, "--floaters")?,
             "wireframe" => o.wireframe = true,
             "orbit" => o.orbit = value(p, "--orbit")?,
@@ -361,8 +364,16 @@ fn animate(
     let mut rain = Rain::new(o.rain * surface.params().time_scale, o.seed);
     rain.radius = 1.5 * h..3.0 * h;
     let cells = surface.params().cols.min(surface.params().rows) as f32;
-    let mut wake = o.wake.then(|| {
-        let mut wake = Wake::circle(&surface, 0.3 * cells * h);
+    let mut wake = (o.wake || o.follow).then(|| {
+        let mut wake = if o.follow {
+            // A straight line across open water, far longer than the animation goes: from
+            // a third of the way across the window, along +x through its middle.
+            let p = surface.params();
+            let (x, z) = ((p.cols - 1) as f32 * h / 3.0, (p.rows - 1) as f32 * h / 2.0);
+            Wake::new(vec![[x, z], [x + 1.0e5 * h, z]]).expect("two distinct corners")
+        } else {
+            Wake::circle(&surface, 0.3 * cells * h)
+        };
         // 2.5 cells per unit of model time, whatever the spacing and time scale.
         wake.speed = 2.5 * h * surface.params().time_scale;
         wake.radius *= h;
@@ -379,11 +390,24 @@ fn animate(
         } else {
             o.substeps as u64
         };
-        let mut disturbances: Vec<&mut dyn Disturbance> = vec![&mut rain];
-        if let Some(w) = wake.as_mut() {
-            disturbances.push(w);
+        if o.follow {
+            // Step by step, the window re-centred on the ball after each one.
+            for _ in 0..steps {
+                let mut disturbances: Vec<&mut dyn Disturbance> = vec![&mut rain];
+                disturbances.extend(wake.as_mut().map(|w| w as &mut dyn Disturbance));
+                run_steps(&mut surface, &mut disturbances, 1)?;
+                if let Some(w) = &wake {
+                    let [x, z] = w.position();
+                    surface.follow(x, z).map_err(|e| e.to_string())?;
+                }
+            }
+        } else {
+            let mut disturbances: Vec<&mut dyn Disturbance> = vec![&mut rain];
+            if let Some(w) = wake.as_mut() {
+                disturbances.push(w);
+            }
+            run_steps(&mut surface, &mut disturbances, steps)?;
         }
-        run_steps(&mut surface, &mut disturbances, steps)?;
         clock.simulation += t.elapsed();
         balls.clear();
         balls.extend(wake.as_ref().map(|w| boat(&surface, w)));
@@ -396,6 +420,10 @@ fn animate(
             renderer.set_balls(&balls).map_err(|e| e.to_string())?;
         }
         let mut camera = *camera;
+        // The camera rides with the window (positions are in the water frame).
+        let [ox, oz] = surface.origin();
+        camera.eye += glam::Vec3::new(ox, 0.0, oz);
+        camera.look_at += glam::Vec3::new(ox, 0.0, oz);
         if o.orbit != 0.0 {
             // Turn the eye about the vertical through the target, `orbit` degrees in all.
             let angle =

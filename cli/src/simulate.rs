@@ -5,8 +5,13 @@
 //! count) comes from the snapshot, so the flags that define a model are refused next to it;
 //! `--steps`, `--drop` (added to the loaded state before the steps), `--threads`, `--csv`
 //! and `--save` apply as usual.
+//!
+//! `--follow-shift DC,DR` moves the window by whole cells after the steps, before the CSV
+//! and the snapshot are written (`Surface::shift`): the CSV's `x`, `z` are positions in the
+//! water frame, so a node of the overlap appears with the bits of an unshifted run's node
+//! `(col + DC, row + DR)`, and the strip that came in is calm.
 
-use crate::args::{list, next_flag, string, unexpected, CliResult, Flag, ModelArgs, Short};
+use crate::args::{list, next_flag, number, string, unexpected, CliResult, Flag, ModelArgs, Short};
 use lexopt::Parser;
 use springwater::{Floater, Surface};
 use std::io::Write;
@@ -34,6 +39,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut load: Option<PathBuf> = None;
     let mut model_flag: Option<String> = None;
     let mut floaters: Vec<[f32; 4]> = Vec::new();
+    let mut follow_shift: Option<[i32; 2]> = None;
     while let Some(arg) = next_flag(p)? {
         if let Flag::Long(l) = &arg {
             if MODEL_FLAGS.contains(&l.as_str()) {
@@ -47,6 +53,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             Flag::Long(l) if l == "csv" => csv = Some(string(p, "--csv")?.into()),
             Flag::Long(l) if l == "save" => save = Some(string(p, "--save")?.into()),
             Flag::Long(l) if l == "load" => load = Some(string(p, "--load")?.into()),
+            Flag::Long(l) if l == "follow-shift" => {
+                follow_shift = Some(cells(&string(p, "--follow-shift")?)?)
+            }
             Flag::Long(l) if l == "floater" => {
                 floaters.push(list(&string(p, "--floater")?, "--floater X,Z,MASS,RADIUS")?)
             }
@@ -57,7 +66,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         (Some(_), Some(flag)) => {
             return Err(format!(
                 "--{flag} cannot be combined with --load: the model comes from the snapshot \
-                 (only --steps, --drop, --threads, --csv and --save apply)"
+                 (only --steps, --drop, --threads, --follow-shift, --csv and --save apply)"
             ))
         }
         (Some(path), None) => {
@@ -82,8 +91,15 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let start = Instant::now();
     let interrupted = on_interrupt();
     let bar = crate::render::progress(model.steps, "steps");
-    let outcome =
-        model.with_threads(|| run_steps_until(&mut surface, model.steps, &interrupted, &bar));
+    let outcome = model.with_threads(|| {
+        let done = run_steps_until(&mut surface, model.steps, &interrupted, &bar)?;
+        if let Some([dc, dr]) = follow_shift {
+            surface
+                .shift(dc, dr)
+                .map_err(|e| format!("--follow-shift {dc},{dr}: {e}"))?;
+        }
+        Ok(done)
+    });
     bar.finish_and_clear();
     if let Err(e) | Ok(Err(e)) = outcome {
         // Leave no empty output behind that a later --load would only call truncated.
@@ -164,6 +180,17 @@ fn run_steps_until(
         }
     }
     Ok(steps)
+}
+
+/// Parses `DC,DR`: two whole numbers of cells (signed).
+fn cells(v: &str) -> CliResult<[i32; 2]> {
+    const WHAT: &str = "--follow-shift DC,DR";
+    match v.split(',').collect::<Vec<_>>()[..] {
+        [dc, dr] => Ok([number(dc, WHAT)?, number(dr, WHAT)?]),
+        _ => Err(format!(
+            "{WHAT} expects 2 comma-separated whole numbers, got '{v}'"
+        )),
+    }
 }
 
 /// Reads a snapshot file, naming it in the error.

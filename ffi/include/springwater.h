@@ -399,6 +399,35 @@ SwStatus sw_surface_drop_at(struct SwSurface *surface,
 // Deprecated: the earlier name of `sw_surface_drop_at`, which it calls.
 SwStatus sw_surface_drop(struct SwSurface *surface, float x, float z, float height, float radius);
 
+// Moves the window `dcols` cells along +x and `drows` along +z (negative values go the
+// other way): node `(col, row)` afterwards is the water that was at node
+// `(col + dcols, row + drows)`, bit for bit; the strip that comes in is calm. Positions and
+// every world-unit call stay in the frame the surface was created in: node `(col, row)`
+// rests at `origin + (col, row)·spacing` (`sw_surface_origin`). Values a caller set per
+// node travel with the water; the boundary (pinned ring, absorbing frame) stays at the
+// window's edge. `SW_ERROR_INVALID_ARGUMENT`, with nothing changed, if the window would go
+// more than 15,728,640 cells from the frame's origin.
+SwStatus sw_surface_shift(struct SwSurface *surface, int32_t dcols, int32_t drows);
+
+// Shifts the window so that world `(x, z)` is back near its middle once the point has
+// left a dead zone around the middle (an eighth of the shorter side, at least one cell,
+// either side of the centre), and writes the shift made, `[dcols, drows]`, to
+// `out[0..2]` (`[0, 0]` inside the dead zone). A non-finite point is
+// `SW_ERROR_INVALID_ARGUMENT` and changes nothing.
+//
+// # Safety
+//
+// `out` is NULL or points to 2 writable `int32_t`.
+SwStatus sw_surface_follow(struct SwSurface *surface, float x, float z, int32_t *out);
+
+// The world `(x, z)` of node `(0, 0)`'s rest place, written to `out[0..2]`: `spacing`
+// times the whole cells the window has travelled (`[0, 0]` until it moves).
+//
+// # Safety
+//
+// `out` is NULL or points to 2 writable floats.
+SwStatus sw_surface_origin(const struct SwSurface *surface, float *out);
+
 // Adds the force `(fx, fy, fz)` at world `(x, z)` for the next step, spread onto the
 // four nodes around the point with the weights `sw_surface_height_at` reads with: what
 // a floating body feels and what it pushes back agree.

@@ -418,6 +418,60 @@ pub extern "C" fn sw_surface_drop(
     sw_surface_drop_at(surface, x, z, height, radius)
 }
 
+/// Moves the window `dcols` cells along +x and `drows` along +z (negative values go the
+/// other way): node `(col, row)` afterwards is the water that was at node
+/// `(col + dcols, row + drows)`, bit for bit; the strip that comes in is calm. Positions and
+/// every world-unit call stay in the frame the surface was created in: node `(col, row)`
+/// rests at `origin + (col, row)·spacing` (`sw_surface_origin`). Values a caller set per
+/// node travel with the water; the boundary (pinned ring, absorbing frame) stays at the
+/// window's edge. `SW_ERROR_INVALID_ARGUMENT`, with nothing changed, if the window would go
+/// more than 15,728,640 cells from the frame's origin.
+#[no_mangle]
+pub extern "C" fn sw_surface_shift(surface: *mut SwSurface, dcols: i32, drows: i32) -> SwStatus {
+    guard(|| handle::with(surface, |w| Ok(w.surface.shift(dcols, drows)?)))
+}
+
+/// Shifts the window so that world `(x, z)` is back near its middle once the point has
+/// left a dead zone around the middle (an eighth of the shorter side, at least one cell,
+/// either side of the centre), and writes the shift made, `[dcols, drows]`, to
+/// `out[0..2]` (`[0, 0]` inside the dead zone). A non-finite point is
+/// `SW_ERROR_INVALID_ARGUMENT` and changes nothing.
+///
+/// # Safety
+///
+/// `out` is NULL or points to 2 writable `int32_t`.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_follow(
+    surface: *mut SwSurface,
+    x: f32,
+    z: f32,
+    out: *mut i32,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: the caller gives 2 ints at `out`; checked before the window moves.
+        let out = unsafe { out_slice(out, 2, "out") }?;
+        let made = handle::with(surface, |w| Ok(w.surface.follow(x, z)?))?;
+        out.copy_from_slice(&made);
+        Ok(())
+    })
+}
+
+/// The world `(x, z)` of node `(0, 0)`'s rest place, written to `out[0..2]`: `spacing`
+/// times the whole cells the window has travelled (`[0, 0]` until it moves).
+///
+/// # Safety
+///
+/// `out` is NULL or points to 2 writable floats.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_origin(surface: *const SwSurface, out: *mut f32) -> SwStatus {
+    guard(|| {
+        // SAFETY: the caller gives 2 floats at `out`.
+        let out = unsafe { out_slice(out, 2, "out") }?;
+        out.copy_from_slice(&handle::with(surface, |w| Ok(w.surface.origin()))?);
+        Ok(())
+    })
+}
+
 /// Adds the force `(fx, fy, fz)` at world `(x, z)` for the next step, spread onto the
 /// four nodes around the point with the weights `sw_surface_height_at` reads with: what
 /// a floating body feels and what it pushes back agree.

@@ -233,7 +233,9 @@ impl LodMesh {
         if !fresh && !eye.is_finite() {
             return false;
         }
-        self.distance_levels(eye, fresh);
+        // The footprints are measured from node (0, 0): the eye relative to the window.
+        let [ox, oz] = view.origin();
+        self.distance_levels(eye - Vec3::new(ox, 0.0, oz), fresh);
         self.apply(fresh)
     }
 

@@ -29,6 +29,7 @@ use crate::params;
 
 /// What [`Surface::advance`] does with the steps a frame owes beyond the cap.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Hash)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum Overflow {
     /// The steps past the cap are dropped: after a stall the water goes on from where it

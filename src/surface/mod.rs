@@ -7,9 +7,11 @@ mod disturbance;
 mod floaters;
 pub(crate) mod query;
 pub(crate) mod snapshot;
+pub mod window;
 
 pub use clock::Overflow;
 pub use disturbance::Disturbance;
+pub use window::{FarField, MAX_ORIGIN_CELLS};
 
 use crate::error::{same_length, Error, Result};
 use crate::forces::engine::{PassEnd, Workspace};
@@ -93,6 +95,11 @@ pub struct Surface {
     pub(crate) host: Option<Host>,
     /// Floating bodies and their world.
     pub(crate) floaters: floaters::Floaters,
+    /// Whole cells the window has travelled, `[cols, rows]` (see [`window`]).
+    pub(crate) window_origin: [i64; 2],
+    /// Whether a per-node mass, viscosity or pin may differ from its place's default (a
+    /// shift then moves them; see [`window`]).
+    pub(crate) window_custom: bool,
 }
 
 impl Surface {
@@ -171,6 +178,8 @@ impl Surface {
             params,
             host: None,
             floaters: Default::default(),
+            window_origin: [0, 0],
+            window_custom: false,
         }
     }
 
@@ -261,6 +270,7 @@ impl Surface {
             .expect("the surface's own buffers match its grid")
             .with_simd_level(self.simd)
             .with_runner(Runner::of(self.host.as_ref()))
+            .with_origin(self.origin())
     }
 
     /// Advances one step of `params().dt`, at the surface's SIMD level
@@ -487,8 +497,9 @@ impl Surface {
     /// [`Surface::dropped_seconds`] and [`Surface::owed_seconds`] say which.
     ///
     /// A negative or non-finite frame is refused with nothing changed. A failing step stops
-    /// the frame there (earlier steps stay applied, the failing one is not, and the time of
-    /// the steps not taken stays owed) and returns its error. See [`Surface::advance_with`]
+    /// the frame there and returns its error: the earlier steps stay applied, the failing
+    /// one is not, and the frame's time is spent (if no step was taken, nothing changed,
+    /// the accumulator included). See [`Surface::advance_with`]
     /// to disturb the water before every step.
     ///
     /// ```
@@ -502,10 +513,11 @@ impl Surface {
     /// # Ok::<(), springwater::Error>(())
     /// ```
     pub fn advance(&mut self, frame_seconds: f32) -> Result<usize> {
-        let (steps, before) = (self.tick(frame_seconds)?, self.steps);
+        let (clock, before) = (self.clock, self.steps);
+        let steps = self.tick(frame_seconds)?;
         // Nothing reads the water between these steps: the engine takes several per pass.
         let result = self.run_steps(steps as u64, self.params.dt);
-        self.settle(steps, before, result)
+        self.settle(clock, before, steps, result)
     }
 
     /// [`Surface::advance`] with `disturbance` applied before every step, with the model
@@ -531,24 +543,35 @@ impl Surface {
         frame_seconds: f32,
         disturbance: &mut D,
     ) -> Result<usize> {
-        let (steps, before) = (self.tick(frame_seconds)?, self.steps);
+        let (clock, before) = (self.clock, self.steps);
+        let steps = self.tick(frame_seconds)?;
         let dt = self.params.dt;
         let result = (0..steps).try_for_each(|_| {
             disturbance.apply(self, dt)?;
             self.run_steps(1, dt)
         });
-        self.settle(steps, before, result)
+        self.settle(clock, before, steps, result)
     }
 
-    /// Ends a clocked frame of `steps` steps begun at step count `before`: on error the
-    /// time of the steps not taken goes back to the accumulator.
-    fn settle(&mut self, steps: usize, before: u64, result: Result<()>) -> Result<usize> {
-        if let Err(e) = result {
-            let missed = steps as u64 - (self.steps - before);
-            self.clock.owed += missed as f64 * self.params.dt as f64;
-            return Err(e);
+    /// Ends a clocked frame of `steps` steps begun with `clock` at step count `before`. If
+    /// a step failed before any was taken the clock is put back, so the call changed
+    /// nothing; after some steps the frame's time is spent, the failed steps with it.
+    fn settle(
+        &mut self,
+        clock: clock::Clock,
+        before: u64,
+        steps: usize,
+        result: Result<()>,
+    ) -> Result<usize> {
+        match result {
+            Ok(()) => Ok(steps),
+            Err(e) => {
+                if self.steps == before {
+                    self.clock = clock;
+                }
+                Err(e)
+            }
         }
-        Ok(steps)
     }
 
     /// The frame split of earlier versions, for callers who ask for it by name: advances
@@ -609,12 +632,15 @@ impl Surface {
         params::positive("drop radius", radius)?;
         let grid = self.grid();
         let h = self.params.spacing;
+        let [oc, or] = self.window_origin;
         let inv_r2 = 1.0 / (radius * radius);
         // `d2 * inv_r2` is 0 × ∞ = NaN at the centre when radius² underflows: the weight
         // there is 1 by definition.
         let lift = |y: &[f32], i: usize| {
             let (c, r) = grid.coords(i);
-            let d2 = (c as f32 * h - x).powi(2) + (r as f32 * h - z).powi(2);
+            // Rest place in the water frame (see `window`).
+            let (c, r) = ((c as i64 + oc) as f32, (r as i64 + or) as f32);
+            let d2 = (c * h - x).powi(2) + (r * h - z).powi(2);
             let w = if d2 == 0.0 { 1.0 } else { (-d2 * inv_r2).exp() };
             y[i] + height * w
         };
@@ -623,13 +649,14 @@ impl Surface {
         // get `y + height · 0`, which leaves y as it is except that it turns a −0 into +0
         // when `height ≥ 0` (kept, so the result is the formula's to the bit).
         const CUT: f32 = 10.954_452; // sqrt(120)
-        let span = |centre: f32, n: usize| {
+        let span = |centre: f32, n: usize, origin: i64| {
             let reach = CUT * radius / h;
+            let centre = centre - origin as f32 * h;
             let lo = ((centre / h - reach).floor().max(0.0) as usize).min(n);
             let hi = ((centre / h + reach).ceil().clamp(0.0, n as f32) as usize + 1).min(n);
             lo..hi
         };
-        let (cols, rows) = (span(x, grid.cols), span(z, grid.rows));
+        let (cols, rows) = (span(x, grid.cols, oc), span(z, grid.rows, or));
         let near = |i: usize| {
             let (c, r) = grid.coords(i);
             cols.contains(&c) && rows.contains(&r)
@@ -749,6 +776,7 @@ impl Surface {
     pub fn set_pinned(&mut self, node: usize, pinned: bool) -> Result<()> {
         self.check_node(node)?;
         self.state.pinned[node] = pinned;
+        self.window_custom = true;
         if pinned {
             for v in &mut self.state.vel {
                 v[node] = 0.0;
@@ -787,6 +815,7 @@ impl Surface {
         )?;
         self.min_mass = min_mass;
         self.state.mass[node] = mass;
+        self.window_custom = true;
         if !self.state.pinned[node] {
             self.state.inv_mass[node] = 1.0 / mass;
         }
@@ -806,6 +835,7 @@ impl Surface {
         )?;
         self.max_viscosity = max_viscosity;
         self.state.viscosity[node] = viscosity;
+        self.window_custom = true;
         Ok(())
     }
 

@@ -16,25 +16,41 @@ struct Sample {
 }
 
 impl Sample {
-    fn at(view: &MeshView<'_>, x: f32, z: f32) -> Result<Self> {
+    /// The cell under the water-frame point `(x, z)` of a window whose node `(0, 0)` is
+    /// `origin` cells from the frame's origin (see [`super::window`]).
+    fn at(view: &MeshView<'_>, origin: [i64; 2], x: f32, z: f32) -> Result<Self> {
         crate::params::finite("query x", x)?;
         crate::params::finite("query z", z)?;
         let [width, length] = view.extent();
-        if !((0.0..=width).contains(&x) && (0.0..=length).contains(&z)) {
+        let h = view.spacing();
+        let [ox, oz] = origin.map(|o| o as f32);
+        // The footprint check in window-relative units (exact while the window has not
+        // moved).
+        let (lx, lz) = (x - ox * h, z - oz * h);
+        if !((0.0..=width).contains(&lx) && (0.0..=length).contains(&lz)) {
             return Err(Error::OutsideGrid {
-                x,
-                z,
+                x: lx,
+                z: lz,
                 width,
                 length,
             });
         }
-        let h = view.spacing();
-        let (cells_x, cells_z) = (view.cols() - 1, view.rows() - 1);
-        let (col, row) = ((x / h).min(cells_x as f32), (z / h).min(cells_z as f32));
-        let c = (col as usize).min(cells_x - 1);
-        let r = (row as usize).min(cells_z - 1);
-        let fx = (col - c as f32).clamp(0.0, 1.0);
-        let fz = (row - r as f32).clamp(0.0, 1.0);
+        // The cell and the weights from the point in cells of the water frame, `x / h`,
+        // and its whole cell: the same numbers wherever the window is, so a query at a
+        // world point answers the same bits before and after a shift. The cell is then
+        // counted from the window's origin, and the far edge belongs to the last cell.
+        let cell = |p: f32, origin: i64, cells: usize| {
+            let w = p / h;
+            let whole = w.floor();
+            match whole as i64 - origin {
+                c if c < 0 => (0, 0.0),
+                c if c as usize >= cells => (cells - 1, 1.0),
+                // `+ 0.0`: a point at −0 gives the weight −0, as `w − 0` does.
+                c => (c as usize, (w - (whole + 0.0)).clamp(0.0, 1.0)),
+            }
+        };
+        let (c, fx) = cell(x, origin[0], view.cols() - 1);
+        let (r, fz) = cell(z, origin[1], view.rows() - 1);
         Ok(Self { c, r, fx, fz })
     }
 
@@ -81,18 +97,19 @@ impl Sample {
 /// Checks every point, then fills `out` with `f` of each: all or nothing.
 fn batch<T>(
     view: &MeshView<'_>,
+    origin: [i64; 2],
     points: &[[f32; 2]],
     out: &mut Vec<T>,
     f: impl Fn(&Sample) -> T,
 ) -> Result<()> {
     for &[x, z] in points {
-        Sample::at(view, x, z)?;
+        Sample::at(view, origin, x, z)?;
     }
     out.clear();
     out.extend(
         points
             .iter()
-            .map(|&[x, z]| f(&Sample::at(view, x, z).expect("checked above"))),
+            .map(|&[x, z]| f(&Sample::at(view, origin, x, z).expect("checked above"))),
     );
     Ok(())
 }
@@ -129,7 +146,7 @@ impl Surface {
     /// True if `(x, z)` is finite and inside the rest footprint
     /// `[0, (cols−1)h] × [0, (rows−1)h]`, where the queries answer.
     pub fn contains(&self, x: f32, z: f32) -> bool {
-        Sample::at(&self.mesh_view(), x, z).is_ok()
+        Sample::at(&self.mesh_view(), self.window_origin, x, z).is_ok()
     }
 
     /// Height (y) of the water at world `(x, z)`, interpolated bilinearly between nodes.
@@ -147,7 +164,7 @@ impl Surface {
     /// ```
     pub fn height_at(&self, x: f32, z: f32) -> Result<f32> {
         let view = self.mesh_view();
-        Ok(Sample::at(&view, x, z)?.blend(view.cols(), view.y()))
+        Ok(Sample::at(&view, self.window_origin, x, z)?.blend(view.cols(), view.y()))
     }
 
     /// Adds `force` at the world point `(x, z)` for the next step only: the force is spread
@@ -186,7 +203,7 @@ impl Surface {
             crate::params::finite("force", f)?;
         }
         let view = self.mesh_view();
-        let sample = Sample::at(&view, x, z)?;
+        let sample = Sample::at(&view, self.window_origin, x, z)?;
         let cols = view.cols();
         let (w, corners) = (sample.weights(), sample.corners(cols));
         let ext = &self.state.ext;
@@ -214,7 +231,7 @@ impl Surface {
     /// nodes the point blends (the damping room `rate` leaves them).
     pub(crate) fn water_under(&self, x: f32, z: f32, rate: f32) -> Option<(f32, Vec3, f32)> {
         let view = self.mesh_view();
-        let sample = Sample::at(&view, x, z).ok()?;
+        let sample = Sample::at(&view, self.window_origin, x, z).ok()?;
         let cols = view.cols();
         let room = sample
             .corners(cols)
@@ -232,31 +249,35 @@ impl Surface {
     /// renormalised.
     pub fn normal_at(&self, x: f32, z: f32) -> Result<Vec3> {
         let view = self.mesh_view();
-        Ok(Sample::at(&view, x, z)?.normal(&view))
+        Ok(Sample::at(&view, self.window_origin, x, z)?.normal(&view))
     }
 
     /// Velocity of the water at world `(x, z)`, interpolated bilinearly between nodes.
     pub fn velocity_at(&self, x: f32, z: f32) -> Result<Vec3> {
         let view = self.mesh_view();
-        Ok(Sample::at(&view, x, z)?.blend3(view.cols(), self.velocities()))
+        Ok(Sample::at(&view, self.window_origin, x, z)?.blend3(view.cols(), self.velocities()))
     }
 
     /// [`Surface::height_at`] for every `[x, z]` of `points`, into `out`.
     pub fn heights_at(&self, points: &[[f32; 2]], out: &mut Vec<f32>) -> Result<()> {
         let view = self.mesh_view();
-        batch(&view, points, out, |s| s.blend(view.cols(), view.y()))
+        batch(&view, self.window_origin, points, out, |s| {
+            s.blend(view.cols(), view.y())
+        })
     }
 
     /// [`Surface::normal_at`] for every `[x, z]` of `points`, into `out`.
     pub fn normals_at(&self, points: &[[f32; 2]], out: &mut Vec<Vec3>) -> Result<()> {
         let view = self.mesh_view();
-        batch(&view, points, out, |s| s.normal(&view))
+        batch(&view, self.window_origin, points, out, |s| s.normal(&view))
     }
 
     /// [`Surface::velocity_at`] for every `[x, z]` of `points`, into `out`.
     pub fn velocities_at(&self, points: &[[f32; 2]], out: &mut Vec<Vec3>) -> Result<()> {
         let view = self.mesh_view();
         let vel = self.velocities();
-        batch(&view, points, out, |s| s.blend3(view.cols(), vel))
+        batch(&view, self.window_origin, points, out, |s| {
+            s.blend3(view.cols(), vel)
+        })
     }
 }

@@ -1,7 +1,7 @@
 //! Snapshots: the complete state of a [`Surface`] saved and restored bitwise (the format
 //! is documented on [`Snapshot`]).
 
-use super::Surface;
+use super::{Overflow, Surface};
 use crate::error::{Error, Result};
 use crate::floater::{Buoyancy, Floater, FloaterId, Shape};
 use crate::grid::{Family, Grid};
@@ -13,8 +13,8 @@ use std::io::{Read, Write};
 
 /// The first eight bytes of every snapshot.
 pub(crate) const MAGIC: [u8; 8] = *b"SPRWATER";
-/// The format version this build writes. It reads versions 1 to 3 (see [`Snapshot`]).
-pub(crate) const VERSION: u32 = 3;
+/// The format version this build writes. It reads versions 1 to 4 (see [`Snapshot`]).
+pub(crate) const VERSION: u32 = 4;
 /// Bytes before the per-node arrays in versions 1 and 2.
 const HEADER_V2: usize = 112;
 /// Bytes before the per-node arrays.
@@ -25,6 +25,10 @@ const PER_FLOATER: usize = 80;
 const PER_NODE: usize = 11 * 4 + 1 + 8 * 4;
 /// Trailing checksum.
 const CRC: usize = 4;
+/// From version 4, before the checksum: the window's origin in cells (two `i64`) and the
+/// clock of `advance` (owed model time `f64`, step cap `u32`, overflow `u32`, dropped
+/// seconds `f64`).
+const ORIGIN: usize = 16 + 24;
 const FLAG_FORCES_PENDING: u32 = 1;
 
 /// The complete state of a [`Surface`] as plain data, saved and restored bitwise.
@@ -40,7 +44,7 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// [`Surface::snapshot`] and back with [`Surface::from_snapshot`]; with the `serde` feature
 /// it implements `Serialize` and `Deserialize`. Both paths run the same validation.
 ///
-/// # Format (version 3)
+/// # Format (version 4)
 ///
 /// Little-endian throughout; `n = cols × rows`, `f` floating bodies. Per-node arrays hold
 /// exactly `n` values (no SIMD padding); spring tables are indexed by origin node, with
@@ -49,7 +53,7 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// | offset | size | field |
 /// |---|---|---|
 /// | 0 | 8 | magic `b"SPRWATER"` |
-/// | 8 | 4 | format version `u32` (3; versions 1 and 2 are read too) |
+/// | 8 | 4 | format version `u32` (4; versions 1 to 3 are read too) |
 /// | 12 | 4 | flags `u32`: bit 0 = external forces pending; other bits 0 |
 /// | 16 | 8 | total length in bytes `u64`, checksum included |
 /// | 24 | 8, 8 | `cols`, `rows` as `u64` |
@@ -69,9 +73,14 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// | | n | pinned per node, `u8` 0 or 1 |
 /// | | 8 × 4n | rest length then stiffness, for families E, S, SE, SW |
 /// | | 80 f | per body: id `u64`, shape `u32` (0 = sphere, 1 = box), size (radius, 0, 0 or half extents), mass, drag, position, velocity, push, water force (`f32`) |
+/// | end − 44 | 2 × 8 | the window's origin in cells, columns then rows (`i64`, [`Surface::origin_cells`]) |
+/// | end − 28 | 8 | model time [`Surface::advance`] owes and has not stepped (`f64`) |
+/// | end − 20 | 4, 4 | the step cap `u32` and what happens past it `u32`: 0 = drop, 1 = carry ([`Surface::set_step_cap`]) |
+/// | end − 12 | 8 | seconds the cap has dropped so far (`f64`) |
 /// | end − 4 | 4 | CRC-32 (IEEE) of every byte before it |
 ///
-/// The total is `140 + 77 n + 80 f` bytes. Versions 1 and 2 end the header at offset 112
+/// The total is `180 + 77 n + 80 f` bytes. Version 3 has no origin and no clock (read as
+/// `[0, 0]`, a window that never moved, and a fresh clock). Versions 1 and 2 end the header at offset 112
 /// (no bodies, no absorbing boundary; version 1 has no `time_scale` either: such
 /// snapshots get the default). Loading refuses, with [`Error::Snapshot`] and a message
 /// that says what is wrong: a wrong magic or version, a total length that disagrees with
@@ -131,6 +140,25 @@ pub struct Snapshot {
     /// Gravity and water density for the bodies.
     #[cfg_attr(feature = "serde", serde(default))]
     pub buoyancy: Buoyancy,
+    /// Whole cells the window has travelled, `[cols, rows]` ([`Surface::origin_cells`]).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub origin_cells: [i64; 2],
+    /// Model time [`Surface::advance`] owes and has not stepped (the fixed-step clock's
+    /// accumulator: a fraction of a step, more while [`Overflow::Carry`] catches up).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub owed_time: f64,
+    /// Most steps one [`Surface::advance`] takes, and what happens past it
+    /// ([`Surface::set_step_cap`]).
+    #[cfg_attr(feature = "serde", serde(default = "default_step_cap"))]
+    pub step_cap: (u32, Overflow),
+    /// Seconds of the game's clock the cap has dropped so far.
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub dropped_seconds: f64,
+}
+
+#[cfg(feature = "serde")]
+fn default_step_cap() -> (u32, Overflow) {
+    (Surface::DEFAULT_MAX_STEPS, Overflow::Drop)
 }
 
 /// The absorbing frame's width as stored (0 for the other boundaries), if it fits a `u32`.
@@ -145,10 +173,11 @@ fn frame_width(boundary: Boundary) -> Option<u32> {
 /// layout, or `None` on overflow.
 fn encoded_len(version: u32, nodes: usize, floaters: usize) -> Option<usize> {
     let header = if version < 3 { HEADER_V2 } else { HEADER };
+    let origin = if version < 4 { 0 } else { ORIGIN };
     nodes
         .checked_mul(PER_NODE)?
         .checked_add(floaters.checked_mul(PER_FLOATER)?)?
-        .checked_add(header + CRC)
+        .checked_add(header + origin + CRC)
 }
 
 fn bad(msg: impl Into<String>) -> Error {
@@ -158,8 +187,9 @@ fn bad(msg: impl Into<String>) -> Error {
 impl Snapshot {
     /// The first eight bytes of every binary snapshot.
     pub const MAGIC: [u8; 8] = MAGIC;
-    /// The binary format version this build writes. It reads this one and version 1
-    /// (which had no `time_scale`: such snapshots get the default).
+    /// The binary format version this build writes. It reads this one and versions 1 to 3
+    /// (version 1 had no `time_scale`, version 3 no window origin: such snapshots get the
+    /// default and `[0, 0]`).
     pub const VERSION: u32 = VERSION;
 
     /// Encodes the snapshot in the binary format of the module docs.
@@ -272,6 +302,17 @@ impl Snapshot {
                 .chain(vectors.iter().flat_map(|v| v.to_array()));
             floats.for_each(|v| b.extend_from_slice(&v.to_le_bytes()));
         }
+        for c in self.origin_cells {
+            b.extend_from_slice(&c.to_le_bytes());
+        }
+        b.extend_from_slice(&self.owed_time.to_le_bytes());
+        b.extend_from_slice(&self.step_cap.0.to_le_bytes());
+        let overflow: u32 = match self.step_cap.1 {
+            Overflow::Drop => 0,
+            Overflow::Carry => 1,
+        };
+        b.extend_from_slice(&overflow.to_le_bytes());
+        b.extend_from_slice(&self.dropped_seconds.to_le_bytes());
         let crc = crc32fast::hash(&b);
         b.extend_from_slice(&crc.to_le_bytes());
         b
@@ -428,6 +469,19 @@ impl Snapshot {
                 },
             ));
         }
+        let (origin_cells, owed_time, step_cap, dropped_seconds) = if version < 4 {
+            let fresh = (Surface::DEFAULT_MAX_STEPS, Overflow::Drop);
+            ([0, 0], 0.0, fresh, 0.0)
+        } else {
+            let origin = [(); 2].map(|_| r.u64() as i64);
+            let (owed, max_steps) = (r.f64(), r.u32());
+            let overflow = match r.u32() {
+                0 => Overflow::Drop,
+                1 => Overflow::Carry,
+                other => return Err(bad(format!("step cap overflow {other} is not 0 or 1"))),
+            };
+            (origin, owed, (max_steps, overflow), r.f64())
+        };
         debug_assert_eq!(r.at, body.len());
         Ok(Self {
             params,
@@ -448,6 +502,10 @@ impl Snapshot {
             floaters,
             next_floater_id,
             buoyancy,
+            origin_cells,
+            owed_time,
+            step_cap,
+            dropped_seconds,
         })
     }
 
@@ -572,6 +630,36 @@ impl Snapshot {
                 )));
             }
             previous = Some(id.0);
+        }
+        let (max_steps, _) = self.step_cap;
+        if max_steps == 0 || max_steps as usize > Surface::MAX_SUBSTEPS {
+            return Err(bad(format!(
+                "step cap {max_steps} is not from 1 to {}",
+                Surface::MAX_SUBSTEPS
+            )));
+        }
+        let dt = p.dt as f64;
+        if !(self.owed_time.is_finite() && self.owed_time >= -dt) {
+            return Err(bad(format!(
+                "owed time {} is not finite and at least −dt",
+                self.owed_time
+            )));
+        }
+        if !(self.dropped_seconds.is_finite() && self.dropped_seconds >= 0.0) {
+            return Err(bad(format!(
+                "dropped seconds {} are not finite and at least 0",
+                self.dropped_seconds
+            )));
+        }
+        if let Some(&o) = self
+            .origin_cells
+            .iter()
+            .find(|o| o.unsigned_abs() > super::MAX_ORIGIN_CELLS as u64)
+        {
+            return Err(bad(format!(
+                "window origin {o} cells is past the limit of {} cells",
+                super::MAX_ORIGIN_CELLS
+            )));
         }
         let extra = if self.floaters.is_empty() {
             0.0
@@ -707,6 +795,10 @@ impl Surface {
             floaters: self.floaters.bodies.clone(),
             next_floater_id: self.floaters.next_id,
             buoyancy: self.floaters.buoyancy,
+            origin_cells: self.window_origin,
+            owed_time: self.clock.owed,
+            step_cap: (self.clock.max_steps, self.clock.overflow),
+            dropped_seconds: self.clock.dropped,
         }
     }
 
@@ -745,6 +837,11 @@ impl Surface {
         surface.floaters.bodies = snap.floaters;
         surface.floaters.next_id = snap.next_floater_id;
         surface.floaters.buoyancy = snap.buoyancy;
+        surface.window_origin = snap.origin_cells;
+        surface.clock.owed = snap.owed_time;
+        (surface.clock.max_steps, surface.clock.overflow) = snap.step_cap;
+        surface.clock.dropped = snap.dropped_seconds;
+        surface.window_custom = true;
         surface.with_env_simd()
     }
 

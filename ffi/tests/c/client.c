@@ -579,6 +579,40 @@ static void clock_frames(void) {
     sw_surface_destroy(surface);
 }
 
+/* The moving window: a shift keeps the water at its world place, follow has a dead zone,
+   bad input changes nothing. */
+static void moving_window(void) {
+    SwParams p = sw_params_default();
+    p.cols = 40;
+    p.rows = 32;
+    SwSurface *w = NULL;
+    OK(sw_surface_create(&p, &w));
+    OK(sw_surface_drop_at(w, 20.0f, 16.0f, 1.0f, 2.0f));
+    OK(sw_surface_step(w, 3));
+    float before = 0.0f, after = 0.0f, origin[2] = {1.0f, 1.0f};
+    OK(sw_surface_origin(w, origin));
+    CHECK(origin[0] == 0.0f && origin[1] == 0.0f);
+    OK(sw_surface_height_at(w, 21.25f, 15.5f, &before));
+    OK(sw_surface_shift(w, 3, -2));
+    OK(sw_surface_origin(w, origin));
+    CHECK(origin[0] == 3.0f && origin[1] == -2.0f);
+    OK(sw_surface_height_at(w, 21.25f, 15.5f, &after));
+    CHECK(float_bits(before) == float_bits(after));
+    int32_t made[2] = {9, 9};
+    OK(sw_surface_follow(w, 23.0f, 13.0f, made)); /* the window's centre: no shift */
+    CHECK(made[0] == 0 && made[1] == 0);
+    OK(sw_surface_follow(w, 39.9f, 13.0f, made));
+    CHECK(made[0] == 17 && made[1] == 0);
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_follow(w, NAN, 0.0f, made));
+    FAILS(SW_ERROR_NULL_POINTER, sw_surface_follow(w, 90.0f, 0.0f, NULL));
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_shift(w, INT32_MAX, 0));
+    FAILS(SW_ERROR_NULL_POINTER, sw_surface_origin(w, NULL));
+    FAILS(SW_ERROR_NULL_POINTER, sw_surface_shift(NULL, 1, 0));
+    OK(sw_surface_origin(w, origin));
+    CHECK(origin[0] == 20.0f && origin[1] == -2.0f);
+    sw_surface_destroy(w);
+}
+
 int main(void) {
     printf("version %s\n", sw_version());
     printf("simd_detect %s\n", sw_simd_level_name(sw_simd_level_detect()));
@@ -823,6 +857,7 @@ int main(void) {
     floating_bodies();
     clock_frames();
     struct_sizes();
+    moving_window();
     free(xyz);
     free(xyz_copy);
     free(normals);
