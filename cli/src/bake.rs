@@ -22,12 +22,12 @@ use crate::args::{
     lib_error, list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs,
 };
 use crate::render::{positive, progress, ranged};
-use crate::simulate::{load_snapshot, MODEL_FLAGS};
+use crate::simulate::{starting_surface, MODEL_FLAGS};
 use lexopt::Parser;
 use springwater::disturb::{Rain, Wake};
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use springwater::refraction::{refract, Refraction, RefractionParams};
-use springwater::{Floater, Surface};
+use springwater::Surface;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -143,24 +143,13 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         .validate()
         .map_err(|e| format!("bake: {}", lib_error(e)))?;
 
-    let mut surface = match (&load, model_flag) {
-        (Some(_), Some(flag)) => {
-            return Err(format!(
-                "--{flag} cannot be combined with --load: the model comes from the snapshot"
-            ))
-        }
-        (Some(path), None) => {
-            let mut s = load_snapshot(path)?;
-            model.apply_drops(&mut s)?;
-            s
-        }
-        (None, _) => model.surface()?,
-    };
-    for &[x, z, mass, radius] in &floaters {
-        surface
-            .add_floater(Floater::sphere(radius, mass, [x, 0.0, z]))
-            .map_err(|e| format!("--floater {x},{z},{mass},{radius}: {e}"))?;
-    }
+    let mut surface = starting_surface(
+        &model,
+        model_flag,
+        load.as_deref(),
+        &floaters,
+        "only --steps, --drop, --floater, --threads and the bake's own flags apply",
+    )?;
     let dt = surface.params().dt;
     let mut steps = 0usize;
 

@@ -62,25 +62,13 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             other => return Err(unexpected(other, "simulate")),
         }
     }
-    let mut surface = match (&load, model_flag) {
-        (Some(_), Some(flag)) => {
-            return Err(format!(
-                "--{flag} cannot be combined with --load: the model comes from the snapshot \
-                 (only --steps, --drop, --threads, --follow-shift, --csv and --save apply)"
-            ))
-        }
-        (Some(path), None) => {
-            let mut s = load_snapshot(path)?;
-            model.apply_drops(&mut s)?;
-            s
-        }
-        (None, _) => model.surface()?,
-    };
-    for &[x, z, mass, radius] in &floaters {
-        surface
-            .add_floater(Floater::sphere(radius, mass, [x, 0.0, z]))
-            .map_err(|e| format!("--floater {x},{z},{mass},{radius}: {e}"))?;
-    }
+    let mut surface = starting_surface(
+        &model,
+        model_flag,
+        load.as_deref(),
+        &floaters,
+        "only --steps, --drop, --threads, --follow-shift, --csv and --save apply",
+    )?;
     // Open the outputs first: an unwritable path fails before any work is done.
     let csv = csv
         .map(|path| create(&path).map(|file| (path, file)))
@@ -191,6 +179,39 @@ fn cells(v: &str) -> CliResult<[i32; 2]> {
             "{WHAT} expects 2 comma-separated whole numbers, got '{v}'"
         )),
     }
+}
+
+/// The surface a command starts from: the snapshot `load` names, with the `--drop`s added,
+/// or the model the flags describe (`model_flag`, the first model flag given, may not come
+/// with `--load`: `what_applies` says which flags do), and the `--floater` balls on it,
+/// released at rest on the calm surface.
+pub fn starting_surface(
+    model: &ModelArgs,
+    model_flag: Option<String>,
+    load: Option<&Path>,
+    floaters: &[[f32; 4]],
+    what_applies: &str,
+) -> CliResult<Surface> {
+    let mut surface = match (load, model_flag) {
+        (Some(_), Some(flag)) => {
+            return Err(format!(
+                "--{flag} cannot be combined with --load: the model comes from the snapshot \
+                 ({what_applies})"
+            ))
+        }
+        (Some(path), None) => {
+            let mut s = load_snapshot(path)?;
+            model.apply_drops(&mut s)?;
+            s
+        }
+        (None, _) => model.surface()?,
+    };
+    for &[x, z, mass, radius] in floaters {
+        surface
+            .add_floater(Floater::sphere(radius, mass, [x, 0.0, z]))
+            .map_err(|e| format!("--floater {x},{z},{mass},{radius}: {e}"))?;
+    }
+    Ok(surface)
 }
 
 /// Reads a snapshot file, naming it in the error.
