@@ -119,9 +119,19 @@ impl ModelArgs {
     }
 
     /// Runs `f` on a rayon pool of `--threads` threads (the global pool without the flag).
+    /// On a target without threads (WebAssembly without the atomics feature, such as
+    /// `wasm32-wasip1`), `--threads 1` runs `f` on the one thread there is and more threads
+    /// are an error that says so.
     pub fn with_threads<T: Send>(&self, f: impl FnOnce() -> T + Send) -> CliResult<T> {
+        const HAS_THREADS: bool =
+            !cfg!(all(target_family = "wasm", not(target_feature = "atomics")));
         match self.threads {
             None => Ok(f()),
+            Some(1) if !HAS_THREADS => Ok(f()),
+            Some(n) if !HAS_THREADS => Err(format!(
+                "cannot start {n} threads: this build (for {}) runs on one thread; use --threads 1",
+                std::env::consts::ARCH
+            )),
             Some(n) => rayon::ThreadPoolBuilder::new()
                 .num_threads(n)
                 .build()

@@ -237,12 +237,20 @@ fn median(v: &[f64]) -> f64 {
     v[v.len() / 2]
 }
 
+/// The widest instruction set this build may use everywhere it runs (its compile-time
+/// target features), named as [`SimdLevel`] names levels.
 fn features() -> &'static str {
     if cfg!(target_feature = "avx512f") {
-        "avx512f"
+        "avx512"
     } else if cfg!(target_feature = "avx2") {
         "avx2"
-    } else {
+    } else if cfg!(target_arch = "x86_64") {
         "sse2"
+    } else if cfg!(target_arch = "aarch64") {
+        "neon"
+    } else if cfg!(all(target_arch = "wasm32", target_feature = "simd128")) {
+        "simd128"
+    } else {
+        "portable"
     }
 }

@@ -260,6 +260,16 @@ typedef struct SwJobSystem {
 // AVX-512F.
 #define SW_SIMD_AVX512 3
 
+// The lane kernels on plain arrays, vectorised by the compiler (targets without a SIMD
+// level of their own).
+#define SW_SIMD_PORTABLE 4
+
+// NEON (every AArch64 CPU).
+#define SW_SIMD_NEON 5
+
+// WebAssembly SIMD128 (a `wasm32` build made with `+simd128`).
+#define SW_SIMD_SIMD128 6
+
 // A ball of `SwFloater::radius`.
 #define SW_SHAPE_SPHERE 0
 
@@ -328,7 +338,7 @@ struct SwRefraction sw_refraction_default(void);
 SwSimdLevel sw_simd_level_detect(void);
 
 // A static NUL-terminated name for a SIMD level (`"scalar"`, `"sse2"`, `"avx2"`,
-// `"avx512"`), or `"unknown"`.
+// `"avx512"`, `"portable"`, `"neon"`, `"simd128"`), or `"unknown"`.
 const char *sw_simd_level_name(SwSimdLevel level);
 
 // Creates a flat surface at rest from `params` (validated: the message names the field

@@ -74,6 +74,13 @@ pub const SW_SIMD_SSE2: SwSimdLevel = 1;
 pub const SW_SIMD_AVX2: SwSimdLevel = 2;
 /// AVX-512F.
 pub const SW_SIMD_AVX512: SwSimdLevel = 3;
+/// The lane kernels on plain arrays, vectorised by the compiler (targets without a SIMD
+/// level of their own).
+pub const SW_SIMD_PORTABLE: SwSimdLevel = 4;
+/// NEON (every AArch64 CPU).
+pub const SW_SIMD_NEON: SwSimdLevel = 5;
+/// WebAssembly SIMD128 (a `wasm32` build made with `+simd128`).
+pub const SW_SIMD_SIMD128: SwSimdLevel = 6;
 
 /// A boolean: 0 false, 1 true.
 pub type SwBool = i32;
@@ -254,7 +261,7 @@ pub extern "C" fn sw_simd_level_detect() -> SwSimdLevel {
 }
 
 /// A static NUL-terminated name for a SIMD level (`"scalar"`, `"sse2"`, `"avx2"`,
-/// `"avx512"`), or `"unknown"`.
+/// `"avx512"`, `"portable"`, `"neon"`, `"simd128"`), or `"unknown"`.
 #[no_mangle]
 pub extern "C" fn sw_simd_level_name(level: SwSimdLevel) -> *const c_char {
     let name: &'static std::ffi::CStr = match simd_level(level) {
@@ -262,6 +269,9 @@ pub extern "C" fn sw_simd_level_name(level: SwSimdLevel) -> *const c_char {
         Ok(SimdLevel::Sse2) => c"sse2",
         Ok(SimdLevel::Avx2) => c"avx2",
         Ok(SimdLevel::Avx512) => c"avx512",
+        Ok(SimdLevel::Portable) => c"portable",
+        Ok(SimdLevel::Neon) => c"neon",
+        Ok(SimdLevel::Simd128) => c"simd128",
         _ => c"unknown",
     };
     name.as_ptr()
@@ -1009,7 +1019,12 @@ fn simd_code(level: SimdLevel) -> SwSimdLevel {
         SimdLevel::Scalar => SW_SIMD_SCALAR,
         SimdLevel::Sse2 => SW_SIMD_SSE2,
         SimdLevel::Avx2 => SW_SIMD_AVX2,
-        _ => SW_SIMD_AVX512,
+        SimdLevel::Avx512 => SW_SIMD_AVX512,
+        SimdLevel::Neon => SW_SIMD_NEON,
+        SimdLevel::Simd128 => SW_SIMD_SIMD128,
+        // The portable lanes, and any level a later version of the library adds (it
+        // runs as fast as the portable lanes or faster, with the same bits).
+        _ => SW_SIMD_PORTABLE,
     }
 }
 
@@ -1019,9 +1034,13 @@ fn simd_level(code: SwSimdLevel) -> Outcome<SimdLevel> {
         SW_SIMD_SSE2 => Ok(SimdLevel::Sse2),
         SW_SIMD_AVX2 => Ok(SimdLevel::Avx2),
         SW_SIMD_AVX512 => Ok(SimdLevel::Avx512),
+        SW_SIMD_PORTABLE => Ok(SimdLevel::Portable),
+        SW_SIMD_NEON => Ok(SimdLevel::Neon),
+        SW_SIMD_SIMD128 => Ok(SimdLevel::Simd128),
         other => Err(Failure::invalid(format!(
             "SIMD level {other} is unknown: use SW_SIMD_SCALAR (0), SW_SIMD_SSE2 (1), \
-             SW_SIMD_AVX2 (2) or SW_SIMD_AVX512 (3)"
+             SW_SIMD_AVX2 (2), SW_SIMD_AVX512 (3), SW_SIMD_PORTABLE (4), SW_SIMD_NEON (5) \
+             or SW_SIMD_SIMD128 (6)"
         ))),
     }
 }

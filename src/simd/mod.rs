@@ -114,19 +114,27 @@ macro_rules! operators {
 pub(crate) mod avx2;
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod avx512;
+#[cfg(target_arch = "aarch64")]
+pub(crate) mod neon;
 pub(crate) mod portable;
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
+pub(crate) mod simd128;
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod sse2;
 
 /// The most lanes any level has (AVX-512): buffers are padded and aligned for it.
 pub const MAX_LANES: usize = 16;
 
-/// An instruction set the engine can run on, from the narrowest to the widest.
+/// An instruction set the engine can run on.
 ///
-/// Every level gives the same results, bit for bit; they differ only in speed.
+/// Every level gives the same results, bit for bit; they differ only in speed. The x86-64
+/// levels are declared from the narrowest to the widest, so on x86-64 a level compares
+/// below a wider one; comparisons between levels of different architectures mean nothing.
+/// More levels may be added as the engine learns other instruction sets.
+#[non_exhaustive]
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum SimdLevel {
-    /// No SIMD: the step is the plain scalar reference loop.
+    /// No SIMD: the step is the plain scalar reference loop. Runs everywhere.
     Scalar,
     /// SSE2, part of every x86-64 CPU: 8 lanes in two 128-bit registers.
     Sse2,
@@ -134,26 +142,64 @@ pub enum SimdLevel {
     Avx2,
     /// AVX-512F: 16 lanes in one 512-bit register.
     Avx512,
+    /// The lane kernels on 8 lanes of plain `f32` arrays, vectorised (or not) by the
+    /// compiler: what targets without a SIMD level here run (a `wasm32` build without
+    /// `+simd128`, RISC-V, …). Runs everywhere.
+    Portable,
+    /// NEON (Advanced SIMD), part of every AArch64 CPU: 8 lanes in two 128-bit registers.
+    Neon,
+    /// WebAssembly SIMD128: 8 lanes in two `v128`. Present in a `wasm32` build made with
+    /// `-C target-feature=+simd128` (wasm has no run-time detection).
+    Simd128,
 }
 
 impl SimdLevel {
-    /// Every level, narrowest first.
-    pub const ALL: [SimdLevel; 4] = [Self::Scalar, Self::Sse2, Self::Avx2, Self::Avx512];
+    /// Every level: the scalar reference, the x86-64 levels narrowest first, the portable
+    /// lanes, then the levels of other architectures.
+    pub const ALL: [SimdLevel; 7] = [
+        Self::Scalar,
+        Self::Sse2,
+        Self::Avx2,
+        Self::Avx512,
+        Self::Portable,
+        Self::Neon,
+        Self::Simd128,
+    ];
 
-    /// The widest level this CPU runs (asked once, then cached).
+    /// The widest level this CPU runs (asked once, then cached): AVX-512, AVX2 or SSE2 on
+    /// x86-64, NEON on AArch64, SIMD128 on a `wasm32` build with `+simd128`, the portable
+    /// lanes elsewhere (and under Miri).
     pub fn detect() -> SimdLevel {
         static DETECTED: OnceLock<SimdLevel> = OnceLock::new();
         *DETECTED.get_or_init(detect_cpu)
     }
 
-    /// Whether this CPU runs `self`.
+    /// Whether this CPU runs `self`: the scalar reference and the portable lanes run
+    /// everywhere; an x86-64 level where the CPU has it; NEON on AArch64; SIMD128 in a
+    /// `wasm32` build with `+simd128`.
     pub fn is_available(self) -> bool {
-        self <= Self::detect()
+        let best = Self::detect();
+        match self {
+            Self::Scalar | Self::Portable => true,
+            Self::Sse2 | Self::Avx2 | Self::Avx512 => {
+                matches!(best, Self::Sse2 | Self::Avx2 | Self::Avx512) && self <= best
+            }
+            Self::Neon | Self::Simd128 => self == best,
+        }
     }
 
-    /// `self`, or the widest level this CPU runs if `self` is wider.
+    /// `self` if this CPU runs it, else the widest level it runs ([`SimdLevel::detect`]).
+    ///
+    /// On x86-64 this clamps a wider level down (`avx512` on an AVX2 CPU runs `avx2`); a
+    /// level of another architecture (`neon` on x86-64, `avx2` on AArch64 or in a browser)
+    /// runs the CPU's widest level too, so that one setting, written into a game's
+    /// configuration, runs on every platform the game ships to.
     pub fn clamped(self) -> SimdLevel {
-        self.min(Self::detect())
+        if self.is_available() {
+            self
+        } else {
+            Self::detect()
+        }
     }
 
     /// The level a new [`Surface`](crate::Surface) runs: `SPRINGWATER_SIMD` if it is set
@@ -169,13 +215,17 @@ impl SimdLevel {
         }
     }
 
-    /// The name `SPRINGWATER_SIMD` and the CLI use: `scalar`, `sse2`, `avx2`, `avx512`.
+    /// The name `SPRINGWATER_SIMD` and the CLI use: `scalar`, `sse2`, `avx2`, `avx512`,
+    /// `portable`, `neon`, `simd128`.
     pub fn name(self) -> &'static str {
         match self {
             Self::Scalar => "scalar",
             Self::Sse2 => "sse2",
             Self::Avx2 => "avx2",
             Self::Avx512 => "avx512",
+            Self::Portable => "portable",
+            Self::Neon => "neon",
+            Self::Simd128 => "simd128",
         }
     }
 
@@ -183,7 +233,7 @@ impl SimdLevel {
     pub fn lanes(self) -> usize {
         match self {
             Self::Scalar => 1,
-            Self::Sse2 | Self::Avx2 => 8,
+            Self::Sse2 | Self::Avx2 | Self::Portable | Self::Neon | Self::Simd128 => 8,
             Self::Avx512 => 16,
         }
     }
@@ -220,10 +270,27 @@ fn detect_cpu() -> SimdLevel {
     }
 }
 
-/// Miri and other targets run the portable lanes, which stand in for every SIMD level.
-#[cfg(not(all(target_arch = "x86_64", not(miri))))]
+/// NEON is part of every AArch64 CPU (the `aarch64` targets enable it in their baseline).
+#[cfg(all(target_arch = "aarch64", not(miri)))]
 fn detect_cpu() -> SimdLevel {
-    SimdLevel::Sse2
+    SimdLevel::Neon
+}
+
+/// A `wasm32` build has SIMD128 exactly when it was compiled with `+simd128`: a module
+/// that uses it does not load in an engine without it, so there is nothing to detect.
+#[cfg(all(target_arch = "wasm32", target_feature = "simd128", not(miri)))]
+fn detect_cpu() -> SimdLevel {
+    SimdLevel::Simd128
+}
+
+/// Miri and other targets run the portable lanes.
+#[cfg(not(any(
+    all(target_arch = "x86_64", not(miri)),
+    all(target_arch = "aarch64", not(miri)),
+    all(target_arch = "wasm32", target_feature = "simd128", not(miri)),
+)))]
+fn detect_cpu() -> SimdLevel {
+    SimdLevel::Portable
 }
 
 /// A vector of `f32` lanes: what the lane kernels are written against.
@@ -425,20 +492,23 @@ impl<K: Kernel, V: Vector> Task<V> for Each<K> {
 
 /// Runs `k` with the vector type of `level`, clamped to what the CPU has. The portable
 /// lanes stand in for [`SimdLevel::Scalar`] (callers with a scalar twin run it
-/// themselves), for every level under Miri, and on targets other than x86-64.
+/// themselves) and for every level under Miri.
 #[inline]
 pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, k: K) -> K::Output {
-    #[cfg(all(target_arch = "x86_64", not(miri)))]
     match level.clamped() {
+        #[cfg(all(target_arch = "x86_64", not(miri)))]
         SimdLevel::Avx512 => avx512::F32x16::enter(Each(k)),
+        #[cfg(all(target_arch = "x86_64", not(miri)))]
         SimdLevel::Avx2 => avx2::F32x8::enter(Each(k)),
+        #[cfg(all(target_arch = "x86_64", not(miri)))]
         SimdLevel::Sse2 => sse2::F32x8::enter(Each(k)),
-        SimdLevel::Scalar => portable::F32x8::enter(Each(k)),
-    }
-    #[cfg(not(all(target_arch = "x86_64", not(miri))))]
-    {
-        let _ = level;
-        portable::F32x8::enter(Each(k))
+        #[cfg(all(target_arch = "aarch64", not(miri)))]
+        SimdLevel::Neon => neon::F32x8::enter(Each(k)),
+        #[cfg(all(target_arch = "wasm32", target_feature = "simd128", not(miri)))]
+        SimdLevel::Simd128 => simd128::F32x8::enter(Each(k)),
+        // The scalar reference, the portable level, and (never reached: `clamped` returns
+        // only levels of this target) the levels of other targets.
+        _ => portable::F32x8::enter(Each(k)),
     }
 }
 
@@ -614,7 +684,21 @@ mod tests {
                 0.0,
             ];
             let c: Vec<f32> = (0..n).map(|i| special[i % special.len()]).collect();
+            // The same special values against each other and zeros of both signs.
+            let other = [0.0, -0.0, f32::NAN, 0.0, -0.0, f32::NAN, -0.0];
+            let d: Vec<f32> = (0..n).map(|i| other[(i + 3) % other.len()]).collect();
             let (va, vb, vc) = (V::from_slice(&a), V::from_slice(&b), V::from_slice(&c));
+            let vd = V::from_slice(&d);
+            // `x` if `take`, else `y`, as bits. The condition goes through `black_box`: on
+            // AArch64, LLVM turns `if x < 0.0 { x } else { 0.0 }` into `fminnm`, which
+            // returns −0 for x = −0, so the plain expression is no oracle there.
+            let pick = |take: bool, x: f32, y: f32| {
+                if std::hint::black_box(take) {
+                    x
+                } else {
+                    y
+                }
+            };
             let lanes = |v: V| {
                 let mut o = vec![0.0; n];
                 v.write_to(&mut o);
@@ -661,25 +745,35 @@ mod tests {
                 ),
                 (
                     lanes(V::keep(vc.lt(V::zero()), vc)),
-                    c.iter().map(|x| if *x < 0.0 { *x } else { 0.0 }).collect(),
+                    c.iter().map(|&x| pick(x < 0.0, x, 0.0)).collect(),
                 ),
                 (
                     lanes(V::keep(!vc.abs().lt(V::one()), vc)),
-                    c.iter()
-                        .map(|x| if x.abs() < 1.0 { 0.0 } else { *x })
-                        .collect(),
+                    c.iter().map(|&x| pick(x.abs() < 1.0, 0.0, x)).collect(),
                 ),
                 (
                     lanes(V::keep(V::first_lanes(5) & !vc.lt(V::zero()), vc)),
                     (0..n)
-                        .map(|i| {
-                            if i < 5 && (c[i] >= 0.0 || c[i].is_nan()) {
-                                c[i]
-                            } else {
-                                0.0
-                            }
-                        })
+                        .map(|i| pick(i < 5 && (c[i] >= 0.0 || c[i].is_nan()), c[i], 0.0))
                         .collect(),
+                ),
+                // `maxps`/`minps`: the second operand where either is NaN or both are
+                // zeros, whatever their signs.
+                (
+                    lanes(vc.max(vd)),
+                    c.iter().zip(&d).map(|(&x, &y)| pick(x > y, x, y)).collect(),
+                ),
+                (
+                    lanes(vd.max(vc)),
+                    c.iter().zip(&d).map(|(&x, &y)| pick(y > x, y, x)).collect(),
+                ),
+                (
+                    lanes(vc.min(vd)),
+                    c.iter().zip(&d).map(|(&x, &y)| pick(x < y, x, y)).collect(),
+                ),
+                (
+                    lanes(vd.min(vc)),
+                    c.iter().zip(&d).map(|(&x, &y)| pick(y < x, y, x)).collect(),
                 ),
             ];
             for (k, (got, want)) in ops.iter().enumerate() {
@@ -709,6 +803,25 @@ mod tests {
             assert_eq!(l.name().parse::<SimdLevel>().unwrap(), l);
         }
         assert!("avx3".parse::<SimdLevel>().is_err());
-        assert_eq!(SimdLevel::Avx512.clamped(), SimdLevel::detect());
+        let best = SimdLevel::detect();
+        assert!(best.is_available());
+        for l in SimdLevel::ALL {
+            // A level the CPU lacks runs its widest; one it has runs as asked.
+            let want = if l.is_available() { l } else { best };
+            assert_eq!(l.clamped(), want, "{l}");
+        }
+        // Exactly one level of each architecture can be the widest here.
+        let native = [SimdLevel::Neon, SimdLevel::Simd128];
+        assert_eq!(native.map(|l| l.is_available()), native.map(|l| l == best));
+        if cfg!(all(target_arch = "aarch64", not(miri))) {
+            assert_eq!(best, SimdLevel::Neon);
+        }
+        if cfg!(all(
+            target_arch = "wasm32",
+            target_feature = "simd128",
+            not(miri)
+        )) {
+            assert_eq!(best, SimdLevel::Simd128);
+        }
     }
 }

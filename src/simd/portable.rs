@@ -57,7 +57,9 @@ impl core::ops::Not for Mask8 {
     type Output = Self;
     #[inline(always)]
     fn not(self) -> Self {
-        Self(self.0.map(|m| !m))
+        // Each lane differs from the all-on mask's.
+        let on = F32x8::all_lanes().0;
+        Self(core::array::from_fn(|i| self.0[i] != on[i]))
     }
 }
 
@@ -187,13 +189,14 @@ impl Vector for F32x8 {
     #[inline(always)]
     fn fence() {}
 
-    const LEVEL: SimdLevel = SimdLevel::Scalar;
+    const LEVEL: SimdLevel = SimdLevel::Portable;
 
     #[inline(always)]
     fn enter<T: Task<Self>>(task: T) -> T::Output {
         // A function of its own, as the other levels' entries are.
         #[inline(never)]
         fn entry<T: Task<F32x8>>(task: T) -> T::Output {
+            debug_assert!(F32x8::LEVEL.is_available());
             super::align_frame();
             task.run()
         }
