@@ -781,7 +781,7 @@ mod tests {
                     got.iter().map(|x| x.to_bits()).collect(),
                     want.iter().map(|x| x.to_bits()).collect(),
                 );
-                assert_eq!(g, w, "operation {k}");
+                assert_eq!(g, w, "operation {k} on {}", core::any::type_name::<V>());
             }
             assert!(!va.any_nan());
             assert!((va / V::zero() * V::zero()).any_nan());

@@ -96,12 +96,12 @@ impl Vector for F32x8 {
 
     #[inline(always)]
     fn max(self, o: Self) -> Self {
-        self.zip(o, |x, y| if x > y { x } else { y })
+        Self::select(self.gt(o), self, o)
     }
 
     #[inline(always)]
     fn min(self, o: Self) -> Self {
-        self.zip(o, |x, y| if x < y { x } else { y })
+        Self::select(self.lt(o), self, o)
     }
 
     #[inline(always)]
@@ -121,6 +121,11 @@ impl Vector for F32x8 {
 
     #[inline(always)]
     fn select(m: Mask8, a: Self, b: Self) -> Self {
+        // On AArch64, LLVM turns `if x < 0.0 { x } else { 0.0 }` into `fminnm`, which gives
+        // −0 for −0 where every other level gives +0. Hiding the mask from the optimiser
+        // keeps this a select; NEON, not this level, is the one AArch64 runs for speed.
+        #[cfg(target_arch = "aarch64")]
+        let m = core::hint::black_box(m);
         Self(core::array::from_fn(
             |i| if m.0[i] { a.0[i] } else { b.0[i] },
         ))
