@@ -10,6 +10,7 @@
 //! absorbing frame at its new place) meets, every node of the overlap is the same
 //! computation in both runs and must give the same bits.
 
+#[cfg(feature = "parallel")]
 use std::sync::Arc;
 
 use springwater::{Boundary, Floater, Params, SimdLevel, Spring, SpringId, Surface};
@@ -99,14 +100,20 @@ fn a_shift_keeps_the_overlap_bit_for_bit() {
     }
 }
 
-/// Steps `s` `n` times at `level` on a pool of `threads` threads.
+/// Steps `s` `n` times at `level` on a pool of `threads` threads (on the calling thread
+/// without the `parallel` feature, as on wasm32).
 fn steps_on(s: &mut Surface, n: u64, level: SimdLevel, threads: usize) {
     s.set_simd_level(level);
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    s.set_thread_pool(Some(Arc::new(pool)));
+    #[cfg(feature = "parallel")]
+    {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap();
+        s.set_thread_pool(Some(Arc::new(pool)));
+    }
+    #[cfg(not(feature = "parallel"))]
+    let _ = threads;
     s.step_n(n).unwrap();
 }
 
