@@ -6,6 +6,10 @@ use springwater::{Boundary, Params, Surface};
 use std::ffi::OsString;
 use std::str::FromStr;
 
+/// Whether this build can start threads: not on WebAssembly without the atomics feature
+/// (`wasm32-wasip1`, `wasm32-unknown-unknown`), where `--threads` above 1 is an error.
+const HAS_THREADS: bool = !cfg!(all(target_family = "wasm", not(target_feature = "atomics")));
+
 /// A one-line error for the user; `main` prints it and exits non-zero.
 pub type CliResult<T> = Result<T, String>;
 
@@ -85,6 +89,12 @@ impl ModelArgs {
                 // More threads than cores only slow the step (a 64x64 grid on 1000 threads
                 // runs some 2,000 times slower than on 2) and change no result (the step is
                 // bitwise the same for any thread count), so they are capped, with a word.
+                if n > 1 && !HAS_THREADS {
+                    return Err(format!(
+                        "--threads {n}: this build (for {}) runs on one thread; use --threads 1",
+                        std::env::consts::ARCH
+                    ));
+                }
                 let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
                 if n > cores {
                     eprintln!(
@@ -119,19 +129,12 @@ impl ModelArgs {
     }
 
     /// Runs `f` on a rayon pool of `--threads` threads (the global pool without the flag).
-    /// On a target without threads (WebAssembly without the atomics feature, such as
-    /// `wasm32-wasip1`), `--threads 1` runs `f` on the one thread there is and more threads
-    /// are an error that says so.
+    /// On a target without threads ([`HAS_THREADS`]), `--threads 1` runs `f` on the one
+    /// thread there is (the flag refuses more).
     pub fn with_threads<T: Send>(&self, f: impl FnOnce() -> T + Send) -> CliResult<T> {
-        const HAS_THREADS: bool =
-            !cfg!(all(target_family = "wasm", not(target_feature = "atomics")));
         match self.threads {
             None => Ok(f()),
-            Some(1) if !HAS_THREADS => Ok(f()),
-            Some(n) if !HAS_THREADS => Err(format!(
-                "cannot start {n} threads: this build (for {}) runs on one thread; use --threads 1",
-                std::env::consts::ARCH
-            )),
+            Some(_) if !HAS_THREADS => Ok(f()),
             Some(n) => rayon::ThreadPoolBuilder::new()
                 .num_threads(n)
                 .build()

@@ -141,12 +141,16 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
 pub fn on_interrupt() -> Arc<AtomicBool> {
     let flag = Arc::new(AtomicBool::new(false));
     let raised = flag.clone();
-    // Without a handler (it cannot be installed twice) Ctrl-C ends the run as before.
+    // Without a handler (it cannot be installed twice, and WASI has no signals) Ctrl-C
+    // ends the run as before.
+    #[cfg(not(target_family = "wasm"))]
     let _ = ctrlc::set_handler(move || {
         if raised.swap(true, Ordering::SeqCst) {
             std::process::exit(130);
         }
     });
+    #[cfg(target_family = "wasm")]
+    drop(raised);
     flag
 }
 
@@ -295,8 +299,12 @@ pub fn print_summary(s: &Surface, steps_run: u64, seconds: f64) -> CliResult<()>
 }
 
 /// The process's peak resident memory in bytes (`VmHWM` of `/proc/self/status`), where the
-/// system reports it (Linux).
+/// system reports it (Linux). Not on wasm32: a WASI runtime that lets the program see the
+/// host's `/proc` would report its own memory, not the program's.
 fn peak_memory() -> Option<u64> {
+    if cfg!(target_family = "wasm") {
+        return None;
+    }
     let status = std::fs::read_to_string("/proc/self/status").ok()?;
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
