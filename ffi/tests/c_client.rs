@@ -24,22 +24,29 @@ use std::process::{Command, Output};
 /// `cdylib` for its tests). Cargo keeps them up to date with the sources.
 fn lib_dir() -> PathBuf {
     static BUILT: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
-    BUILT
-        .get_or_init(|| {
-            let root = crate_dir().parent().unwrap();
-            let target = root.join("target").join("ffi-c");
-            let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-            let out = Command::new(cargo)
-                .current_dir(root)
-                .args(["build", "--release", "--quiet", "-p", "springwater-ffi"])
-                .arg("--target-dir")
-                .arg(&target)
-                .output()
-                .expect("cargo runs");
-            assert_ok(&out, "building springwater-ffi");
-            target.join("release")
-        })
-        .clone()
+    BUILT.get_or_init(|| build_libraries(None)).clone()
+}
+
+/// Builds the libraries for `target` (the host without one) and returns their directory.
+fn build_libraries(target: Option<&str>) -> PathBuf {
+    let root = crate_dir().parent().unwrap();
+    let dir = root.join("target").join("ffi-c");
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let mut build = Command::new(cargo);
+    build
+        .current_dir(root)
+        .args(["build", "--release", "--quiet", "-p", "springwater-ffi"])
+        .arg("--target-dir")
+        .arg(&dir);
+    if let Some(target) = target {
+        build.args(["--target", target]);
+    }
+    let out = build.output().expect("cargo runs");
+    assert_ok(&out, "building springwater-ffi");
+    match target {
+        Some(target) => dir.join(target).join("release"),
+        None => dir.join("release"),
+    }
 }
 
 fn crate_dir() -> &'static Path {
@@ -81,9 +88,15 @@ fn have(tool: &str) -> bool {
 
 /// Compiles `source` into `exe` with the static library and `extra` flags.
 fn compile_static(source: &Path, exe: &Path, extra: &[&str]) {
-    let lib = lib_dir().join("libspringwater_ffi.a");
+    compile_static_with("cc", &lib_dir(), source, exe, extra);
+}
+
+/// Compiles `source` into `exe` with the C compiler `cc`, the static library in `lib_dir`
+/// and `extra` flags.
+fn compile_static_with(cc: &str, lib_dir: &Path, source: &Path, exe: &Path, extra: &[&str]) {
+    let lib = lib_dir.join("libspringwater_ffi.a");
     assert!(lib.exists(), "{} was not built", lib.display());
-    let out = Command::new("cc")
+    let out = Command::new(cc)
         .args([
             "-std=c11",
             "-O1",
@@ -102,7 +115,9 @@ fn compile_static(source: &Path, exe: &Path, extra: &[&str]) {
         .arg("-o")
         .arg(exe)
         .output()
-        .expect("cc runs (install a C compiler or set SPRINGWATER_SKIP_C=1)");
+        .unwrap_or_else(|e| {
+            panic!("{cc} runs (install a C compiler or set SPRINGWATER_SKIP_C=1): {e}")
+        });
     assert_ok(&out, "compiling");
 }
 
@@ -348,6 +363,42 @@ fn the_c_client_is_clean_under_valgrind() {
         .unwrap();
     // Valgrind's CPU has no AVX-512: the level that ran may differ, the bits may not.
     check_client_output(&out, "the C client under valgrind", &["simd"]);
+}
+
+/// The C client built for another architecture, run under its emulator, prints what the
+/// Rust API computes here: the same bits across architectures, through the C ABI. Runs
+/// when `SPRINGWATER_C_TARGET` names a Rust target, with `SPRINGWATER_C_CC` its C
+/// compiler and `SPRINGWATER_C_RUNNER` the command that runs its programs (cargo needs that
+/// target's linker too), for example on x86-64 Debian:
+///
+/// ```text
+/// SPRINGWATER_C_TARGET=aarch64-unknown-linux-gnu SPRINGWATER_C_CC=aarch64-linux-gnu-gcc \
+/// SPRINGWATER_C_RUNNER="qemu-aarch64 -L /usr/aarch64-linux-gnu" \
+/// CARGO_TARGET_AARCH64_UNKNOWN_LINUX_GNU_LINKER=aarch64-linux-gnu-gcc \
+///   cargo test --release -p springwater-ffi --test c_client cross
+/// ```
+#[test]
+fn the_c_client_cross_built_prints_the_same_values() {
+    let Some(target) = std::env::var_os("SPRINGWATER_C_TARGET") else {
+        eprintln!("skipped: SPRINGWATER_C_TARGET is not set");
+        return;
+    };
+    let target = target.to_str().expect("a target name");
+    let var = |name: &str| {
+        std::env::var(name).unwrap_or_else(|_| panic!("SPRINGWATER_C_TARGET needs {name}"))
+    };
+    let (cc, runner) = (var("SPRINGWATER_C_CC"), var("SPRINGWATER_C_RUNNER"));
+    let dir = build_libraries(Some(target));
+    let exe = dir.join("client");
+    compile_static_with(&cc, &dir, &crate_dir().join("tests/c/client.c"), &exe, &[]);
+    let mut words = runner.split_whitespace();
+    let out = Command::new(words.next().expect("a runner command"))
+        .args(words)
+        .arg(&exe)
+        .output()
+        .unwrap();
+    // The level is the other CPU's (NEON on AArch64); the values must be the same bits.
+    check_client_output(&out, &format!("the C client on {target}"), &["simd"]);
 }
 
 /// The README's C example, extracted from the README, linked against the dynamic library.
