@@ -5,15 +5,19 @@
 //! A game ships one binary to every player's CPU, so it cannot be built with
 //! `-C target-cpu=native`; a default x86-64 build only knows SSE2. This module lets that
 //! build run the widest kernel the CPU has. [`SimdLevel::detect`] asks the CPU once
-//! (`is_x86_feature_detected!`), `SPRINGWATER_SIMD=scalar|sse2|avx2|avx512` forces a level
-//! (clamped to what the CPU has), and every kernel that matters is compiled once per level:
+//! (`is_x86_feature_detected!`), `SPRINGWATER_SIMD=scalar|sse2|avx2|avx512|neon|simd128|portable`
+//! forces a level (one the CPU lacks runs the CPU's widest), and every kernel that matters
+//! is compiled once per level. On AArch64 the level is NEON, which every AArch64 CPU has;
+//! on wasm32 it is chosen at build time, since WebAssembly cannot ask the CPU: SIMD128 in a
+//! build with `-C target-feature=+simd128`, the portable lanes without.
 //!
 //! * [`Vector`] is what a kernel is written against: lane arithmetic, masks, the
 //!   neighbour shuffles ([`Vector::east`], [`Vector::west`]), loads, stores and
 //!   non-temporal stores. Its implementations are [`sse2::F32x8`] (two SSE registers),
 //!   [`avx2::F32x8`] (one YMM register), [`avx512::F32x16`] (one ZMM register, mask
-//!   registers for masks) and [`portable::F32x8`] (plain arrays, for other targets and
-//!   Miri). Every operation is a single IEEE operation per lane (add, subtract, multiply,
+//!   registers for masks), `neon::F32x8` and `simd128::F32x8` (two 128-bit registers, on
+//!   AArch64 and on wasm32 with `+simd128`) and [`portable::F32x8`] (plain arrays, for
+//!   other targets and Miri). Every operation is a single IEEE operation per lane (add, subtract, multiply,
 //!   divide, square root, compare, select): no fused multiply-add, no approximate
 //!   reciprocal. So every level computes the same bits as the scalar reference.
 //! * [`Kernel`] is a piece of work generic over the vector type (a pass of the step, a
@@ -31,6 +35,33 @@
 //! the two neighbour shuffles and non-temporal stores per level with bit-exact semantics
 //! that are simplest to state and test next to the intrinsics. Four small
 //! implementations of one trait, each next to its tests, cost less than adapting either.
+//!
+//! # Denormals, signed zeros and NaNs on every target
+//!
+//! The same bits on x86-64, AArch64 and wasm32 rest on each level doing exactly what the
+//! scalar reference does, including at the corners of IEEE arithmetic:
+//!
+//! * **Denormals** are computed, not flushed, on every target in its default floating-point
+//!   environment: x86's MXCSR starts with FTZ and DAZ off, AArch64's FPCR with FZ off (and,
+//!   unlike 32-bit ARM's NEON, AArch64's Advanced SIMD obeys FPCR), and WebAssembly's
+//!   scalar and SIMD128 arithmetic (not the relaxed-SIMD proposal, unused here) is
+//!   specified to be IEEE with gradual underflow. The engine never changes that
+//!   environment. A host that does (some engines set FTZ/DAZ for speed) gets its own bits
+//!   wherever a value falls below 1.2·10⁻³⁸, as the tail of a calm surface's decaying
+//!   velocities does: the same-bits promise holds in the default environment.
+//! * **Signed zeros** come out of each IEEE operation the same way on every target. The
+//!   only place targets differ is min/max, so the lane layer has none of their
+//!   instructions: [`Vector::max`] and [`Vector::min`] are a compare and a select with
+//!   `maxps`/`minps`'s meaning (the second operand where the operands are equal zeros),
+//!   where ARM's `fmin`/`fminnm` and wasm's `f32x4.min` order −0 below +0. Selects are
+//!   bitwise blends. On AArch64, LLVM turns a select against zero whose mask is a compare
+//!   of the same value (`x < 0 ? x : 0`) into `fminnm`; the portable level hides its masks
+//!   from that rewrite there, and the lane test checks every level's selects, maxima and
+//!   minima on signed zeros and NaNs.
+//! * **NaNs** never reach the state: a step that would leave a non-finite value is refused
+//!   and changes nothing (see [`Surface::step`](crate::Surface::step)). That matters for the
+//!   promise too, because a NaN's sign and payload bits are not portable (x86's default NaN
+//!   is negative, ARM's positive, WebAssembly's unspecified).
 //!
 //! # Chunk views and buffers
 //!
