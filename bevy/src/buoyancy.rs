@@ -6,11 +6,9 @@ use std::collections::HashMap;
 use bevy::ecs::prelude::*;
 use bevy::math::Vec3;
 use bevy::transform::components::{GlobalTransform, Transform};
-use springwater::disturb::Disturbance;
-use springwater::{Buoyancy, Floater, FloaterId, Shape, Surface};
+use springwater::{Buoyancy, Floater, FloaterId, Shape};
 
-use crate::step::report;
-use crate::water::{Space, WaterError, WaterSurface};
+use crate::water::{report, Space, WaterError, WaterSurface};
 
 /// A floating sphere or box (it does not rotate). Needs a `Transform` on a root entity
 /// (its translation is the body's centre in world space); the plugin moves it.
@@ -130,19 +128,6 @@ impl Bodies {
     /// Forgets the bodies of `water` (its surface started over without them).
     pub(crate) fn forget_water(&mut self, water: Entity) {
         self.0.retain(|_, link| link.water != water);
-    }
-}
-
-/// The world forces of the frame, per floater, applied before every substep.
-#[derive(Debug, Default)]
-pub(crate) struct Pushes(pub Vec<(FloaterId, springwater::glam::Vec3)>);
-
-impl Disturbance for Pushes {
-    fn apply(&mut self, surface: &mut Surface, _dt: f32) -> springwater::Result<()> {
-        for &(id, force) in &self.0 {
-            surface.push_floater(id, force)?;
-        }
-        Ok(())
     }
 }
 

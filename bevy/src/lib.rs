@@ -61,6 +61,15 @@
 //!
 //! Errors (refused parameters, a step that would go non-finite) never panic: they are
 //! logged and sent as [`WaterError`] messages.
+//!
+//! ## Layers
+//!
+//! The modules' arrows run one way. `water` is the bottom: the components, the messages,
+//! world ↔ local transforms (`Space`), the frame's pushes on floating bodies and
+//! `report` (the one way errors leave); it uses no other module. `jobs` stands alone.
+//! `buoyancy`, `mesh` and `query` use `water` only. `step` (surfaces for new waters,
+//! messages, the step itself, and the plugin's settings) uses those below it. This file
+//! uses them all to wire the plugin, and nothing uses it.
 
 #![warn(missing_docs)]
 
@@ -105,12 +114,6 @@ pub enum WaterSystems {
     Step,
     /// Normals, refraction, LOD and the mesh write.
     Writeback,
-}
-
-/// Settings the plugin's systems read.
-#[derive(Resource, Debug, Clone, Copy)]
-pub(crate) struct SpringwaterSettings {
-    pub task_pool: bool,
 }
 
 /// Adds water simulation to an app. See the [crate docs](crate).
@@ -163,7 +166,7 @@ impl SpringwaterPlugin {
 
 impl Plugin for SpringwaterPlugin {
     fn build(&self, app: &mut App) {
-        app.insert_resource(SpringwaterSettings {
+        app.insert_resource(step::SpringwaterSettings {
             task_pool: self.task_pool,
         })
         .init_resource::<BuoyancySettings>()

@@ -14,8 +14,7 @@ use springwater::buffers::{fill_frame, VertexBuffers};
 use springwater::refraction::RefractionParams;
 use springwater::Surface;
 
-use crate::step::report;
-use crate::water::{Space, Water, WaterError, WaterSurface, WaterViewer};
+use crate::water::{report, Space, Water, WaterError, WaterSurface, WaterViewer};
 
 /// The eye a water is seen from when there is neither a [`WaterViewer`] nor a camera:
 /// above the middle of the pool, as high as the pool is wide.

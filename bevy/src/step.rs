@@ -7,34 +7,27 @@ use bevy::camera::primitives::Aabb;
 use bevy::ecs::change_detection::Tick;
 use bevy::ecs::prelude::*;
 use bevy::ecs::system::{SystemChangeTick, SystemParam};
-use bevy::log::{error, info};
+use bevy::log::info;
 use bevy::mesh::{Mesh, Mesh3d};
 use bevy::time::Time;
 use bevy::transform::components::GlobalTransform;
 
+use crate::buoyancy::Bodies;
 use crate::jobs::TaskPoolJobs;
 use crate::mesh::{bounds, new_mesh};
 use crate::water::{
-    Space, Water, WaterDisturbance, WaterDrop, WaterError, WaterForce, WaterSurface,
+    report, Space, Water, WaterDisturbance, WaterDrop, WaterError, WaterForce, WaterSurface,
 };
-use crate::SpringwaterSettings;
 
 /// Set on a [`Water`] whose parameters were refused, with the tick of the refusal, so that
 /// the error is reported once per change of the component rather than every frame.
 #[derive(Component)]
 pub(crate) struct WaterFailed(Tick);
 
-pub(crate) fn report(
-    errors: &mut MessageWriter<WaterError>,
-    water: Entity,
-    what: &str,
-    e: &dyn std::fmt::Display,
-) {
-    error!("springwater: {what} on {water}: {e}");
-    errors.write(WaterError {
-        water,
-        message: format!("{what}: {e}"),
-    });
+/// Settings the plugin's systems read (from [`SpringwaterPlugin`](crate::SpringwaterPlugin)).
+#[derive(Resource, Debug, Clone, Copy)]
+pub(crate) struct SpringwaterSettings {
+    pub task_pool: bool,
 }
 
 fn make_surface(
@@ -120,7 +113,7 @@ pub(crate) fn retry_refused(
 /// Restarts the surface of a water whose `Params` changed and rebuilds the LOD of one
 /// whose `LodParams` changed, in place; keeps the bounding box in step.
 pub(crate) fn update_surfaces(
-    mut bodies: ResMut<crate::buoyancy::Bodies>,
+    mut bodies: ResMut<Bodies>,
     settings: Res<SpringwaterSettings>,
     mut changed: Query<(Entity, &Water, &mut WaterSurface, Option<&mut Aabb>), Changed<Water>>,
     mut errors: MessageWriter<WaterError>,

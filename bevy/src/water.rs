@@ -3,12 +3,13 @@
 //! [`WaterDisturbance`]) or hear of its failures ([`WaterError`]).
 
 use bevy::ecs::prelude::*;
+use bevy::log::error;
 use bevy::math::{Affine3A, Vec3};
 use bevy::transform::components::{GlobalTransform, Transform};
 use springwater::disturb::Disturbance;
 use springwater::mesh::{LodMesh, LodParams};
 use springwater::refraction::RefractionParams;
-use springwater::{Params, Surface};
+use springwater::{FloaterId, Params, Surface};
 
 /// A water surface. Spawn it with a [`Transform`]; the plugin creates its
 /// [`springwater::Surface`] ([`WaterSurface`]) and its mesh ([`Mesh3d`](bevy::mesh::Mesh3d))
@@ -85,7 +86,7 @@ pub struct WaterSurface {
     pub(crate) lod: LodMesh,
     pub(crate) substeps: usize,
     /// The frame's forces on floating bodies, applied before every substep.
-    pub(crate) pushes: crate::buoyancy::Pushes,
+    pub(crate) pushes: Pushes,
 }
 
 impl WaterSurface {
@@ -220,4 +221,36 @@ impl Space {
             .normalize_or_zero()
             .into()
     }
+}
+
+/// The external forces of the frame on a water's floating bodies (the [`Buoyant`]
+/// components' `force`, in the water's local space and model time), filled by the
+/// buoyancy sync and applied before every substep of the step.
+///
+/// [`Buoyant`]: crate::Buoyant
+#[derive(Debug, Default)]
+pub(crate) struct Pushes(pub Vec<(FloaterId, springwater::glam::Vec3)>);
+
+impl Disturbance for Pushes {
+    fn apply(&mut self, surface: &mut Surface, _dt: f32) -> springwater::Result<()> {
+        for &(id, force) in &self.0 {
+            surface.push_floater(id, force)?;
+        }
+        Ok(())
+    }
+}
+
+/// Logs a failure on `water` and sends it as a [`WaterError`]: the one way the plugin's
+/// systems report errors.
+pub(crate) fn report(
+    errors: &mut MessageWriter<WaterError>,
+    water: Entity,
+    what: &str,
+    e: &dyn std::fmt::Display,
+) {
+    error!("springwater: {what} on {water}: {e}");
+    errors.write(WaterError {
+        water,
+        message: format!("{what}: {e}"),
+    });
 }
