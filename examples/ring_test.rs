@@ -82,7 +82,7 @@ fn edge_hold(s: &Surface) -> Vec<(usize, [f32; 3])> {
     let grid = probe.grid();
     let [vx, _, vz] = probe.velocities();
     let (m, dt) = (s.params().mass, s.params().dt);
-    (0..grid.len())
+    (0..grid.node_count())
         .filter(|&i| grid.is_border(i))
         .map(|i| (i, [-m * vx[i] / dt, 0.0, -m * vz[i] / dt]))
         .collect()

@@ -56,7 +56,7 @@ impl NaiveSurface {
     /// The flat rest state for `params` (not validated: benchmark use).
     pub fn new(params: &Params) -> Self {
         let grid = Grid::new(params.cols, params.rows);
-        let nodes = (0..grid.len())
+        let nodes = (0..grid.node_count())
             .map(|i| {
                 let (c, r) = grid.coords(i);
                 NaiveNode {

@@ -27,8 +27,8 @@
 //! let mut water = Surface::new(Params::with_size(65, 49))?;
 //! water.drop_at(32.0, 24.0, 1.0, 3.0)?;
 //! let (mut normals, mut uv) = (Normals::new(), Refraction::default());
-//! let mut vertices = vec![Vertex::default(); water.len()];       // kept between frames
-//! let mut positions = vec![[0.0f32; 3]; water.len()];
+//! let mut vertices = vec![Vertex::default(); water.node_count()];       // kept between frames
+//! let mut positions = vec![[0.0f32; 3]; water.node_count()];
 //!
 //! water.advance(1.0 / 60.0)?;
 //! let view = water.mesh_view();
@@ -40,7 +40,7 @@
 //!     ..Default::default()
 //! })?;
 //! let bytes: &[u8] = bytemuck::cast_slice(&vertices);               // upload these
-//! assert_eq!(bytes.len(), 32 * water.len());
+//! assert_eq!(bytes.len(), 32 * water.node_count());
 //! assert_eq!(positions[24 * 65 + 32][1], view.y()[24 * 65 + 32]);
 //! # Ok::<(), springwater::Error>(())
 //! ```
@@ -96,7 +96,7 @@ pub fn interleave(
     uv: &Refraction,
     out: VertexBuffers<'_>,
 ) -> Result<()> {
-    let n = view.grid().len();
+    let n = view.grid().node_count();
     for c in [&normals.x, &normals.y, &normals.z] {
         same_length("normals", c.len(), n)?;
     }
@@ -129,7 +129,7 @@ pub fn interleave(
 ///
 /// let mut water = Surface::new(Params::with_size(65, 49))?;
 /// water.drop_at(32.0, 24.0, 1.0, 3.0)?;
-/// let mut vertices = vec![Vertex::default(); water.len()];     // kept between frames
+/// let mut vertices = vec![Vertex::default(); water.node_count()];     // kept between frames
 /// water.advance(1.0 / 60.0)?;
 /// let eye = glam::Vec3::new(32.0, 20.0, -10.0);
 /// fill_frame(&water.mesh_view(), eye, &RefractionParams::default(),
@@ -150,7 +150,7 @@ pub fn fill_frame(
     out: VertexBuffers<'_>,
 ) -> Result<()> {
     let k = Refractor::new(view, eye, params)?;
-    let (n, cols) = (view.grid().len(), view.cols());
+    let (n, cols) = (view.grid().node_count(), view.cols());
     check(n, &out)?;
     let parts = Parts::new(out);
     let rows_per_block = (FRAME_BLOCK / cols).max(1);

@@ -293,10 +293,30 @@ impl Buoyancy {
 }
 
 /// A stable name for a floater of one surface; never reused by that surface (also not
-/// after the floater is removed).
+/// after the floater is removed). Its number is for crossing boundaries (a C handle, a
+/// save game): [`FloaterId::to_raw`] and back with [`FloaterId::from_raw`].
 #[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
-pub struct FloaterId(pub u64);
+pub struct FloaterId(pub(crate) u64);
+
+impl FloaterId {
+    /// The id whose number is `raw` (from [`FloaterId::to_raw`]). Any number makes an id;
+    /// a surface that never gave it answers [`Error::NoSuchFloater`](crate::Error::NoSuchFloater).
+    pub const fn from_raw(raw: u64) -> Self {
+        Self(raw)
+    }
+
+    /// The id's number: the surface's ids count up from 0 in the order floaters were added.
+    pub const fn to_raw(self) -> u64 {
+        self.0
+    }
+}
+
+impl From<FloaterId> for u64 {
+    fn from(id: FloaterId) -> u64 {
+        id.0
+    }
+}
 
 /// One vertical column of a body: offset of its centre from the body's, area, length.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -66,14 +66,24 @@ impl Grid {
         Self { cols, rows }
     }
 
-    /// Number of nodes.
-    pub const fn len(&self) -> usize {
+    /// Number of nodes, `cols × rows`.
+    pub const fn node_count(&self) -> usize {
         self.cols * self.rows
     }
 
-    /// True for a grid without nodes.
+    /// Number of nodes.
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `node_count`, the one name for the node count"
+    )]
+    pub const fn len(&self) -> usize {
+        self.node_count()
+    }
+
+    /// Whether the grid has no node.
+    #[deprecated(since = "0.2.0", note = "use `node_count() == 0`")]
     pub const fn is_empty(&self) -> bool {
-        self.len() == 0
+        self.node_count() == 0
     }
 
     /// Row-major index of `(col, row)`.
@@ -98,7 +108,7 @@ impl Grid {
     /// Every spring of the grid, family-major, in origin order.
     pub fn springs(&self) -> impl Iterator<Item = (SpringId, usize)> + '_ {
         Family::ALL.into_iter().flat_map(move |family| {
-            (0..self.len()).filter_map(move |origin| {
+            (0..self.node_count()).filter_map(move |origin| {
                 self.spring_end(family, origin)
                     .map(|end| (SpringId { family, origin }, end))
             })

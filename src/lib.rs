@@ -126,7 +126,7 @@ pub use params::{Boundary, Params, MAX_NODES};
 pub use simd::SimdLevel;
 pub use surface::snapshot::Snapshot;
 pub use surface::window;
-pub use surface::{Energy, FarField, Overflow, Spring, Surface, MAX_ORIGIN_CELLS};
+pub use surface::{Energy, FarField, Overflow, Spring, Surface, WaterSample, MAX_ORIGIN_CELLS};
 pub use view::MeshView;
 
 /// Unstable internals for the crate's command line, tests and benchmarks: the scalar

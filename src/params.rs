@@ -169,9 +169,18 @@ impl Params {
         }
     }
 
-    /// Number of nodes, `cols × rows`.
-    pub fn nodes(&self) -> usize {
+    /// Number of nodes, `cols × rows` (saturating: parameters are not validated yet).
+    pub fn node_count(&self) -> usize {
         self.cols.saturating_mul(self.rows)
+    }
+
+    /// Number of nodes.
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `node_count`, the one name for the node count"
+    )]
+    pub fn nodes(&self) -> usize {
+        self.node_count()
     }
 
     /// The guaranteed (large-wave) stability limit: `sqrt(m / (3c))` without viscosity,

@@ -165,7 +165,7 @@ pub fn refract(
 ) -> Result<()> {
     let k = Refractor::new(view, eye, params)?;
     check_normals(view, normals)?;
-    let n = view.grid().len();
+    let n = view.grid().node_count();
     resize(out, n);
     crate::mesh::for_each_chunk(
         view.runner(),
@@ -210,7 +210,7 @@ pub fn normals_and_refraction(
     out: &mut Refraction,
 ) -> Result<()> {
     let k = Refractor::new(view, eye, params)?;
-    let (n, cols) = (view.grid().len(), view.cols());
+    let (n, cols) = (view.grid().node_count(), view.cols());
     normals.resize(n);
     resize(out, n);
     let rows_per_task = (CHUNK / cols).max(1);
@@ -243,7 +243,7 @@ fn resize(out: &mut Refraction, n: usize) {
 
 /// One normal per node of `view`, or an error naming the short buffer.
 fn check_normals(view: &MeshView<'_>, normals: &Normals) -> Result<()> {
-    let n = view.grid().len();
+    let n = view.grid().node_count();
     for (what, s) in [
         ("normals.x", &normals.x),
         ("normals.y", &normals.y),

@@ -111,7 +111,7 @@ impl Springs {
     /// Springs from whole tables (a snapshot's): kept as shared values where every family
     /// agrees and the springs that do not exist are 0, as tables otherwise.
     pub fn from_tables(grid: Grid, rest: [&[f32]; 4], coef: [&[f32]; 4]) -> Self {
-        let len = padded_len(grid.len());
+        let len = padded_len(grid.node_count());
         let table = |src: &[f32]| {
             let mut t = Floats::zeros(len);
             t[..src.len()].copy_from_slice(src);
@@ -127,7 +127,7 @@ impl Springs {
         };
         springs.refresh();
         let absent_zero = Family::ALL.into_iter().all(|f| {
-            (0..grid.len())
+            (0..grid.node_count())
                 .filter(|&i| grid.spring_end(f, i).is_none())
                 .all(|i| rest[f as usize][i] == 0.0 && coef[f as usize][i] == 0.0)
         });
@@ -173,7 +173,7 @@ impl Springs {
     fn tables_mut(&mut self) -> &mut Tables {
         let (grid, uniform) = (self.grid, self.uniform);
         self.tables.get_or_insert_with(|| {
-            let len = padded_len(grid.len());
+            let len = padded_len(grid.node_count());
             let mut t = Tables {
                 rest: std::array::from_fn(|_| Floats::zeros(len)),
                 coef: std::array::from_fn(|_| Floats::zeros(len)),
@@ -196,7 +196,7 @@ impl Springs {
         let grid = self.grid;
         for family in Family::ALL {
             let f = family as usize;
-            let mut existing = (0..grid.len())
+            let mut existing = (0..grid.node_count())
                 .filter(|&i| grid.spring_end(family, i).is_some())
                 .map(|i| (t.coef[f][i].to_bits(), t.rest[f][i].to_bits()));
             let first = existing.next();
@@ -228,7 +228,7 @@ impl Springs {
         let Some(t) = self.tables.as_deref_mut() else {
             return;
         };
-        let n = grid.len();
+        let n = grid.node_count();
         let (rest, coef) = (t.rest[f][..n].to_vec(), t.coef[f][..n].to_vec());
         for i in 0..n {
             let (r, c) = match grid.spring_end(family, i) {

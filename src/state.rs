@@ -64,7 +64,7 @@ impl State {
     /// The flat rest state of `params`: node `(col, row)` at `(col·h, 0, row·h)`, at rest.
     pub fn new(params: &Params) -> Self {
         let grid = Grid::new(params.cols, params.rows);
-        let n = grid.len();
+        let n = grid.node_count();
         let len = padded_len(n);
         let mut pos = zeros3(len);
         let [x, _, z] = &mut pos;
@@ -107,7 +107,7 @@ impl State {
 
     /// Number of nodes.
     pub fn len(&self) -> usize {
-        self.grid.len()
+        self.grid.node_count()
     }
 
     /// Recomputes `inv_mass` from `mass` and `pinned`.

@@ -33,7 +33,7 @@ impl std::panic::RefUnwindSafe for MeshView<'_> {}
 
 impl<'a> MeshView<'a> {
     /// A view of `x`, `y`, `z` (one value per node, row-major) on `grid` with rest
-    /// spacing `spacing`. The slices must have `grid.len()` elements and the grid at
+    /// spacing `spacing`. The slices must have `grid.node_count()` elements and the grid at
     /// least 2×2 nodes.
     pub fn new(grid: Grid, spacing: f32, x: &'a [f32], y: &'a [f32], z: &'a [f32]) -> Result<Self> {
         if grid.cols < 2 || grid.rows < 2 {
@@ -44,7 +44,7 @@ impl<'a> MeshView<'a> {
         }
         crate::params::positive("spacing", spacing)?;
         for (what, s) in [("x", x), ("y", y), ("z", z)] {
-            same_length(what, s.len(), grid.len())?;
+            same_length(what, s.len(), grid.node_count())?;
         }
         Ok(Self {
             grid,
@@ -141,7 +141,7 @@ impl<'a> MeshView<'a> {
     /// nothing is written. [`crate::buffers::interleave`] fills normals, texture
     /// coordinates and packed vertices in the same pass.
     pub fn write_positions(&self, out: &mut [[f32; 3]]) -> Result<()> {
-        same_length("position buffer", out.len(), self.grid.len())?;
+        same_length("position buffer", out.len(), self.grid.node_count())?;
         for (o, ((x, y), z)) in out.iter_mut().zip(self.x.iter().zip(self.y).zip(self.z)) {
             *o = [*x, *y, *z];
         }

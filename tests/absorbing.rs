@@ -81,7 +81,7 @@ fn the_frame_is_inside_the_grid_pinned_at_the_ring_and_damped_quadratically() {
         ..Params::with_size(40, 30)
     };
     let s = Surface::new(p).unwrap();
-    assert_eq!(s.len(), 40 * 30, "the frame adds no nodes");
+    assert_eq!(s.node_count(), 40 * 30, "the frame adds no nodes");
     let grid = s.grid();
     let g = s.viscosities();
     for (i, (&pinned, &gamma)) in s.pinned().iter().zip(g).enumerate() {

@@ -43,7 +43,7 @@ fn interleaved_buffers_equal_the_soa_slices_bitwise() {
     for (cols, rows) in [(9, 7), (131, 67)] {
         let (s, normals, uv) = scene(cols, rows);
         let view = s.mesh_view();
-        let n = s.len();
+        let n = s.node_count();
         let mut positions = vec![[f32::NAN; 3]; n];
         let mut normal_buf = vec![[f32::NAN; 3]; n];
         let mut uvs = vec![[f32::NAN; 2]; n];
@@ -109,7 +109,7 @@ fn a_vertex_is_32_bytes_of_plain_floats() {
 fn wrong_lengths_are_refused_and_nothing_is_written() {
     let (s, normals, uv) = scene(12, 10);
     let view = s.mesh_view();
-    let n = s.len();
+    let n = s.node_count();
     let mut good = vec![[-1.0f32; 3]; n];
     let mut short = vec![[-1.0f32; 2]; n - 1];
     let err = interleave(
@@ -175,7 +175,7 @@ fn fill_frame_equals_the_stages_then_interleave() {
     ];
     for (cols, rows) in shapes {
         let (s, normals, uv) = scene(cols, rows);
-        let n = s.len();
+        let n = s.node_count();
         let view = s.mesh_view();
         let eye = Vec3::new(cols as f32 / 2.0, 15.0, -8.0);
         let params = RefractionParams::default();

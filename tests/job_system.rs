@@ -206,8 +206,8 @@ fn the_render_side_stages_run_on_the_job_system_with_the_same_bits() {
         compute_normals(&view, &mut normals);
         refract(&view, &normals, eye, &params, &mut uv).unwrap();
         normals_and_refraction(&view, eye, &params, &mut n2, &mut uv2).unwrap();
-        let mut vertices = vec![Vertex::default(); s.len()];
-        let mut positions = vec![[0.0f32; 3]; s.len()];
+        let mut vertices = vec![Vertex::default(); s.node_count()];
+        let mut positions = vec![[0.0f32; 3]; s.node_count()];
         interleave(
             &view,
             &normals,
@@ -219,7 +219,7 @@ fn the_render_side_stages_run_on_the_job_system_with_the_same_bits() {
             },
         )
         .unwrap();
-        let mut fused = vec![Vertex::default(); s.len()];
+        let mut fused = vec![Vertex::default(); s.node_count()];
         let out = VertexBuffers {
             vertices: Some(&mut fused),
             ..Default::default()
@@ -283,7 +283,7 @@ fn a_view_built_by_the_caller_runs_on_the_job_system_it_is_given() {
     let frame = |view: &MeshView<'_>| {
         let mut normals = Normals::new();
         compute_normals(view, &mut normals);
-        let mut vertices = vec![Vertex::default(); s.len()];
+        let mut vertices = vec![Vertex::default(); s.node_count()];
         let out = VertexBuffers {
             vertices: Some(&mut vertices),
             ..Default::default()

@@ -21,7 +21,7 @@ impl Flat {
     fn new(cols: usize, rows: usize, h: f32) -> Self {
         let grid = Grid::new(cols, rows);
         let (mut x, mut z) = (Vec::new(), Vec::new());
-        for i in 0..grid.len() {
+        for i in 0..grid.node_count() {
             let (c, r) = grid.coords(i);
             x.push(c as f32 * h);
             z.push(r as f32 * h);
@@ -30,7 +30,7 @@ impl Flat {
             grid,
             h,
             x,
-            y: vec![0.0; grid.len()],
+            y: vec![0.0; grid.node_count()],
             z,
         }
     }
@@ -47,7 +47,7 @@ fn check_mesh(lod: &LodMesh, grid: Grid) -> usize {
     assert_eq!(idx.len() % 3, 0, "whole triangles");
     let tris = idx.len() / 3;
     assert_eq!(lod.triangle_levels().len(), tris, "one level per triangle");
-    let n = grid.len();
+    let n = grid.node_count();
     let at = |i: u32| {
         assert!((i as usize) < n, "index {i} out of range ({n} nodes)");
         let (c, r) = grid.coords(i as usize);

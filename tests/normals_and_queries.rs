@@ -10,8 +10,8 @@ use springwater::{Error, Grid, Params, Surface};
 
 fn rest(cols: usize, rows: usize, h: f32) -> [Vec<f32>; 3] {
     let grid = Grid::new(cols, rows);
-    let mut p = [Vec::new(), vec![0.0; grid.len()], Vec::new()];
-    for i in 0..grid.len() {
+    let mut p = [Vec::new(), vec![0.0; grid.node_count()], Vec::new()];
+    for i in 0..grid.node_count() {
         let (c, r) = grid.coords(i);
         p[0].push(c as f32 * h);
         p[2].push(r as f32 * h);
@@ -143,7 +143,7 @@ fn queries_at_nodes_return_the_node_values() {
     let [_, y, _] = water.positions();
     let [vx, vy, vz] = water.velocities();
     let view = water.mesh_view();
-    for i in (0..g.len()).step_by(7).chain([g.len() - 1]) {
+    for i in (0..g.node_count()).step_by(7).chain([g.node_count() - 1]) {
         let (c, r) = g.coords(i);
         let (x, z) = (c as f32 * h, r as f32 * h);
         assert!(
@@ -201,6 +201,13 @@ proptest! {
         let mut vs = Vec::new();
         water.velocities_at(&[[x, z]], &mut vs).unwrap();
         prop_assert_eq!(vs[0], vel);
+        // So does the per-point batch, which answers every point it can.
+        let mut each = Vec::new();
+        water.samples_at(&[[x, z], [-1.0, z], [x, f32::NAN]], &mut each);
+        let one = each[0].expect("inside the footprint");
+        prop_assert_eq!((one.height, one.normal, one.velocity), (height as f32, n, vel));
+        prop_assert_eq!(water.sample_at(x, z).unwrap(), one);
+        prop_assert!(each[1].is_none() && each[2].is_none());
     }
 }
 
@@ -244,4 +251,20 @@ fn points_outside_or_not_finite_are_refused_and_batches_are_all_or_nothing() {
     assert_eq!(out, vec![42.0], "nothing written on error");
     water.heights_at(&[[1.0, 1.0], [w, l]], &mut out).unwrap();
     assert_eq!(out.len(), 2);
+
+    // Point by point: the points off the water are None, the others answered, in order.
+    let points = [
+        [1.0, 1.0],
+        [1.0, 99.0],
+        [f32::NAN, 0.0],
+        [w, l],
+        [-0.01, 1.0],
+    ];
+    let mut each = vec![None; 9];
+    water.samples_at(&points, &mut each);
+    assert_eq!(each.len(), points.len());
+    let found: Vec<bool> = each.iter().map(Option::is_some).collect();
+    assert_eq!(found, [true, false, false, true, false]);
+    assert_eq!(each[3].unwrap().height, water.height_at(w, l).unwrap());
+    assert!(water.sample_at(1.0, 99.0).is_err());
 }

@@ -133,7 +133,7 @@ fn build(case: &Case) -> Surface {
 fn add_forces(s: &mut Surface, seed: Option<u32>) {
     if let Some(seed) = seed {
         let mut rng = Rng(seed);
-        let n = s.len();
+        let n = s.node_count();
         if seed & 2 == 0 {
             let f: Vec<Vec<f32>> = (0..3)
                 .map(|_| (0..n).map(|_| rng.next()).collect())
@@ -237,7 +237,7 @@ fn a_failing_pass_stops_at_the_same_step_as_single_steps() {
     p.dt = p.linear_dt_limit() * 1.05;
     let mut single = Surface::new_without_dt_check(p).unwrap();
     let mut rng = Rng(7);
-    for i in 0..single.len() {
+    for i in 0..single.node_count() {
         single
             .add_velocity(i, [rng.next() * 1e-3, rng.next() * 1e-3, rng.next() * 1e-3])
             .unwrap();

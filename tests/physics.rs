@@ -171,7 +171,7 @@ fn small_disturbance_growth(dt_factor: f32) -> (f32, bool) {
     p.dt = p.linear_dt_limit() * dt_factor;
     let mut s = Surface::new_without_dt_check(p).unwrap();
     let mut rng = Rng(12345);
-    for i in 0..s.len() {
+    for i in 0..s.node_count() {
         s.add_velocity(i, [rng.next() * 1e-3, rng.next() * 1e-3, rng.next() * 1e-3])
             .unwrap();
     }

@@ -2,7 +2,8 @@
 //! library from rustdoc's JSON output, with its signature (modules, types with their
 //! generics, functions and methods with their parameters and return types, constants and
 //! fields with their types, variants with their fields, the traits implemented and the
-//! auto traits, `Send` and `Sync` among them), and compares the list with the checked-in
+//! auto traits, `Send` and `Sync` among them; `#[non_exhaustive]`, `#[deprecated]` and
+//! `#[repr(C)]`), and compares the list with the checked-in
 //! `tests/public-api.txt`. A changed parameter, a field's new type or a type that stops
 //! being `Send` fails it as surely as a removed function.
 //!
@@ -94,6 +95,7 @@ fn walk(doc: &Value, id: &str, path: &str, out: &mut BTreeSet<String>) {
     let Some((kind, body)) = inner.as_object().and_then(|o| o.iter().next()) else {
         return;
     };
+    attributes(item, path, out);
     let name_of = |id: &Value| {
         doc["index"][&id.to_string()]["name"]
             .as_str()
@@ -173,11 +175,11 @@ fn walk(doc: &Value, id: &str, path: &str, out: &mut BTreeSet<String>) {
             out.insert(format!("trait {path}{}", generics(&body["generics"])));
             for i in body["items"].as_array().unwrap() {
                 let it = &doc["index"][&i.to_string()];
-                let sig = match it["inner"].get("function") {
-                    Some(f) => function(f),
-                    None => String::new(),
+                let (q, sig) = match it["inner"].get("function") {
+                    Some(f) => (qualifiers(f), function(f)),
+                    None => Default::default(),
                 };
-                out.insert(format!("trait-item {path}::{}{sig}", name_of(i)));
+                out.insert(format!("trait-item {q}{path}::{}{sig}", name_of(i)));
             }
             for i in body["implementations"].as_array().unwrap() {
                 let imp = &doc["index"][&i.to_string()]["inner"]["impl"];
@@ -185,7 +187,7 @@ fn walk(doc: &Value, id: &str, path: &str, out: &mut BTreeSet<String>) {
             }
         }
         "function" => {
-            out.insert(format!("fn {path}{}", function(body)));
+            out.insert(format!("{}fn {path}{}", qualifiers(body), function(body)));
         }
         "constant" | "static" => {
             out.insert(format!("{kind} {path}: {}", ty(&body["type"])));
@@ -229,9 +231,10 @@ fn impls(doc: &Value, ids: &Value, path: &str, out: &mut BTreeSet<String>) {
                     continue;
                 };
                 let full = format!("{path}::{name}");
+                attributes(m, &full, out);
                 match m["inner"].as_object().and_then(|o| o.iter().next()) {
                     Some((k, f)) if k == "function" => {
-                        out.insert(format!("fn {full}{}", function(f)));
+                        out.insert(format!("{}fn {full}{}", qualifiers(f), function(f)));
                     }
                     Some((k, c)) if k == "assoc_const" => {
                         out.insert(format!("const {full}: {}", ty(&c["type"])));
@@ -243,16 +246,39 @@ fn impls(doc: &Value, ids: &Value, path: &str, out: &mut BTreeSet<String>) {
                 }
             }
         } else {
+            // Listed with the type they mention, such as `From<Id> for u64` under `Id`.
+            let target = ty(&imp["for"]);
+            let named = target.split('<').next();
+            let target = match path.rsplit("::").next() == named {
+                true => path.to_string(),
+                false => target,
+            };
             out.insert(format!(
-                "impl {not}{} for {path}",
+                "impl {not}{} for {target}",
                 trait_path(&imp["trait"])
             ));
         }
     }
 }
 
-/// A function's generics, parameters, return type and qualifiers.
-fn function(f: &Value) -> String {
+/// The attributes that are part of an item's promise: `#[non_exhaustive]` (a field or
+/// variant may come), `#[deprecated]`, and a C layout (`#[repr(C)]`).
+fn attributes(item: &Value, path: &str, out: &mut BTreeSet<String>) {
+    for a in item["attrs"].as_array().into_iter().flatten() {
+        if a == "non_exhaustive" {
+            out.insert(format!("#[non_exhaustive] {path}"));
+        }
+        if a["repr"]["kind"] == "c" {
+            out.insert(format!("#[repr(C)] {path}"));
+        }
+    }
+    if !item["deprecation"].is_null() {
+        out.insert(format!("#[deprecated] {path}"));
+    }
+}
+
+/// A function's qualifiers, written before `fn`: `const `, `unsafe `, `extern "C" `.
+fn qualifiers(f: &Value) -> String {
     let h = &f["header"];
     let mut q = String::new();
     for (flag, word) in [("is_const", "const "), ("is_unsafe", "unsafe ")] {
@@ -263,6 +289,11 @@ fn function(f: &Value) -> String {
     if h["abi"] != "Rust" {
         q.push_str(&format!("extern {} ", h["abi"]));
     }
+    q
+}
+
+/// A function's generics, parameters and return type.
+fn function(f: &Value) -> String {
     let inputs: Vec<String> = f["sig"]["inputs"]
         .as_array()
         .unwrap()
@@ -283,7 +314,7 @@ fn function(f: &Value) -> String {
     };
     let g = generics(&f["generics"]);
     let w = where_clause(&f["generics"]);
-    format!("{q}{g}({}){output}{w}", inputs.join(", "))
+    format!("{g}({}){output}{w}", inputs.join(", "))
 }
 
 /// `<T: Bound, 'a, const N: usize>`, without the parameters `impl Trait` arguments make.

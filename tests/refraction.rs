@@ -21,8 +21,8 @@ struct Scene {
 impl Scene {
     fn flat(cols: usize, rows: usize, h: f32) -> Self {
         let grid = Grid::new(cols, rows);
-        let mut p = [Vec::new(), vec![0.0; grid.len()], Vec::new()];
-        for i in 0..grid.len() {
+        let mut p = [Vec::new(), vec![0.0; grid.node_count()], Vec::new()];
+        for i in 0..grid.node_count() {
             let (c, r) = grid.coords(i);
             p[0].push(c as f32 * h);
             p[2].push(r as f32 * h);
@@ -72,7 +72,7 @@ fn scene(cols: usize, rows: usize, values: &[f32], min_up: f32) -> Scene {
         k += 1;
         v
     };
-    for i in 0..s.grid.len() {
+    for i in 0..s.grid.node_count() {
         s.p[0][i] += 0.3 * next();
         s.p[1][i] = next();
         s.p[2][i] += 0.3 * next();
@@ -136,7 +136,7 @@ proptest! {
         let params = RefractionParams { depth, ior };
         let out = s.run(eye, &params);
         let [w, l] = s.extent();
-        for i in 0..s.grid.len() {
+        for i in 0..s.grid.node_count() {
             let p = s.pos(i).as_dvec3();
             let n = s.normals.get(i).as_dvec3();
             let Some(t) = snell_by_angles(p, n, eye.as_dvec3(), ior as f64) else { continue };
@@ -168,7 +168,7 @@ proptest! {
         let eye = Vec3::new(eye.0, eye.1, eye.2);
         let out = s.run(eye, &RefractionParams { depth, ior });
         let [w, l] = s.extent();
-        for i in 0..s.grid.len() {
+        for i in 0..s.grid.node_count() {
             let p = s.pos(i).as_dvec3();
             let n = s.normals.get(i).as_dvec3();
             let d = (p - eye.as_dvec3()).normalize();
@@ -202,7 +202,7 @@ proptest! {
         zero_normals in any::<bool>(),
     ) {
         let mut s = scene(13, 4, &vals, -1.0);
-        for i in 0..s.grid.len() {
+        for i in 0..s.grid.node_count() {
             let k = vals[i % vals.len()];
             if zero_normals && i % 3 == 0 {
                 (s.normals.x[i], s.normals.y[i], s.normals.z[i]) = (0.0, 0.0, 0.0);
@@ -213,7 +213,7 @@ proptest! {
         let params = RefractionParams { depth, ior };
         let out = s.run(Vec3::new(eye.0, eye.1, eye.2), &params);
         let r0 = params.r0();
-        for i in 0..s.grid.len() {
+        for i in 0..s.grid.node_count() {
             prop_assert!(out.u[i].is_finite() && out.v[i].is_finite(), "node {i}");
             prop_assert!(out.fresnel[i] >= r0 && out.fresnel[i] <= 1.0, "node {i}: {}", out.fresnel[i]);
         }
@@ -234,7 +234,7 @@ proptest! {
         let lanes = s.run(eye, &params);
         let mut scalar = Refraction::default();
         refract_scalar(&s.view(), &s.normals, eye, &params, &mut scalar).unwrap();
-        for i in 0..s.grid.len() {
+        for i in 0..s.grid.node_count() {
             prop_assert_eq!(lanes.u[i].to_bits(), scalar.u[i].to_bits(), "u at node {}", i);
             prop_assert_eq!(lanes.v[i].to_bits(), scalar.v[i].to_bits(), "v at node {}", i);
             prop_assert_eq!(lanes.fresnel[i].to_bits(), scalar.fresnel[i].to_bits(), "fresnel at node {}", i);
@@ -322,7 +322,7 @@ fn an_eye_under_water_gets_the_fallback_coordinate_and_total_reflection() {
     };
     let eye = Vec3::new(10.0, -2.0, 10.0);
     let out = s.run(eye, &params);
-    for i in 0..s.grid.len() {
+    for i in 0..s.grid.node_count() {
         let p = s.pos(i);
         assert_below(&out, i, p, [w, l]);
         let d = (p - eye).normalize();

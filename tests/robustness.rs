@@ -17,7 +17,7 @@ fn nan_force_is_refused_and_changes_nothing() {
     let before = s.to_bytes();
     assert!(s.add_force(20, [0.0, f32::NAN, 0.0]).is_err());
     assert!(s.add_force(20, [f32::INFINITY, 0.0, 0.0]).is_err());
-    let n = s.len();
+    let n = s.node_count();
     let mut fy = vec![0.0; n];
     fy[33] = f32::NAN;
     let zeros = vec![0.0; n];
@@ -105,7 +105,7 @@ fn accumulated_force_and_velocity_must_stay_finite() {
 #[test]
 fn indices_are_checked() {
     let mut s = surface();
-    let n = s.len();
+    let n = s.node_count();
     let before = s.to_bytes();
     assert!(matches!(
         s.add_force(n, [0.0; 3]),
@@ -178,7 +178,7 @@ fn indices_are_checked() {
 #[test]
 fn slice_lengths_are_checked() {
     let mut s = surface();
-    let n = s.len();
+    let n = s.node_count();
     let (short, ok) = (vec![0.0; n - 1], vec![0.0; n]);
     assert!(matches!(
         s.set_forces([&ok, &short, &ok]),
@@ -484,7 +484,7 @@ fn a_sheet_far_from_the_origin_steps_like_the_reference() {
             ..Params::with_size(cols, 6)
         };
         let mut engine = Surface::new(p).unwrap();
-        for node in 0..engine.len() {
+        for node in 0..engine.node_count() {
             engine.add_velocity(node, [1e20, 0.0, -1e20]).unwrap();
         }
         let mut reference = engine.clone();

@@ -244,7 +244,7 @@ fn parameters_and_forces_travel_with_the_water_and_the_frame_stays() {
         stiffness: 5.0,
     };
     s.set_spring(e, custom).unwrap();
-    let forces_before: Vec<[f32; 3]> = (0..g.len())
+    let forces_before: Vec<[f32; 3]> = (0..g.node_count())
         .map(|i| std::array::from_fn(|k| s.forces()[k][i]))
         .collect();
 
@@ -273,7 +273,7 @@ fn parameters_and_forces_travel_with_the_water_and_the_frame_stays() {
         }
     }
     // The frame and the pinned ring stay at the window's edge.
-    for i in 0..g.len() {
+    for i in 0..g.node_count() {
         let (c, r) = g.coords(i);
         let custom = [moved(20, 18), moved(21, 18), moved(22, 18)].contains(&i);
         if !custom {
@@ -300,7 +300,7 @@ fn a_far_field_fills_the_incoming_strip() {
     s.shift_with(0, 5, swell).unwrap();
     let g = s.grid();
     let [x, y, z] = s.positions();
-    for i in 0..g.len() {
+    for i in 0..g.node_count() {
         let (_, r) = g.coords(i);
         let expected = if r >= g.rows - 5 {
             swell(x[i], z[i])

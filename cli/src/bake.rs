@@ -27,7 +27,7 @@ use lexopt::Parser;
 use springwater::disturb::{Rain, Wake};
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use springwater::refraction::{refract, Refraction, RefractionParams};
-use springwater::Surface;
+use springwater::{Overflow, Surface};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -152,6 +152,20 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     )?;
     let dt = surface.params().dt;
     let mut steps = 0usize;
+    // A bake owes every frame its whole time: the game's cap on steps per frame (which
+    // drops what a stall owes) would cut frames short. Raised to the most `advance` takes;
+    // a frame that needs more is refused here, before any step.
+    let per_frame =
+        (f64::from(surface.params().time_scale) / f64::from(fps) / f64::from(dt)).ceil();
+    if per_frame > Surface::MAX_SUBSTEPS as f64 {
+        return Err(format!(
+            "bake: a frame of 1/{fps} s is {per_frame} steps of dt {dt}, more than the {} one frame may take: raise --fps",
+            Surface::MAX_SUBSTEPS
+        ));
+    }
+    surface
+        .set_step_cap(Surface::MAX_SUBSTEPS as u32, Overflow::Drop)
+        .map_err(lib_error)?;
 
     // Rain and wake sized in cells, as `render` makes them.
     let h = surface.params().spacing;

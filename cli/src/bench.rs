@@ -110,7 +110,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     }
     let threads = model.threads.unwrap_or_else(rayon::current_num_threads);
     let params = *surface.params();
-    let nodes = surface.len();
+    let nodes = surface.node_count();
     let mut kernels = vec![Kernel::Engine];
     kernels.extend(compare);
     let simd = surface.simd_level();

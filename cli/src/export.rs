@@ -65,7 +65,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     say!(
         "wrote {}: {} vertices, {} triangles (full grid: {})",
         obj.display(),
-        surface.len(),
+        surface.node_count(),
         lod.triangle_count(),
         2 * (surface.grid().cols - 1) * (surface.grid().rows - 1)
     );
@@ -96,13 +96,13 @@ fn write_obj(
         optics.ior
     )?;
     let [x, y, z] = s.positions();
-    for i in 0..g.len() {
+    for i in 0..g.node_count() {
         writeln!(w, "v {} {} {}", x[i], y[i], z[i])?;
     }
-    for i in 0..g.len() {
+    for i in 0..g.node_count() {
         writeln!(w, "vn {} {} {}", normals.x[i], normals.y[i], normals.z[i])?;
     }
-    for i in 0..g.len() {
+    for i in 0..g.node_count() {
         writeln!(w, "vt {} {}", uv.u[i], uv.v[i])?;
     }
     for t in lod.indices().chunks_exact(3) {

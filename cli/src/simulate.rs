@@ -268,11 +268,11 @@ pub fn print_summary(s: &Surface, steps_run: u64, seconds: f64) -> CliResult<()>
         e.total()
     );
     if seconds > 0.0 {
-        let rate = s.len() as f64 * steps_run as f64 / seconds;
+        let rate = s.node_count() as f64 * steps_run as f64 / seconds;
         say!("wall time   {seconds:.3} s ({rate:.3e} node updates/s)");
     }
     if let Some(peak) = peak_memory() {
-        let per_node = peak as f64 / s.len() as f64;
+        let per_node = peak as f64 / s.node_count() as f64;
         say!(
             "memory      {:.1} MB peak ({per_node:.1} bytes per node)",
             peak as f64 / 1e6
@@ -321,7 +321,7 @@ pub fn write_csv(s: &Surface, file: std::fs::File) -> std::io::Result<()> {
     writeln!(w, "col,row,x,y,z")?;
     let grid = s.grid();
     let [x, y, z] = s.positions();
-    for i in 0..grid.len() {
+    for i in 0..grid.node_count() {
         let (c, r) = grid.coords(i);
         writeln!(w, "{c},{r},{},{},{}", Short(x[i]), Short(y[i]), Short(z[i]))?;
     }

@@ -545,3 +545,106 @@ fn a_frame_is_the_steps_advance_takes() {
         .collect();
     assert_eq!(obj_positions(&dir.join("water_0002.obj")), want);
 }
+
+#[test]
+fn a_long_frame_takes_all_its_steps() {
+    // At 2 fps a frame is 30 steps, past the game's default cap of 16 steps per `advance`:
+    // a bake takes them all (the cap is for stalls in a game, not for a cache).
+    let dir = scratch("fps2");
+    let report = ok(&[
+        "bake",
+        "--size",
+        "9x9",
+        "--drop",
+        "4,4,1,2",
+        "--frames",
+        "2",
+        "--fps",
+        "2",
+        "--out",
+        dir.to_str().unwrap(),
+    ]);
+    assert!(report.contains(" 60 steps of 0.4 "), "{report}");
+    let csv = scratch("fps2.csv");
+    ok(&[
+        "simulate",
+        "--size",
+        "9x9",
+        "--drop",
+        "4,4,1,2",
+        "--steps",
+        "60",
+        "--csv",
+        csv.to_str().unwrap(),
+    ]);
+    let want: Vec<[f32; 3]> = std::fs::read_to_string(&csv)
+        .unwrap()
+        .lines()
+        .skip(1)
+        .map(|l| {
+            let f: Vec<f32> = l.split(',').skip(2).map(|s| s.parse().unwrap()).collect();
+            [f[0], f[1], f[2]]
+        })
+        .collect();
+    assert_eq!(obj_positions(&dir.join("water_0002.obj")), want);
+
+    // A frame longer than `advance` may ever step is refused before anything is written.
+    let refused = scratch("fps-tiny");
+    let out = springwater(&[
+        "bake",
+        "--size",
+        "9x9",
+        "--frames",
+        "2",
+        "--fps",
+        "0.0001",
+        "--out",
+        refused.to_str().unwrap(),
+    ]);
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("raise --fps"), "{err}");
+    assert!(!refused.exists());
+}
+
+#[test]
+fn rain_a_wake_open_water_and_threads_bake_the_same_bits_on_one_thread_and_two() {
+    // Every disturbance and the absorbing frame go through bake, and the thread count
+    // changes nothing (the engine's promise, through the command line).
+    let bake = |threads: &str, name: &str| {
+        let dir = scratch(name);
+        let report = ok(&[
+            "bake",
+            "--size",
+            "33x25",
+            "--boundary",
+            "absorbing",
+            "--rain",
+            "30",
+            "--seed",
+            "5",
+            "--wake",
+            "--floater",
+            "16,12,5,1.5",
+            "--threads",
+            threads,
+            "--frames",
+            "6",
+            "--out",
+            dir.to_str().unwrap(),
+        ]);
+        assert!(report.contains("baked 6 frames"), "{report}");
+        (1..=6)
+            .map(|k| obj_positions(&dir.join(format!("water_{k:04}.obj"))))
+            .collect::<Vec<_>>()
+    };
+    let one = bake("1", "disturbed-1");
+    assert_eq!(one, bake("2", "disturbed-2"));
+    assert!(one.iter().flatten().flatten().all(|v| v.is_finite()));
+    let moved = |a: &[[f32; 3]], b: &[[f32; 3]]| a.iter().zip(b).filter(|(p, q)| p != q).count();
+    // The rain and the wake keep the water moving from frame to frame.
+    for k in 1..6 {
+        assert!(moved(&one[k - 1], &one[k]) > 100, "frame {k} to {}", k + 1);
+    }
+}

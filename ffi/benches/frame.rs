@@ -41,7 +41,7 @@ impl RustFrame {
             .drop_at(n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0)
             .unwrap();
         Self {
-            vertices: vec![Vertex::default(); surface.len()],
+            vertices: vec![Vertex::default(); surface.node_count()],
             surface,
             lod: LodMesh::new(LodParams::default()).unwrap(),
             normals: Normals::new(),

@@ -484,6 +484,25 @@ SwStatus sw_surface_sample(const struct SwSurface *surface,
                            struct SwSample *out,
                            size_t out_len);
 
+// Samples the water at `count` points point by point (`xz[2k]`, `xz[2k+1]` is point
+// `k`): where point `k` is on the water, `found[k]` is 1 and `out[k]` its height, normal
+// and velocity; where it is off the window or not finite, `found[k]` is 0 and `out[k]`
+// is calm water (height 0, normal up, velocity 0). Unlike [`sw_surface_sample`], one point
+// off the water does not fail the others. `out_len` and `found_len` (in elements) must be
+// at least `count`.
+//
+// # Safety
+//
+// `xz` points to `2 · count` floats, `out` to `out_len` writable `SwSample`s and `found`
+// to `found_len` writable bytes (any may be NULL when `count` is 0).
+SwStatus sw_surface_sample_each(const struct SwSurface *surface,
+                                const float *xz,
+                                size_t count,
+                                struct SwSample *out,
+                                size_t out_len,
+                                uint8_t *found,
+                                size_t found_len);
+
 // Writes every node's position, interleaved `x, y, z`, row-major (node `(col, row)` at
 // `3·(row·cols + col)`). `len` is in floats and must be at least `3 · nodes`.
 //

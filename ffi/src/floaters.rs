@@ -136,7 +136,7 @@ pub unsafe extern "C" fn sw_surface_add_floater(
         // SAFETY: the caller gives NULL or a valid pointer.
         let body = rust_floater(unsafe { input(floater, "floater") }?)?;
         let id = out_ref(id, "id")?;
-        *id = handle::with(surface, |w| Ok(w.surface.add_floater(body)?.0))?;
+        *id = handle::with(surface, |w| Ok(w.surface.add_floater(body)?.to_raw()))?;
         Ok(())
     })
 }
@@ -147,7 +147,7 @@ pub unsafe extern "C" fn sw_surface_add_floater(
 pub extern "C" fn sw_surface_remove_floater(surface: *mut SwSurface, id: SwFloaterId) -> SwStatus {
     guard(|| {
         handle::with(surface, |w| {
-            w.surface.remove_floater(FloaterId(id))?;
+            w.surface.remove_floater(FloaterId::from_raw(id))?;
             Ok(())
         })
     })
@@ -166,7 +166,7 @@ pub unsafe extern "C" fn sw_surface_floater(
     out: *mut SwFloater,
 ) -> SwStatus {
     read_into(surface, out, |w| {
-        Ok(c_floater(w.surface.floater(FloaterId(id))?))
+        Ok(c_floater(w.surface.floater(FloaterId::from_raw(id))?))
     })
 }
 
@@ -203,7 +203,7 @@ pub unsafe extern "C" fn sw_surface_set_floater(
         // SAFETY: the caller gives NULL or a valid pointer.
         let body = rust_floater(unsafe { input(floater, "floater") }?)?;
         handle::with(surface, |w| {
-            let id = FloaterId(id);
+            let id = FloaterId::from_raw(id);
             let water_force = w.surface.floater(id)?.water_force;
             Ok(w.surface.set_floater(
                 id,
@@ -230,7 +230,8 @@ pub extern "C" fn sw_surface_push_floater(
 ) -> SwStatus {
     guard(|| {
         handle::with(surface, |w| {
-            Ok(w.surface.push_floater(FloaterId(id), [fx, fy, fz])?)
+            Ok(w.surface
+                .push_floater(FloaterId::from_raw(id), [fx, fy, fz])?)
         })
     })
 }
@@ -271,7 +272,7 @@ pub unsafe extern "C" fn sw_surface_floater_ids(
             unsafe {
                 write_sized(ids, len, count, bodies.len(), "ids", |out| {
                     for (o, (id, _)) in out.iter_mut().zip(bodies) {
-                        *o = id.0;
+                        *o = id.to_raw();
                     }
                 })
             }

@@ -31,6 +31,7 @@ pub(crate) struct Queries {
     pub heights: Vec<f32>,
     pub normals: Vec<glam::Vec3>,
     pub velocities: Vec<glam::Vec3>,
+    pub each: Vec<Option<springwater::WaterSample>>,
 }
 
 type Entry = Arc<Mutex<Water>>;

@@ -329,7 +329,7 @@ pub unsafe extern "C" fn sw_surface_node_count(
     surface: *const SwSurface,
     out: *mut usize,
 ) -> SwStatus {
-    read_into(surface, out, |w| Ok(w.surface.len()))
+    read_into(surface, out, |w| Ok(w.surface.node_count()))
 }
 
 /// Advances the water by one frame of the caller's clock: `frame_time` seconds (finite,
@@ -605,6 +605,69 @@ pub unsafe extern "C" fn sw_surface_sample(
     })
 }
 
+/// Samples the water at `count` points point by point (`xz[2k]`, `xz[2k+1]` is point
+/// `k`): where point `k` is on the water, `found[k]` is 1 and `out[k]` its height, normal
+/// and velocity; where it is off the window or not finite, `found[k]` is 0 and `out[k]`
+/// is calm water (height 0, normal up, velocity 0). Unlike [`sw_surface_sample`], one point
+/// off the water does not fail the others. `out_len` and `found_len` (in elements) must be
+/// at least `count`.
+///
+/// # Safety
+///
+/// `xz` points to `2 · count` floats, `out` to `out_len` writable `SwSample`s and `found`
+/// to `found_len` writable bytes (any may be NULL when `count` is 0).
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_sample_each(
+    surface: *const SwSurface,
+    xz: *const f32,
+    count: usize,
+    out: *mut SwSample,
+    out_len: usize,
+    found: *mut u8,
+    found_len: usize,
+) -> SwStatus {
+    guard(|| {
+        let floats = count
+            .checked_mul(2)
+            .ok_or_else(|| Failure::invalid("count is too large"))?;
+        // SAFETY: the caller gives `2·count` floats at `xz`.
+        let xz = unsafe { in_slice(xz, floats, "xz") }?;
+        need(out_len, count, "out")?;
+        need(found_len, count, "found")?;
+        // SAFETY: the caller gives `out_len ≥ count` samples at `out`.
+        let out = unsafe { out_slice(out, count, "out") }?;
+        // SAFETY: the caller gives `found_len ≥ count` bytes at `found`.
+        let found = unsafe { out_slice(found, count, "found") }?;
+        handle::with(surface, |w| {
+            let q = &mut w.queries;
+            q.points.clear();
+            q.points.extend(xz.chunks_exact(2).map(|p| [p[0], p[1]]));
+            w.surface.samples_at(&q.points, &mut q.each);
+            for ((o, f), s) in out.iter_mut().zip(found.iter_mut()).zip(&q.each) {
+                (*o, *f) = match s {
+                    Some(s) => (
+                        SwSample {
+                            height: s.height,
+                            normal: s.normal.to_array(),
+                            velocity: s.velocity.to_array(),
+                        },
+                        1,
+                    ),
+                    None => (
+                        SwSample {
+                            height: 0.0,
+                            normal: [0.0, 1.0, 0.0],
+                            velocity: [0.0; 3],
+                        },
+                        0,
+                    ),
+                };
+            }
+            Ok(())
+        })
+    })
+}
+
 /// Writes every node's position, interleaved `x, y, z`, row-major (node `(col, row)` at
 /// `3·(row·cols + col)`). `len` is in floats and must be at least `3 · nodes`.
 ///
@@ -620,7 +683,7 @@ pub unsafe extern "C" fn sw_surface_write_positions(
     guard(|| {
         handle::with(surface, |w| {
             // SAFETY: the caller gives `len` floats at `xyz`.
-            let out = unsafe { out_triples(xyz, len, w.surface.len(), "xyz") }?;
+            let out = unsafe { out_triples(xyz, len, w.surface.node_count(), "xyz") }?;
             Ok(w.surface.mesh_view().write_positions(out)?)
         })
     })
@@ -641,7 +704,7 @@ pub unsafe extern "C" fn sw_surface_write_normals(
     guard(|| {
         handle::with(surface, |w| {
             // SAFETY: the caller gives `len` floats at `xyz`.
-            let out = unsafe { out_triples(xyz, len, w.surface.len(), "xyz") }?;
+            let out = unsafe { out_triples(xyz, len, w.surface.node_count(), "xyz") }?;
             compute_normals(&w.surface.mesh_view(), &mut w.normals);
             let Normals { x, y, z } = &w.normals;
             for (o, ((x, y), z)) in out.iter_mut().zip(x.iter().zip(y).zip(z)) {
@@ -671,7 +734,7 @@ pub unsafe extern "C" fn sw_surface_write_refraction_uvs(
         // SAFETY: the caller gives NULL or a valid pointer.
         let (eye, params) = refraction_params(unsafe { input(refraction, "refraction") }?)?;
         handle::with(surface, |w| {
-            let n = w.surface.len();
+            let n = w.surface.node_count();
             need(len, n * 2, "uv")?;
             // SAFETY: the caller gives `len ≥ 2n` floats at `uv`.
             let out = unsafe { out_slice(uv.cast::<[f32; 2]>(), n, "uv") }?;
@@ -702,7 +765,7 @@ pub unsafe extern "C" fn sw_surface_write_vertices(
         // SAFETY: the caller gives NULL or a valid pointer.
         let (eye, params) = refraction_params(unsafe { input(refraction, "refraction") }?)?;
         handle::with(surface, |w| {
-            let n = w.surface.len();
+            let n = w.surface.node_count();
             need(len, n, "vertices")?;
             // SAFETY: the caller gives `len ≥ n` vertices; `SwVertex` has `Vertex`'s layout
             // (checked at compile time above).

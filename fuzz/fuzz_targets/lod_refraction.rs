@@ -41,7 +41,7 @@ fuzz_target!(|input: Input| {
     let (cols, rows) = (2 + input.cols as usize % 70, 2 + input.rows as usize % 70);
     let h = 10f32.powf(input.spacing as f32 / 64.0 - 2.0);
     let grid = Grid::new(cols, rows);
-    let n = grid.len();
+    let n = grid.node_count();
     let scale = 10f32.powf(input.height_scale as f32 / 32.0 - 3.0);
     let pick = |v: &[i8], i: usize| {
         if v.is_empty() {
@@ -107,7 +107,7 @@ fuzz_target!(|input: Input| {
 /// A valid, crack-free, counter-clockwise triangulation of the grid's rest footprint.
 fn check_mesh(grid: Grid, indices: &[u32]) {
     assert_eq!(indices.len() % 3, 0);
-    let n = grid.len();
+    let n = grid.node_count();
     let at = |i: u32| {
         assert!((i as usize) < n, "index {i} out of range");
         let (c, r) = grid.coords(i as usize);

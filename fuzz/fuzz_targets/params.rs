@@ -57,7 +57,7 @@ fuzz_target!(|input: Input| {
         acceleration: input.acceleration,
         time_scale: input.time_scale,
     };
-    if p.validate().is_ok() && p.nodes() <= MAX_BUILD {
+    if p.validate().is_ok() && p.node_count() <= MAX_BUILD {
         let mut s = Surface::new(p).expect("validate() accepted these params");
         exercise(&mut s, &input);
     }
@@ -75,7 +75,7 @@ fuzz_target!(|input: Input| {
             Err(_) => return,
         }
     }
-    if model.params.validate().is_ok() && model.params.nodes() <= MAX_BUILD {
+    if model.params.validate().is_ok() && model.params.node_count() <= MAX_BUILD {
         if let Ok(mut s) = model.surface() {
             exercise(&mut s, &input);
         }

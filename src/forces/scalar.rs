@@ -90,7 +90,7 @@ pub(crate) fn step(
     cfg: StepConfig,
 ) -> Result<(), usize> {
     let grid = state.grid;
-    let n = grid.len();
+    let n = grid.node_count();
     if scratch.forces.len() != 4 || scratch.forces[0][0].len() != n {
         scratch.forces = (0..4).map(|_| zeros3(n)).collect();
     }

@@ -270,9 +270,9 @@ impl LodMesh {
     fn reshape(&mut self, view: &MeshView<'_>) -> bool {
         let grid = view.grid();
         assert!(
-            grid.len() - 1 <= u32::MAX as usize,
+            grid.node_count() - 1 <= u32::MAX as usize,
             "a u32 index buffer cannot address {} nodes",
-            grid.len()
+            grid.node_count()
         );
         let shape = Shape {
             grid,

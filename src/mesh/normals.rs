@@ -89,7 +89,7 @@ impl Normals {
 /// scalar twin, which performs the same operations in the same order — the two agree
 /// bitwise at every level (tested).
 pub fn compute_normals(view: &MeshView<'_>, out: &mut Normals) {
-    out.resize(view.grid().len());
+    out.resize(view.grid().node_count());
     let cols = view.cols();
     super::for_each_chunk(
         view.runner(),
@@ -103,9 +103,9 @@ pub fn compute_normals(view: &MeshView<'_>, out: &mut Normals) {
 /// bitwise; kept as the oracle for tests and as readable documentation of the kernel.
 #[cfg_attr(not(feature = "internals"), allow(dead_code))]
 pub fn compute_normals_scalar(view: &MeshView<'_>, out: &mut Normals) {
-    out.resize(view.grid().len());
+    out.resize(view.grid().node_count());
     let grid = view.grid();
-    for i in 0..grid.len() {
+    for i in 0..grid.node_count() {
         let (c, r) = grid.coords(i);
         let n = view.node_normal(c, r);
         (out.x[i], out.y[i], out.z[i]) = (n.x, n.y, n.z);

@@ -20,7 +20,7 @@ pub fn refract_scalar(
 ) -> Result<()> {
     Refractor::new(view, eye, params)?;
     check_normals(view, normals)?;
-    let n = view.grid().len();
+    let n = view.grid().node_count();
     resize(out, n);
     let extent = view.extent();
     for i in 0..n {

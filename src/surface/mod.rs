@@ -6,6 +6,7 @@ mod clock;
 mod disturbance;
 mod floaters;
 pub(crate) mod query;
+pub use query::WaterSample;
 pub(crate) mod snapshot;
 pub mod window;
 
@@ -203,12 +204,25 @@ impl Surface {
         self.state.grid
     }
 
-    /// Number of nodes.
-    pub fn len(&self) -> usize {
+    /// Number of nodes, `cols × rows` (C: `sw_surface_node_count`).
+    pub fn node_count(&self) -> usize {
         self.state.len()
     }
 
+    /// Number of nodes.
+    #[deprecated(
+        since = "0.2.0",
+        note = "use `node_count`, the one name for the node count"
+    )]
+    pub fn len(&self) -> usize {
+        self.node_count()
+    }
+
     /// Always false: a surface has at least 2×2 nodes.
+    #[deprecated(
+        since = "0.2.0",
+        note = "a surface is never empty (at least 2×2 nodes)"
+    )]
     pub fn is_empty(&self) -> bool {
         false
     }
@@ -245,7 +259,7 @@ impl Surface {
 
     /// Positions `[x, y, z]`, one value per node, row-major.
     pub fn positions(&self) -> [&[f32]; 3] {
-        let n = self.len();
+        let n = self.node_count();
         [
             &self.state.pos[0][..n],
             &self.state.pos[1][..n],
@@ -255,7 +269,7 @@ impl Surface {
 
     /// Velocities `[vx, vy, vz]`, one value per node, row-major.
     pub fn velocities(&self) -> [&[f32]; 3] {
-        let n = self.len();
+        let n = self.node_count();
         [
             &self.state.vel[0][..n],
             &self.state.vel[1][..n],
@@ -682,7 +696,7 @@ impl Surface {
         }
         if height >= 0.0 {
             let y = &mut self.state.pos[1];
-            for i in 0..grid.len() {
+            for i in 0..grid.node_count() {
                 if y[i] == 0.0 && !pinned[i] && !near(i) {
                     y[i] += 0.0;
                 }
@@ -735,7 +749,7 @@ impl Surface {
     /// Replaces the external force buffer for the next step with `[fx, fy, fz]`, one
     /// value per node. Every value must be finite; on error nothing changes.
     pub fn set_forces(&mut self, force: [&[f32]; 3]) -> Result<()> {
-        let n = self.len();
+        let n = self.node_count();
         for c in force {
             same_length("force buffer", c.len(), n)?;
             if let Some(&bad) = c.iter().find(|v| !v.is_finite()) {
@@ -755,7 +769,7 @@ impl Surface {
 
     /// Pending external forces `[fx, fy, fz]` for the next step.
     pub fn forces(&self) -> [&[f32]; 3] {
-        let n = self.len();
+        let n = self.node_count();
         [
             &self.state.ext[0][..n],
             &self.state.ext[1][..n],
@@ -841,12 +855,12 @@ impl Surface {
 
     /// Node masses.
     pub fn masses(&self) -> &[f32] {
-        &self.state.mass[..self.len()]
+        &self.state.mass[..self.node_count()]
     }
 
     /// Node viscosities.
     pub fn viscosities(&self) -> &[f32] {
-        &self.state.viscosity[..self.len()]
+        &self.state.viscosity[..self.node_count()]
     }
 
     /// Pinned flags.
@@ -856,12 +870,11 @@ impl Surface {
 
     /// A spring's rest length and coefficient; `None` if the grid has no such spring.
     pub fn spring(&self, id: SpringId) -> Option<Spring> {
-        (id.origin < self.len() && self.grid().spring_end(id.family, id.origin).is_some()).then(
-            || {
+        (id.origin < self.node_count() && self.grid().spring_end(id.family, id.origin).is_some())
+            .then(|| {
                 let (stiffness, rest) = self.springs.get(id.family, id.origin);
                 Spring { rest, stiffness }
-            },
-        )
+            })
     }
 
     /// Sets a spring's rest length (≥ 0) and coefficient (> 0). Refused, with nothing
@@ -888,7 +901,7 @@ impl Surface {
             return Err(Error::OutOfRange {
                 what: "spring origin",
                 index: id.origin,
-                len: self.len(),
+                len: self.node_count(),
             });
         }
         params::non_negative("rest length", rest)?;
@@ -919,7 +932,7 @@ impl Surface {
     /// Kinetic plus spring potential energy, a diagnostic (`O(nodes)`).
     pub fn energy(&self) -> Energy {
         let s = &self.state;
-        let n = self.len();
+        let n = self.node_count();
         let mut kinetic = 0.0;
         for i in (0..n).filter(|&i| !s.pinned[i]) {
             let v2: f64 = (0..3).map(|k| (s.vel[k][i] as f64).powi(2)).sum();
@@ -940,13 +953,13 @@ impl Surface {
     }
 
     fn check_node(&self, node: usize) -> Result<()> {
-        if node < self.len() {
+        if node < self.node_count() {
             Ok(())
         } else {
             Err(Error::OutOfRange {
                 what: "node",
                 index: node,
-                len: self.len(),
+                len: self.node_count(),
             })
         }
     }

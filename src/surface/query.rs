@@ -83,6 +83,14 @@ impl Sample {
         )
     }
 
+    fn water(&self, view: &MeshView<'_>, vel: [&[f32]; 3]) -> WaterSample {
+        WaterSample {
+            height: self.blend(view.cols(), view.y()),
+            normal: self.normal(view),
+            velocity: self.blend3(view.cols(), vel),
+        }
+    }
+
     fn normal(&self, view: &MeshView<'_>) -> Vec3 {
         let w = self.weights();
         let (c, r) = (self.c, self.r);
@@ -92,6 +100,19 @@ impl Sample {
             + w[3] * view.node_normal(c + 1, r + 1);
         n.try_normalize().unwrap_or(Vec3::Y)
     }
+}
+
+/// The water at one point: what a floating object or a game's gameplay code reads.
+#[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
+pub struct WaterSample {
+    /// Height (y) of the water, as [`Surface::height_at`].
+    pub height: f32,
+    /// Unit normal, as [`Surface::normal_at`].
+    pub normal: Vec3,
+    /// Velocity of the water, as [`Surface::velocity_at`] (world units per unit of model
+    /// time).
+    pub velocity: Vec3,
 }
 
 /// Checks every point, then fills `out` with `f` of each: all or nothing.
@@ -258,7 +279,42 @@ impl Surface {
         Ok(Sample::at(&view, self.window_origin, x, z)?.blend3(view.cols(), self.velocities()))
     }
 
-    /// [`Surface::height_at`] for every `[x, z]` of `points`, into `out`.
+    /// Height, normal and velocity at world `(x, z)` in one lookup of the cell.
+    pub fn sample_at(&self, x: f32, z: f32) -> Result<WaterSample> {
+        let view = self.mesh_view();
+        let s = Sample::at(&view, self.window_origin, x, z)?;
+        Ok(s.water(&view, self.velocities()))
+    }
+
+    /// [`Surface::sample_at`] for every `[x, z]` of `points`, point by point: `out[k]` is
+    /// `None` where point `k` is off the window's footprint or not finite, so one object
+    /// that has drifted off the water does not cost the others their answers. `out` is
+    /// cleared first and keeps its capacity.
+    ///
+    /// ```
+    /// use springwater::{Params, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(33, 33))?;
+    /// water.drop_at(16.0, 16.0, 1.0, 3.0)?;
+    /// let mut out = Vec::new();
+    /// water.samples_at(&[[16.0, 16.0], [99.0, 0.0], [f32::NAN, 1.0]], &mut out);
+    /// assert_eq!(out[0].map(|s| s.height), Some(1.0));
+    /// assert!(out[1].is_none() && out[2].is_none());
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn samples_at(&self, points: &[[f32; 2]], out: &mut Vec<Option<WaterSample>>) {
+        let view = self.mesh_view();
+        let (origin, vel) = (self.window_origin, self.velocities());
+        out.clear();
+        out.extend(points.iter().map(|&[x, z]| {
+            Sample::at(&view, origin, x, z)
+                .ok()
+                .map(|s| s.water(&view, vel))
+        }));
+    }
+
+    /// [`Surface::height_at`] for every `[x, z]` of `points`, into `out`; all or nothing
+    /// ([`Surface::samples_at`] answers point by point).
     pub fn heights_at(&self, points: &[[f32; 2]], out: &mut Vec<f32>) -> Result<()> {
         let view = self.mesh_view();
         batch(&view, self.window_origin, points, out, |s| {

@@ -105,14 +105,16 @@ pub struct Snapshot {
     pub steps: u64,
     /// Model time simulated.
     pub time: f64,
+    // Derived state the surface keeps beside the arrays, private so that it cannot be set
+    // against them (the binary format and serde carry it; loading checks it).
     /// Smallest node mass ever set: with `max_stiffness` it sets `critical_dt`.
-    pub min_mass: f32,
+    pub(crate) min_mass: f32,
     /// Largest spring stiffness ever set.
-    pub max_stiffness: f32,
+    pub(crate) max_stiffness: f32,
     /// Largest viscosity ever set.
-    pub max_viscosity: f32,
+    pub(crate) max_viscosity: f32,
     /// Whether `forces` is applied by the next step.
-    pub forces_pending: bool,
+    pub(crate) forces_pending: bool,
     /// Positions `[x, y, z]`.
     pub positions: [Vec<f32>; 3],
     /// Velocities `[vx, vy, vz]`.
@@ -136,7 +138,7 @@ pub struct Snapshot {
     pub floaters: Vec<(FloaterId, Floater)>,
     /// The id the next added body gets (above every id in `floaters`).
     #[cfg_attr(feature = "serde", serde(default))]
-    pub next_floater_id: u64,
+    pub(crate) next_floater_id: u64,
     /// Gravity and water density for the bodies.
     #[cfg_attr(feature = "serde", serde(default))]
     pub buoyancy: Buoyancy,
@@ -515,7 +517,7 @@ impl Snapshot {
         p.validate_except_dt()
             .map_err(|e| bad(format!("parameters: {e}")))?;
         let grid = Grid::new(p.cols, p.rows);
-        let n = grid.len();
+        let n = grid.node_count();
         let arrays = self
             .positions
             .iter()
@@ -761,7 +763,7 @@ impl Cursor<'_> {
 impl Surface {
     /// The complete state as plain data.
     pub fn snapshot(&self) -> Snapshot {
-        let n = self.len();
+        let n = self.node_count();
         let s = &self.state;
         let cut3 = |a: &[Floats; 3]| [a[0][..n].to_vec(), a[1][..n].to_vec(), a[2][..n].to_vec()];
         let grid = self.grid();

@@ -163,7 +163,7 @@ impl Move {
         lo as usize..hi.max(lo) as usize
     }
 
-    /// Moves the overlap of `buf` (row-major, at least `grid.len()` long) to its new
+    /// Moves the overlap of `buf` (row-major, at least `grid.node_count()` long) to its new
     /// place; the incoming nodes keep whatever they held (the caller fills them).
     fn apply<T: Copy + Default>(&self, buf: &mut [T]) {
         let (cols, rows) = (self.grid.cols, self.grid.rows);
@@ -437,7 +437,9 @@ impl Surface {
         // Nodes the boundary now pins that were free (or new): at rest, like the ring of a
         // new surface.
         let pinned_now: Vec<usize> = if params_moved {
-            (0..grid.len()).filter(|&i| state.pinned[i]).collect()
+            (0..grid.node_count())
+                .filter(|&i| state.pinned[i])
+                .collect()
         } else if pins_border {
             // The outer ring only.
             let (cols, rows) = (grid.cols, grid.rows);
@@ -467,7 +469,7 @@ impl Surface {
     /// Moves mass, viscosity and pins where a caller set values; returns whether any node
     /// holds a value other than its place's default.
     fn move_parameters(&mut self, mv: Move, defaults: &Defaults) -> bool {
-        let n = mv.grid.len();
+        let n = mv.grid.node_count();
         let state = &mut self.state;
         let mass_moved = move_param(&mut state.mass[..n], mv, |_| defaults.mass, same_f32);
         let visc_moved = move_param(

@@ -784,6 +784,19 @@ int main(void) {
     CHECK(untouched[0].height == 0.0f);
     FAILS(SW_ERROR_BUFFER_TOO_SMALL, sw_surface_sample(water, points, 3, samples, 2));
     FAILS(SW_ERROR_NULL_POINTER, sw_surface_sample(water, NULL, 3, samples, 3));
+    /* Point by point: the point off the water is marked, the others answered. */
+    SwSample each[3];
+    uint8_t found[3] = {7, 7, 7};
+    float here = 0.0f, up[3];
+    OK(sw_surface_height_at(water, points[0], points[1], &here));
+    OK(sw_surface_normal_at(water, points[0], points[1], up));
+    OK(sw_surface_sample_each(water, points, 3, each, 3, found, 3));
+    CHECK(found[0] == 1 && found[1] == 0 && found[2] == 1);
+    CHECK(float_bits(each[0].height) == float_bits(here));
+    CHECK(memcmp(each[0].normal, up, 12) == 0);
+    CHECK(each[1].height == 0.0f && each[1].normal[1] == 1.0f);
+    FAILS(SW_ERROR_BUFFER_TOO_SMALL, sw_surface_sample_each(water, points, 3, each, 3, found, 2));
+    FAILS(SW_ERROR_NULL_POINTER, sw_surface_sample_each(water, points, 3, each, 3, NULL, 3));
     FAILS(SW_ERROR_BUFFER_TOO_SMALL, sw_surface_write_positions(water, xyz, 3 * nodes - 1));
     FAILS(SW_ERROR_NULL_POINTER, sw_surface_write_positions(water, NULL, 3 * nodes));
     FAILS(SW_ERROR_BUFFER_TOO_SMALL, sw_surface_write_normals(water, normals, 5));

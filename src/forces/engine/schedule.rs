@@ -144,7 +144,7 @@ pub(super) fn pass_with<V: Vector>(
 ) -> PassEnd {
     debug_assert!((1..=MAX_PASS_STEPS).contains(&levels));
     let grid = state.grid;
-    let (cols, rows, n) = (grid.cols, grid.rows, grid.len());
+    let (cols, rows, n) = (grid.cols, grid.rows, grid.node_count());
     let (t, handoffs, claims) = ws.prepare::<V>(cols, rows, levels, runner.workers());
     // Rows without forces skip them, which relies on an acceleration that is never −0.
     debug_assert!(cfg.accel.iter().all(|a| a.to_bits() != (-0.0f32).to_bits()));
