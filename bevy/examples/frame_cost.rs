@@ -133,7 +133,7 @@ fn measure(size: usize, frames: u32, compute: Option<usize>) -> ([Duration; 3], 
     }
     let stages = start.elapsed() / frames;
     let view = ws.surface().mesh_view();
-    let n = view.grid().len();
+    let n = view.grid().node_count();
     let (mut p, mut nr, mut t) = (vec![[0.0; 3]; n], vec![[0.0; 3]; n], vec![[0.0; 2]; n]);
     let start = Instant::now();
     for _ in 0..frames {

@@ -4,7 +4,9 @@
 //! `cargo run --release -p springwater-bevy --example pool --features example`
 //!
 //! Drag with the left mouse button to orbit, scroll to zoom, arrows or WASD push the
-//! ball, space drops a splash under the ball, R toggles the rain.
+//! ball, space drops a splash under the ball, R toggles the rain, F makes the water's
+//! window follow the ball (a [`WaterFollow`] on it; the camera follows too) out of the
+//! pool and across an open sea of the same tiles.
 //!
 //! `SPRINGWATER_SCREENSHOT=pool.png` runs on a fixed 1/60 s clock instead, saves the
 //! window after `SPRINGWATER_SCREENSHOT_FRAME` frames (default 180) and exits: the
@@ -30,7 +32,7 @@ fn main() {
     app.add_plugins((DefaultPlugins, SpringwaterPlugin::default()))
         .insert_resource(ClearColor(Color::srgb(0.55, 0.7, 0.85)))
         .add_systems(Startup, setup)
-        .add_systems(Update, (orbit_camera, push_ball, toggle_rain));
+        .add_systems(Update, (orbit_camera, push_ball, toggle_rain, follow_ball));
     if let Ok(path) = std::env::var("SPRINGWATER_SCREENSHOT") {
         let frame = std::env::var("SPRINGWATER_SCREENSHOT_FRAME")
             .ok()
@@ -220,13 +222,20 @@ fn setup(
     ));
 }
 
+/// The ball while the water follows it (never the camera).
+type FollowedBall = (With<Ball>, With<WaterFollow>, Without<Camera3d>);
+
 fn orbit_camera(
     buttons: Res<ButtonInput<MouseButton>>,
     motion: Res<AccumulatedMouseMotion>,
     scroll: Res<AccumulatedMouseScroll>,
     mut cameras: Query<(&mut Orbit, &mut Transform), With<Camera3d>>,
+    followed: Query<&Transform, FollowedBall>,
 ) {
     for (mut orbit, mut transform) in &mut cameras {
+        if let Ok(ball) = followed.single() {
+            orbit.focus = ball.translation.with_y(0.0);
+        }
         if buttons.pressed(MouseButton::Left) {
             orbit.yaw -= motion.delta.x * 0.005;
             orbit.pitch = (orbit.pitch + motion.delta.y * 0.005).clamp(0.05, 1.5);
@@ -288,6 +297,23 @@ fn toggle_rain(
         *off = !*off;
         for mut d in &mut rain {
             d.0 = Box::new(Toggled(Rain::new(RAIN, 7), !*off));
+        }
+    }
+}
+
+/// F: the water's window follows the ball (or stops following it).
+fn follow_ball(
+    keys: Res<ButtonInput<KeyCode>>,
+    balls: Query<(Entity, Has<WaterFollow>), With<Ball>>,
+    mut commands: Commands,
+) {
+    if keys.just_pressed(KeyCode::KeyF) {
+        for (ball, following) in &balls {
+            if following {
+                commands.entity(ball).remove::<WaterFollow>();
+            } else {
+                commands.entity(ball).insert(WaterFollow::default());
+            }
         }
     }
 }

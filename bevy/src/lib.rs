@@ -4,7 +4,8 @@
 //! CPU as a mass-spring lattice, drawn as a [`Mesh3d`](bevy::mesh::Mesh3d) whose
 //! positions, normals and refracted bottom coordinates (`UV_0`) are rewritten in place
 //! every frame, with a view-dependent LOD index buffer, point queries, drops and forces
-//! from game systems, and two-way buoyancy.
+//! from game systems, two-way buoyancy, and a window that follows a camera or a ship
+//! across an open sea.
 //!
 //! The plugin is a thin layer: the physics, LOD, refraction, interleaving and queries are
 //! springwater's own, called once per frame.
@@ -43,8 +44,8 @@
 //! none of their systems needs a command flush after it (an exclusive system: a hand-over
 //! to the main thread and back).
 //!
-//! 1. [`WaterSystems::SyncInputs`]: restarts surfaces whose `Params` changed, applies
-//!    [`WaterDrop`]
+//! 1. [`WaterSystems::SyncInputs`]: restarts surfaces whose `Params` changed, moves
+//!    the windows of waters with a [`WaterFollow`] entity, applies [`WaterDrop`]
 //!    and [`WaterForce`] messages, hands every [`Buoyant`] body's state to its water
 //!    (springwater's floating bodies, which step with the water and push back on it).
 //! 2. [`WaterSystems::Step`]: [`springwater::Surface::advance`] (or `advance_with` a
@@ -52,12 +53,13 @@
 //!    ([`TaskPoolJobs`]).
 //! 3. [`WaterSystems::Writeback`]: normals and refraction from the eye (a [`WaterViewer`],
 //!    else the active camera), the LOD, and the mesh attributes written in place, on the
-//!    same pool; the bodies' `Transform`s and velocities from their water.
+//!    same pool (the bounding box follows the window); the bodies' `Transform`s and
+//!    velocities from their water.
 //!
 //! Game systems that read the water ([`WaterQuery`]) see the state of the last frame's
-//! step; drops and forces land before the next one. The eye and the water's
-//! `GlobalTransform` are read before this frame's transform propagation (one frame late
-//! if they moved).
+//! step; drops and forces land before the next one. The eye, the followers and the
+//! water's `GlobalTransform` are read before this frame's transform propagation (one
+//! frame late if they moved).
 //!
 //! Errors (refused parameters, a step that would go non-finite) never panic: they are
 //! logged and sent as [`WaterError`] messages.
@@ -67,13 +69,15 @@
 //! The modules' arrows run one way. `water` is the bottom: the components, the messages,
 //! world ↔ local transforms (`Space`), the frame's pushes on floating bodies and
 //! `report` (the one way errors leave); it uses no other module. `jobs` stands alone.
-//! `buoyancy`, `mesh` and `query` use `water` only. `step` (surfaces for new waters,
-//! messages, the step itself, and the plugin's settings) uses those below it. This file
-//! uses them all to wire the plugin, and nothing uses it.
+//! `buoyancy`, `follow`, `mesh` and `query` use `water` only. `step` (surfaces for new
+//! waters, messages, the step itself, and the plugin's settings) uses `water`, `mesh`,
+//! `buoyancy` and `jobs`. This file uses them all to wire the plugin, and nothing uses
+//! it.
 
 #![warn(missing_docs)]
 
 mod buoyancy;
+mod follow;
 mod jobs;
 mod mesh;
 mod query;
@@ -87,6 +91,7 @@ use bevy::ecs::schedule::ScheduleLabel;
 use bevy::transform::TransformSystems;
 
 pub use buoyancy::{BuoyancySettings, Buoyant};
+pub use follow::WaterFollow;
 pub use jobs::TaskPoolJobs;
 pub use query::{WaterQuery, WaterQueryError, WaterQueryMut, WaterSample};
 pub use water::{
@@ -100,19 +105,20 @@ pub use springwater;
 pub mod prelude {
     pub use crate::{
         BuoyancySettings, Buoyant, SpringwaterPlugin, Water, WaterDisturbance, WaterDrop,
-        WaterError, WaterForce, WaterQuery, WaterQueryMut, WaterSample, WaterSurface, WaterSystems,
-        WaterViewer,
+        WaterError, WaterFollow, WaterForce, WaterQuery, WaterQueryMut, WaterSample, WaterSurface,
+        WaterSystems, WaterViewer,
     };
 }
 
 /// The plugin's system sets, run in this order in the plugin's schedule.
 #[derive(SystemSet, Debug, Clone, Copy, PartialEq, Eq, Hash)]
 pub enum WaterSystems {
-    /// New surfaces, parameter changes, drops and forces, buoyancy.
+    /// Parameter changes, windows following their [`WaterFollow`], drops and forces,
+    /// buoyancy.
     SyncInputs,
     /// Advancing every surface by the frame's seconds.
     Step,
-    /// Normals, refraction, LOD and the mesh write.
+    /// Normals, refraction, LOD, the mesh write and the bodies' transforms.
     Writeback,
 }
 
@@ -201,6 +207,7 @@ impl Plugin for SpringwaterPlugin {
                 (
                     (
                         step::update_surfaces,
+                        follow::follow_followers,
                         step::apply_messages,
                         buoyancy::sync_bodies,
                     )

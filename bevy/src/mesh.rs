@@ -17,30 +17,31 @@ use springwater::Surface;
 use crate::water::{report, Space, Water, WaterError, WaterSurface, WaterViewer};
 
 /// The eye a water is seen from when there is neither a [`WaterViewer`] nor a camera:
-/// above the middle of the pool, as high as the pool is wide.
+/// above the middle of the window, as high as the window is wide.
 fn default_eye(ws: &WaterSurface) -> Vec3 {
     let [w, d] = ws.surface.mesh_view().extent();
-    Vec3::new(w * 0.5, w.max(d), d * 0.5)
+    let [x, z] = ws.surface.origin();
+    Vec3::new(x + w * 0.5, w.max(d), z + d * 0.5)
 }
 
-/// The bounding box the plugin gives a water entity: the rest footprint, one cell wider on
-/// every side (the lattice moves sideways a little), `bounds_height` above and below the
-/// rest surface, and down to the bottom.
-pub(crate) fn bounds(water: &Water) -> Aabb {
-    let p = &water.params;
-    let h = p.spacing;
-    let (w, d) = (
-        (p.cols.max(1) - 1) as f32 * h,
-        (p.rows.max(1) - 1) as f32 * h,
-    );
+/// The bounding box the plugin gives a water entity: the window's rest footprint (it moves
+/// with [`Surface::origin`]), one cell wider on every side (the lattice moves sideways a
+/// little), `bounds_height` above and below the rest surface, and down to the bottom.
+pub(crate) fn bounds(water: &Water, surface: &Surface) -> Aabb {
+    let h = surface.params().spacing;
+    let [w, d] = surface.mesh_view().extent();
+    let [x, z] = surface.origin();
     let up = water.bounds_height.max(0.0);
     let down = up.max(water.refraction.depth);
-    Aabb::from_min_max(Vec3::new(-h, -down, -h), Vec3::new(w + h, up, d + h))
+    Aabb::from_min_max(
+        Vec3::new(x - h, -down, z - h),
+        Vec3::new(x + w + h, up, z + d + h),
+    )
 }
 
 /// A new mesh for a surface: every attribute at its final length, the first LOD.
 pub(crate) fn new_mesh(ws: &WaterSurface) -> Mesh {
-    let n = ws.surface.len();
+    let n = ws.surface.node_count();
     let mut mesh = Mesh::new(
         PrimitiveTopology::TriangleList,
         // Both worlds: the main world keeps the data so that it can be written in place
@@ -122,7 +123,7 @@ fn write_mesh(
                 .map_err(|e| e.to_string())?,
         }
     }
-    let n = surface.len();
+    let n = surface.node_count();
     let mut positions = take(mesh, Mesh::ATTRIBUTE_POSITION, f32x3)?;
     let mut normals = take(mesh, Mesh::ATTRIBUTE_NORMAL, f32x3)?;
     let mut uvs = take(mesh, Mesh::ATTRIBUTE_UV_0, f32x2)?;
@@ -150,18 +151,32 @@ fn write_mesh(
     put.map_err(|e| e.to_string())
 }
 
+/// A water's mesh and what the plugin keeps in step with it.
+type MeshOf = (
+    Entity,
+    &'static Water,
+    &'static mut WaterSurface,
+    &'static Mesh3d,
+    &'static GlobalTransform,
+    Option<&'static mut Aabb>,
+);
+
 /// Normals, refraction, LOD and the mesh write of every water, from the eye in each
-/// water's local space.
+/// water's local space; the bounding box follows the surface (its size, and the window's
+/// place when it moved).
 pub(crate) fn write_meshes(
     mut meshes: ResMut<Assets<Mesh>>,
     viewers: Query<&GlobalTransform, With<WaterViewer>>,
     cameras: Query<(&Camera, &GlobalTransform)>,
-    mut waters: Query<(Entity, &Water, &mut WaterSurface, &Mesh3d, &GlobalTransform)>,
+    mut waters: Query<MeshOf>,
     mut errors: MessageWriter<WaterError>,
 ) {
     let eye = world_eye(&viewers, &cameras);
-    for (entity, water, mut ws, mesh3d, global) in &mut waters {
+    for (entity, water, mut ws, mesh3d, global, aabb) in &mut waters {
         let ws = &mut *ws;
+        if let Some(mut aabb) = aabb {
+            aabb.set_if_neq(bounds(water, &ws.surface));
+        }
         let local_eye = match eye {
             Some(e) => Space::new(global).local_point(e),
             None => default_eye(ws),

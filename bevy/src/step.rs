@@ -3,7 +3,6 @@
 use std::sync::Arc;
 
 use bevy::asset::Assets;
-use bevy::camera::primitives::Aabb;
 use bevy::ecs::change_detection::Tick;
 use bevy::ecs::prelude::*;
 use bevy::ecs::system::{SystemChangeTick, SystemParam};
@@ -63,7 +62,7 @@ impl Installer<'_, '_> {
                     .remove::<WaterFailed>()
                     .try_insert((
                         Mesh3d(handle),
-                        bounds(water),
+                        bounds(water, &surface.surface),
                         bevy::camera::visibility::NoAutoAabb,
                         surface,
                     ));
@@ -111,14 +110,14 @@ pub(crate) fn retry_refused(
 }
 
 /// Restarts the surface of a water whose `Params` changed and rebuilds the LOD of one
-/// whose `LodParams` changed, in place; keeps the bounding box in step.
+/// whose `LodParams` changed, in place. (The bounding box follows in the mesh write.)
 pub(crate) fn update_surfaces(
     mut bodies: ResMut<Bodies>,
     settings: Res<SpringwaterSettings>,
-    mut changed: Query<(Entity, &Water, &mut WaterSurface, Option<&mut Aabb>), Changed<Water>>,
+    mut changed: Query<(Entity, &Water, &mut WaterSurface), Changed<Water>>,
     mut errors: MessageWriter<WaterError>,
 ) {
-    for (entity, water, mut surface, aabb) in &mut changed {
+    for (entity, water, mut surface) in &mut changed {
         if *surface.surface.params() != water.params {
             match make_surface(water, &settings) {
                 Ok(fresh) => {
@@ -132,13 +131,6 @@ pub(crate) fn update_surfaces(
             match springwater::mesh::LodMesh::new(water.lod) {
                 Ok(lod) => surface.lod = lod,
                 Err(e) => report(&mut errors, entity, "LOD parameters refused", &e),
-            }
-        }
-        // The box follows the surface: not when new parameters were refused.
-        if let Some(mut aabb) = aabb.filter(|_| *surface.surface.params() == water.params) {
-            let fresh = bounds(water);
-            if *aabb != fresh {
-                *aabb = fresh;
             }
         }
     }

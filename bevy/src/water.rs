@@ -16,9 +16,13 @@ use springwater::{FloaterId, Params, Surface};
 /// as soon as the component is added (the same command flush), or sends a [`WaterError`]
 /// and tries again when the parameters change.
 ///
-/// The water's local space is springwater's: node `(col, row)` rests at
+/// The water's local space is springwater's water frame: node `(col, row)` rests at
 /// `(col·spacing, 0, row·spacing)`, y up, so the pool covers `[0, (cols−1)·spacing] ×
 /// [0, (rows−1)·spacing]` from the entity's origin. Translate the entity to place it.
+/// When the window moves ([`WaterFollow`](crate::WaterFollow), or
+/// [`Surface::shift`](springwater::Surface::shift) through [`WaterSurface::surface_mut`])
+/// the footprint starts at [`Surface::origin`](springwater::Surface::origin) instead; the
+/// entity stays where it is.
 ///
 /// Changing `params` later starts the surface over (flat, at rest); changing `lod` rebuilds
 /// the index buffer; `refraction` is read every frame.
