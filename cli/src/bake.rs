@@ -15,7 +15,7 @@
 //! `--frames` (the floaters' paths, 12 bytes per floater and frame, are the exception).
 
 mod glb;
-mod obj;
+pub mod obj;
 mod pointcache;
 
 use crate::args::{
@@ -203,9 +203,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let interrupted = crate::simulate::on_interrupt();
     let bar = progress(frames as u64, "frames");
     let outcome = model.with_threads(|| -> CliResult<()> {
-        if model.steps > 0 {
-            crate::simulate::run_steps(&mut surface, model.steps)?;
-        }
+        // The warm-up stops at Ctrl-C too; the first frame then reports the interruption.
+        let hidden = indicatif::ProgressBar::hidden();
+        crate::simulate::run_steps_until(&mut surface, model.steps, &interrupted, &hidden)?;
         let mut shading = Shading::new(uv_eye, optics);
         shading.update(&surface)?;
         // The triangles: full detail, or for a .glb baked for an eye, that eye's LOD.

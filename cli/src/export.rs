@@ -95,19 +95,7 @@ fn write_obj(
         optics.depth,
         optics.ior
     )?;
-    let [x, y, z] = s.positions();
-    for i in 0..g.node_count() {
-        writeln!(w, "v {} {} {}", x[i], y[i], z[i])?;
-    }
-    for i in 0..g.node_count() {
-        writeln!(w, "vn {} {} {}", normals.x[i], normals.y[i], normals.z[i])?;
-    }
-    for i in 0..g.node_count() {
-        writeln!(w, "vt {} {}", uv.u[i], uv.v[i])?;
-    }
-    for t in lod.indices().chunks_exact(3) {
-        let (a, b, c) = (t[0] + 1, t[1] + 1, t[2] + 1);
-        writeln!(w, "f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}")?;
-    }
+    let indices = lod.indices();
+    crate::bake::obj::mesh(&mut w, s.positions(), normals, uv, indices)?;
     w.flush()
 }

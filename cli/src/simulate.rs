@@ -156,7 +156,7 @@ pub fn on_interrupt() -> Arc<AtomicBool> {
 
 /// Steps up to `steps` times, stopping early when `stop` is raised; returns the steps
 /// taken. The bar (drawn only on a terminal) moves every 64 steps.
-fn run_steps_until(
+pub fn run_steps_until(
     surface: &mut Surface,
     steps: u64,
     stop: &AtomicBool,

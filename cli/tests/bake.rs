@@ -648,3 +648,48 @@ fn rain_a_wake_open_water_and_threads_bake_the_same_bits_on_one_thread_and_two()
         assert!(moved(&one[k - 1], &one[k]) > 100, "frame {k} to {}", k + 1);
     }
 }
+
+#[test]
+fn ctrl_c_during_the_warm_up_steps_stops_the_bake_too() {
+    let cache = scratch("interrupted-warm-up.mdd");
+    let child = Command::new(env!("CARGO_BIN_EXE_springwater"))
+        .args([
+            "bake",
+            "--size",
+            "5x5",
+            "--drop",
+            "2,2,1,1",
+            "--steps",
+            "4000000000",
+            "--frames",
+            "3",
+            "--out",
+            cache.to_str().unwrap(),
+        ])
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let status = Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(status.success());
+    // Before the warm-up listened, the run went on: give it 20 s, then fail (not hang).
+    let mut child = child;
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(20);
+    while child.try_wait().unwrap().is_none() {
+        if std::time::Instant::now() > deadline {
+            child.kill().unwrap();
+            panic!("the bake did not stop at Ctrl-C during its warm-up steps");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(50));
+    }
+    let out = child.wait_with_output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(err.lines().count(), 1, "{err}");
+    assert!(err.contains("interrupted at frame 1 of 3"), "{err}");
+    assert!(!cache.exists() && !cache.with_extension("obj").exists());
+}

@@ -260,3 +260,45 @@ fn ctrl_c_writes_the_outputs_at_the_step_reached_and_says_so() {
         std::fs::read(&from_snapshot).unwrap()
     );
 }
+
+#[test]
+fn obj_files_print_tiny_floats_in_their_shortest_form_too() {
+    // `export` and bake's OBJs share the writer; the same six steps as above leave tiny
+    // heights far from the drop.
+    let obj = scratch("tiny.obj");
+    let out = springwater(&[
+        "export",
+        "--size",
+        "40x40",
+        "--steps",
+        "6",
+        "--drop",
+        "20,20,1,2",
+        "--eye",
+        "20,30,-20",
+        "--depth",
+        "4",
+        "--obj",
+        obj.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let text = std::fs::read_to_string(&obj).unwrap();
+    let fields: Vec<&str> = text
+        .lines()
+        .filter(|l| l.starts_with("v ") || l.starts_with("vn ") || l.starts_with("vt "))
+        .flat_map(|l| l.split(' ').skip(1))
+        .collect();
+    assert!(fields.len() > 3 * 1600);
+    assert!(
+        fields.iter().all(|f| shortest(f)),
+        "a number is not in its shortest form"
+    );
+    assert!(
+        fields.iter().any(|f| f.contains("e-")),
+        "no tiny value in the OBJ"
+    );
+}

@@ -4,6 +4,9 @@
 //! from +y), as `springwater export` writes them.
 
 use super::{create_io, named, Frame, Rest, Writer};
+use crate::args::Short;
+use springwater::mesh::Normals;
+use springwater::refraction::Refraction;
 use std::io::Write;
 use std::path::{Path, PathBuf};
 
@@ -12,25 +15,44 @@ pub fn write(path: &Path, title: &str, rest: &Rest, frame: &Frame) -> std::io::R
     let mut w = create_io(path)?;
     let result = (|| {
         writeln!(w, "# {title}")?;
-        let [x, y, z] = frame.positions;
-        let n = rest.cols * rest.rows;
-        for i in 0..n {
-            writeln!(w, "v {} {} {}", x[i], y[i], z[i])?;
-        }
-        let normals = frame.normals;
-        for i in 0..n {
-            writeln!(w, "vn {} {} {}", normals.x[i], normals.y[i], normals.z[i])?;
-        }
-        for i in 0..n {
-            writeln!(w, "vt {} {}", frame.uv.u[i], frame.uv.v[i])?;
-        }
-        for t in rest.indices.chunks_exact(3) {
-            let (a, b, c) = (t[0] + 1, t[1] + 1, t[2] + 1);
-            writeln!(w, "f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}")?;
-        }
+        mesh(
+            &mut w,
+            frame.positions,
+            frame.normals,
+            frame.uv,
+            &rest.indices,
+        )?;
         w.flush()
     })();
     result.map_err(|e| named(path, e))
+}
+
+/// The body of an OBJ (after its comment line): a `v`, `vn` and `vt` per node, then the
+/// faces. Numbers in the shortest form that reads back to the same `f32` (exponent
+/// notation where that is shorter, as in `simulate --csv`).
+pub fn mesh(
+    w: &mut impl Write,
+    [x, y, z]: [&[f32]; 3],
+    normals: &Normals,
+    uv: &Refraction,
+    indices: &[u32],
+) -> std::io::Result<()> {
+    let s = Short;
+    for i in 0..x.len() {
+        writeln!(w, "v {} {} {}", s(x[i]), s(y[i]), s(z[i]))?;
+    }
+    for i in 0..x.len() {
+        let (a, b, c) = (normals.x[i], normals.y[i], normals.z[i]);
+        writeln!(w, "vn {} {} {}", s(a), s(b), s(c))?;
+    }
+    for i in 0..x.len() {
+        writeln!(w, "vt {} {}", s(uv.u[i]), s(uv.v[i]))?;
+    }
+    for t in indices.chunks_exact(3) {
+        let (a, b, c) = (t[0] + 1, t[1] + 1, t[2] + 1);
+        writeln!(w, "f {a}/{a}/{a} {b}/{b}/{b} {c}/{c}/{c}")?;
+    }
+    Ok(())
 }
 
 /// One OBJ per frame in a directory.
