@@ -12,7 +12,9 @@
 #
 # The scenarios: a pinned pool with drops, a free edge, and open water (an absorbing
 # frame) with two floaters, on the threads each target has (all cores natively, one on
-# wasm32). Exits 1 on the first difference, naming the build and the scenario.
+# wasm32). Then each build runs `bench` on a tiny grid, whose first line must name the
+# same level (`bench simd=LEVEL `). Exits 1 on the first difference, naming the build and
+# the scenario.
 set -euo pipefail
 
 if [ $# -lt 2 ]; then
@@ -56,6 +58,20 @@ for arg in "$@"; do
       exit 1
     fi
   done
+  # bench's first line names the level that ran (a few steps on a tiny grid: under an
+  # emulator its times mean nothing, the line is what is checked).
+  # shellcheck disable=SC2086
+  report=$($command bench --size 24x16 --steps 4 --repeats 1 --compare none 2>"$work/err") || {
+    echo "$level ($command): bench failed:"
+    cat "$work/err"
+    exit 1
+  }
+  first=$(head -1 <<<"$report")
+  if [ "$level" != any ] && [[ "$first" != "bench simd=$level "* ]]; then
+    echo "$level ($command): bench's first line names another level: $first"
+    exit 1
+  fi
+  printf '%-10s %-11s %s\n' "$level" bench "${first%% (*}"
   build=$((build + 1))
 done
-echo "same CSVs from all $build builds (${#scenarios[@]} scenarios each)"
+echo "same CSVs from all $build builds (${#scenarios[@]} scenarios each); bench names each level"

@@ -366,7 +366,8 @@ fn the_c_client_is_clean_under_valgrind() {
 }
 
 /// The C client built for another architecture, run under its emulator, prints what the
-/// Rust API computes here: the same bits across architectures, through the C ABI. Runs
+/// Rust API computes here: the same bits across architectures, through the C ABI; on
+/// AArch64 it reports the NEON level, detected and running. Runs
 /// when `SPRINGWATER_C_TARGET` names a Rust target, with `SPRINGWATER_C_CC` its C
 /// compiler and `SPRINGWATER_C_RUNNER` the command that runs its programs (cargo needs that
 /// target's linker too), for example on x86-64 Debian:
@@ -395,10 +396,25 @@ fn the_c_client_cross_built_prints_the_same_values() {
     let out = Command::new(words.next().expect("a runner command"))
         .args(words)
         .arg(&exe)
+        // The level the client reports must be the one its CPU picks, not a forced one.
+        .env_remove("SPRINGWATER_SIMD")
         .output()
         .unwrap();
-    // The level is the other CPU's (NEON on AArch64); the values must be the same bits.
-    check_client_output(&out, &format!("the C client on {target}"), &["simd"]);
+    // The level is the other CPU's; the values must be the same bits.
+    let how = format!("the C client on {target}");
+    check_client_output(&out, &how, &["simd"]);
+    // And the level is that architecture's: NEON, which every AArch64 CPU has, both
+    // detected (`sw_simd_level_detect`) and running the surface (`sw_surface_simd_level`).
+    if target.starts_with("aarch64") {
+        let got = values(&out);
+        for key in ["simd_detect", "simd"] {
+            assert_eq!(
+                got.get(key).map(String::as_str),
+                Some("neon"),
+                "{how}: `{key}` is not NEON"
+            );
+        }
+    }
 }
 
 /// The README's C example, extracted from the README, linked against the dynamic library.

@@ -26,15 +26,17 @@
 //!   and every lane operation are `#[inline(always)]`, so the whole loop is compiled for
 //!   that instruction set, not just the calls into it.
 //!
-//! `wide`, which the rest of the crate used to be written with, picks its instructions at
-//! compile time (its `f32x8` is two SSE registers in a default build), so it cannot serve
-//! here. `multiversion` clones one function per target but has no notion of a vector
-//! type whose width changes with the target (8 lanes with AVX2, 16 with AVX-512), which
-//! this engine's data layout needs. `pulp` has exactly this shape (a `WithSimd` trait,
+//! `wide` picks its instructions at compile time (its `f32x8` is two SSE registers in a
+//! default x86-64 build), so the crate uses it only where that is enough (the four-lane
+//! transposes that pack [`Vertex`](crate::buffers::Vertex)es), not here. `multiversion`
+//! clones one function per target but has no notion of a vector type whose width changes
+//! with the target (8 lanes with AVX2, 16 with AVX-512), which this engine's data layout
+//! needs. `pulp` has exactly this shape (a `WithSimd` trait,
 //! dispatched once) but its vector types and shuffles are its own, and the engine needs
 //! the two neighbour shuffles and non-temporal stores per level with bit-exact semantics
-//! that are simplest to state and test next to the intrinsics. Four small
-//! implementations of one trait, each next to its tests, cost less than adapting either.
+//! that are simplest to state and test next to the intrinsics. Six small
+//! implementations of one trait (SSE2, AVX2, AVX-512, NEON, SIMD128, portable), each next
+//! to its tests, cost less than adapting either.
 //!
 //! # Denormals, signed zeros and NaNs on every target
 //!
@@ -46,9 +48,14 @@
 //!   unlike 32-bit ARM's NEON, AArch64's Advanced SIMD obeys FPCR), and WebAssembly's
 //!   scalar and SIMD128 arithmetic (not the relaxed-SIMD proposal, unused here) is
 //!   specified to be IEEE with gradual underflow. The engine never changes that
-//!   environment. A host that does (some engines set FTZ/DAZ for speed) gets its own bits
-//!   wherever a value falls below 1.2·10⁻³⁸, as the tail of a calm surface's decaying
-//!   velocities does: the same-bits promise holds in the default environment.
+//!   environment, and its state stays out of the subnormal range anyway: the calm rule of
+//!   [`crate::forces`] stores a new height or vertical velocity below 10⁻¹⁸ as +0, so a
+//!   settling pool's positions and velocities are never subnormal, at any level
+//!   (`a_settling_pool_never_goes_subnormal` in `tests/simd_levels.rs`). What is left are
+//!   rare intermediate values, such as the squared vertical offset of a spring whose two
+//!   heights differ by less than 10⁻¹⁹. A host that sets FTZ/DAZ (some engines do, for
+//!   speed) may get its own bits there: the same-bits promise is made for the default
+//!   environment.
 //! * **Signed zeros** come out of each IEEE operation the same way on every target. The
 //!   only place targets differ is min/max, so the lane layer has none of their
 //!   instructions: [`Vector::max`] and [`Vector::min`] are a compare and a select with
@@ -326,9 +333,10 @@ fn detect_cpu() -> SimdLevel {
 
 /// A vector of `f32` lanes: what the lane kernels are written against.
 ///
-/// Masks are [`Vector::Mask`]: all-ones lanes of a vector for SSE2 and AVX2, a mask
-/// register for AVX-512. Every method is `#[inline(always)]` in every implementation, so
-/// that it is compiled with the instruction set of the kernel it is inlined into.
+/// Masks are [`Vector::Mask`]: all-ones lanes of a vector for SSE2, AVX2 and SIMD128, of
+/// a pair of `uint32x4_t` for NEON, a mask register for AVX-512, and `bool`s for the
+/// portable lanes. Every method is `#[inline(always)]` in every implementation, so that it
+/// is compiled with the instruction set of the kernel it is inlined into.
 pub(crate) trait Vector:
     Copy
     + Send
