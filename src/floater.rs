@@ -301,7 +301,7 @@ pub struct FloaterId(pub(crate) u64);
 
 impl FloaterId {
     /// The id whose number is `raw` (from [`FloaterId::to_raw`]). Any number makes an id;
-    /// a surface that never gave it answers [`Error::NoSuchFloater`](crate::Error::NoSuchFloater).
+    /// a surface that never gave it answers [`Error::NoSuchFloater`].
     pub const fn from_raw(raw: u64) -> Self {
         Self(raw)
     }

@@ -195,7 +195,14 @@ fn expected_floaters() -> Vec<(&'static str, String)> {
         .add_floater(Floater::sphere(1.0, 1.0, [8.0, 0.0, 8.0]))
         .unwrap();
     s.remove_floater(spare).unwrap();
-    assert_eq!((a, b, spare), (FloaterId(0), FloaterId(1), FloaterId(2)));
+    assert_eq!(
+        (a, b, spare),
+        (
+            FloaterId::from_raw(0),
+            FloaterId::from_raw(1),
+            FloaterId::from_raw(2)
+        )
+    );
     s.drop_at(16.0, 14.0, 0.5, 2.0).unwrap();
     for frame in 0..40 {
         if frame == 10 {
@@ -210,7 +217,7 @@ fn expected_floaters() -> Vec<(&'static str, String)> {
     s.step_n(20).unwrap();
     let floaters = floaters_fingerprint(&s);
     let [x, y, z] = s.positions();
-    let positions = fnv((0..s.len()).flat_map(|i| [x[i], y[i], z[i]]));
+    let positions = fnv((0..s.node_count()).flat_map(|i| [x[i], y[i], z[i]]));
     let snapshot_bytes = s.to_bytes().len();
     s.step_n(2500).unwrap();
     vec![
@@ -244,7 +251,7 @@ fn expected() -> HashMap<&'static str, String> {
         s.advance(1.0 / 60.0).unwrap();
     }
     let view = s.mesh_view();
-    let n = s.len();
+    let n = s.node_count();
     let [x, y, z] = s.positions();
     let positions = fnv((0..n).flat_map(|i| [x[i], y[i], z[i]]));
     let mut normals = Normals::new();
