@@ -124,11 +124,7 @@ fn open_water(c: &mut Criterion) {
     for n in [256, 1024] {
         group.throughput(Throughput::Elements((8 * n * n) as u64));
         let with = |boundary: Boundary, balls: usize| {
-            let mut s = Surface::new(Params {
-                boundary,
-                ..Params::with_size(n, n)
-            })
-            .unwrap();
+            let mut s = Surface::new(Params::with_size(n, n).with_boundary(boundary)).unwrap();
             s.drop_at(n as f32 / 2.0, n as f32 / 2.0, 1.0, 4.0).unwrap();
             for k in 0..balls {
                 let at = [

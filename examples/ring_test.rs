@@ -73,11 +73,8 @@ fn main() {
 /// The in-plane force that holds each outer node of a free sheet where it is at rest:
 /// minus its springs' pull, read off one step from rest (`F = m v / dt`, no damping yet).
 fn edge_hold(s: &Surface) -> Vec<(usize, [f32; 3])> {
-    let mut probe = Surface::new(Params {
-        boundary: Boundary::Free,
-        ..*s.params()
-    })
-    .expect("valid parameters");
+    let mut probe =
+        Surface::new(s.params().with_boundary(Boundary::Free)).expect("valid parameters");
     probe.step().expect("a stable step");
     let grid = probe.grid();
     let [vx, _, vz] = probe.velocities();

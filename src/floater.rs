@@ -63,9 +63,10 @@ use crate::params;
 use crate::Surface;
 use glam::Vec3;
 
-/// The shape of a [`Floater`].
+/// The shape of a [`Floater`] (`#[non_exhaustive]`: a shape may come).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub enum Shape {
     /// A ball of `radius` world units.
     Sphere {
@@ -114,8 +115,12 @@ impl Shape {
 /// assert!(ball.velocity.length() < 1e-3);           // at rest
 /// # Ok::<(), springwater::Error>(())
 /// ```
+///
+/// `#[non_exhaustive]` (a field may come): outside the crate, start from
+/// [`Floater::sphere`] or [`Floater::cuboid`] and assign the fields to change.
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub struct Floater {
     /// Sphere or box.
     pub shape: Shape,

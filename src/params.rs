@@ -2,9 +2,10 @@
 
 use crate::error::{Error, Result};
 
-/// What happens at the edge of the grid.
+/// What happens at the edge of the grid (`#[non_exhaustive]`: a kind of edge may come).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub enum Boundary {
     /// The outer ring of nodes is pinned: a pool with walls (the default).
     #[default]
@@ -89,8 +90,31 @@ impl Boundary {
 ///   Drops steeper than one height per cell can fold the lattice,
 ///   where no timestep is safe; the engine then reports [`Error::NonFinite`] instead of
 ///   passing NaN on.
+///
+/// # Building
+///
+/// `Params` is `#[non_exhaustive]` (a parameter may come), so code outside the crate starts
+/// from [`Params::with_size`] or [`Params::default`] and changes what it needs, with the
+/// `with_*` methods or by assigning fields:
+///
+/// ```
+/// use springwater::{Boundary, Params};
+///
+/// let p = Params::with_size(256, 128)
+///     .with_spacing(0.5)
+///     .with_viscosity(0.1)
+///     .with_boundary(Boundary::absorbing());
+/// assert_eq!((p.cols, p.spacing, p.mass), (256, 0.5, 4.0));
+/// p.validate()?;
+///
+/// let mut q = Params::default();
+/// q.rest_ratio = 0.6;
+/// assert_eq!(q, Params::default().with_rest_ratio(0.6));
+/// # Ok::<(), springwater::Error>(())
+/// ```
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+#[non_exhaustive]
 pub struct Params {
     /// Nodes per row, the seed's M (default: `128`). At least 2.
     pub cols: usize,
@@ -167,6 +191,54 @@ impl Params {
             rows,
             ..Self::default()
         }
+    }
+
+    /// With grid step `spacing` ([`Params::spacing`]).
+    pub fn with_spacing(self, spacing: f32) -> Self {
+        Self { spacing, ..self }
+    }
+
+    /// With nodal mass `mass` ([`Params::mass`]).
+    pub fn with_mass(self, mass: f32) -> Self {
+        Self { mass, ..self }
+    }
+
+    /// With spring coefficient `stiffness` ([`Params::stiffness`]).
+    pub fn with_stiffness(self, stiffness: f32) -> Self {
+        Self { stiffness, ..self }
+    }
+
+    /// With viscosity `viscosity` ([`Params::viscosity`]).
+    pub fn with_viscosity(self, viscosity: f32) -> Self {
+        Self { viscosity, ..self }
+    }
+
+    /// With timestep `dt` ([`Params::dt`]).
+    pub fn with_dt(self, dt: f32) -> Self {
+        Self { dt, ..self }
+    }
+
+    /// With rest length ratio `rest_ratio` ([`Params::rest_ratio`]).
+    pub fn with_rest_ratio(self, rest_ratio: f32) -> Self {
+        Self { rest_ratio, ..self }
+    }
+
+    /// With edge condition `boundary` ([`Params::boundary`]).
+    pub fn with_boundary(self, boundary: Boundary) -> Self {
+        Self { boundary, ..self }
+    }
+
+    /// With uniform acceleration `acceleration` ([`Params::acceleration`]).
+    pub fn with_acceleration(self, acceleration: [f32; 3]) -> Self {
+        Self {
+            acceleration,
+            ..self
+        }
+    }
+
+    /// With `time_scale` model time units per second ([`Params::time_scale`]).
+    pub fn with_time_scale(self, time_scale: f32) -> Self {
+        Self { time_scale, ..self }
     }
 
     /// Number of nodes, `cols × rows` (saturating: parameters are not validated yet).

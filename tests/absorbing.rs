@@ -76,10 +76,7 @@ fn a_narrow_frame_reflects_more_than_the_default() {
 
 #[test]
 fn the_frame_is_inside_the_grid_pinned_at_the_ring_and_damped_quadratically() {
-    let p = Params {
-        boundary: Boundary::Absorbing { width: 10 },
-        ..Params::with_size(40, 30)
-    };
+    let p = Params::with_size(40, 30).with_boundary(Boundary::Absorbing { width: 10 });
     let s = Surface::new(p).unwrap();
     assert_eq!(s.node_count(), 40 * 30, "the frame adds no nodes");
     let grid = s.grid();
@@ -110,11 +107,9 @@ fn the_frame_fits_any_valid_timestep() {
     // timestep invalid.
     let base = Params::with_size(96, 96);
     for share in [0.5, 0.9, 0.99, 0.999] {
-        let p = Params {
-            dt: base.critical_dt() * share,
-            boundary: Boundary::absorbing(),
-            ..base
-        };
+        let p = base
+            .with_dt(base.critical_dt() * share)
+            .with_boundary(Boundary::absorbing());
         let mut s = Surface::new(p).unwrap_or_else(|e| panic!("dt share {share}: {e}"));
         assert!(s.critical_dt() > p.dt, "share {share}");
         s.drop_at(48.0, 48.0, 1.5, 3.0).unwrap();
@@ -135,10 +130,7 @@ fn the_default_width_fits_small_grids_and_still_damps_waves() {
         (98, 98, 32),
         (4, 4, 1),
     ] {
-        let p = Params {
-            boundary: Boundary::absorbing(),
-            ..Params::with_size(cols, rows)
-        };
+        let p = Params::with_size(cols, rows).with_boundary(Boundary::absorbing());
         let s = Surface::new(p).unwrap_or_else(|e| panic!("{cols}×{rows}: {e}"));
         assert_eq!(ring::frame(&s), width, "{cols}×{rows}");
         assert_eq!(s.params().boundary, Boundary::absorbing(), "kept as asked");
@@ -178,10 +170,7 @@ fn a_frame_too_wide_for_the_grid_is_refused() {
         (3, 32),
         (2, 32),
     ] {
-        let p = Params {
-            boundary: Boundary::Absorbing { width },
-            ..Params::with_size(size, size + 10)
-        };
+        let p = Params::with_size(size, size + 10).with_boundary(Boundary::Absorbing { width });
         let ok = width >= 1 && size >= 2 * width + 2;
         match Surface::new(p) {
             Ok(_) => assert!(ok, "{size} / {width} accepted"),
@@ -201,10 +190,7 @@ fn a_frame_too_wide_for_the_grid_is_refused() {
 
 #[test]
 fn absorbing_surfaces_snapshot_and_restore_bitwise() {
-    let p = Params {
-        boundary: Boundary::Absorbing { width: 6 },
-        ..Params::with_size(30, 20)
-    };
+    let p = Params::with_size(30, 20).with_boundary(Boundary::Absorbing { width: 6 });
     let mut a = Surface::new(p).unwrap();
     a.drop_at(15.0, 10.0, 1.0, 2.0).unwrap();
     a.step_n(7).unwrap();
@@ -219,10 +205,7 @@ fn absorbing_surfaces_snapshot_and_restore_bitwise() {
 fn the_absorbing_boundary_gives_the_same_bits_at_every_level_and_thread_count() {
     common::same_bits_everywhere(
         || {
-            let p = Params {
-                boundary: Boundary::Absorbing { width: 12 },
-                ..Params::with_size(70, 45)
-            };
+            let p = Params::with_size(70, 45).with_boundary(Boundary::Absorbing { width: 12 });
             let mut s = Surface::new(p).unwrap();
             s.drop_at(20.0, 30.0, 1.5, 3.0).unwrap();
             s

@@ -9,57 +9,15 @@ use springwater::{Error, Family, Params, Spring, SpringId, Surface};
 fn every_invalid_parameter_is_refused_with_its_name() {
     let base = Params::default();
     let cases: Vec<(Params, &str)> = vec![
-        (Params { mass: 0.0, ..base }, "mass"),
-        (
-            Params {
-                mass: f32::NAN,
-                ..base
-            },
-            "mass",
-        ),
-        (
-            Params {
-                stiffness: -1.0,
-                ..base
-            },
-            "stiffness",
-        ),
-        (
-            Params {
-                spacing: f32::INFINITY,
-                ..base
-            },
-            "spacing",
-        ),
-        (
-            Params {
-                viscosity: -0.1,
-                ..base
-            },
-            "viscosity",
-        ),
-        (Params { dt: 0.0, ..base }, "dt"),
-        (
-            Params {
-                rest_ratio: 1.5,
-                ..base
-            },
-            "rest_ratio",
-        ),
-        (
-            Params {
-                rest_ratio: f32::NAN,
-                ..base
-            },
-            "rest_ratio",
-        ),
-        (
-            Params {
-                acceleration: [0.0, f32::NAN, 0.0],
-                ..base
-            },
-            "acceleration",
-        ),
+        (base.with_mass(0.0), "mass"),
+        (base.with_mass(f32::NAN), "mass"),
+        (base.with_stiffness(-1.0), "stiffness"),
+        (base.with_spacing(f32::INFINITY), "spacing"),
+        (base.with_viscosity(-0.1), "viscosity"),
+        (base.with_dt(0.0), "dt"),
+        (base.with_rest_ratio(1.5), "rest_ratio"),
+        (base.with_rest_ratio(f32::NAN), "rest_ratio"),
+        (base.with_acceleration([0.0, f32::NAN, 0.0]), "acceleration"),
     ];
     for (p, name) in cases {
         match Surface::new(p) {
@@ -85,18 +43,12 @@ fn every_invalid_parameter_is_refused_with_its_name() {
 
 #[test]
 fn a_timestep_at_or_past_critical_names_the_critical_value() {
-    let p = Params {
-        dt: 0.5,
-        ..Params::default()
-    };
+    let p = Params::default().with_dt(0.5);
     let err = Surface::new(p).unwrap_err();
     assert!(matches!(err, Error::TimestepTooLarge { .. }));
     // 0.4364 = sqrt(m / 3c) without damping; the seed's γ = 0.05 lowers it to 0.4358.
     assert!(err.to_string().contains("0.4358"), "{err}");
-    let at = Params {
-        dt: Params::default().critical_dt(),
-        ..Params::default()
-    };
+    let at = Params::default().with_dt(Params::default().critical_dt());
     assert!(Surface::new(at).is_err());
     assert!(Surface::new_without_dt_check(p).is_ok());
 }
@@ -105,11 +57,7 @@ fn a_timestep_at_or_past_critical_names_the_critical_value() {
 fn advance_takes_whole_steps_and_keeps_the_rest_for_the_next_frame() {
     // Frames in seconds; a time scale of 10 model time units per second makes the model
     // times 0, 0.4, 0.41 and 1.0.
-    let mut s = Surface::new(Params {
-        time_scale: 10.0,
-        ..Params::with_size(8, 8)
-    })
-    .unwrap();
+    let mut s = Surface::new(Params::with_size(8, 8).with_time_scale(10.0)).unwrap();
     assert_eq!(s.advance(0.0).unwrap(), 0);
     assert_eq!(s.advance(0.04).unwrap(), 1);
     assert_eq!(s.advance(0.041).unwrap(), 1); // 0.01 owed
@@ -127,11 +75,7 @@ fn advance_takes_whole_steps_and_keeps_the_rest_for_the_next_frame() {
 
 #[test]
 fn advance_variable_splits_a_frame_into_substeps_no_longer_than_dt() {
-    let mut s = Surface::new(Params {
-        time_scale: 10.0,
-        ..Params::with_size(8, 8)
-    })
-    .unwrap();
+    let mut s = Surface::new(Params::with_size(8, 8).with_time_scale(10.0)).unwrap();
     assert_eq!(s.advance_variable(0.0).unwrap(), 0);
     assert_eq!(s.advance_variable(0.04).unwrap(), 1);
     assert_eq!(s.advance_variable(0.041).unwrap(), 2);
@@ -191,10 +135,7 @@ fn the_ripple_speed_sets_the_time_scale() {
     assert_eq!(p.ripple_speed(), 0.0);
     assert!(p.set_ripple_speed(10.0).is_err());
     for bad in [0.0, -1.0, f32::NAN] {
-        let p = Params {
-            time_scale: bad,
-            ..Params::default()
-        };
+        let p = Params::default().with_time_scale(bad);
         assert!(matches!(
             Surface::new(p),
             Err(Error::InvalidParam {

@@ -6,6 +6,12 @@ mod common;
 use glam::Vec3;
 use springwater::{Boundary, Buoyancy, Error, Floater, FloaterId, Params, Shape, Surface};
 
+/// `f` with `edit` applied (`Floater` is `#[non_exhaustive]`: no struct update syntax).
+fn edited(mut f: Floater, edit: impl FnOnce(&mut Floater)) -> Floater {
+    edit(&mut f);
+    f
+}
+
 /// A sphere of `radius` floating at `relative_density` of the water's, at rest at `at`.
 fn ball(s: &Surface, radius: f32, relative_density: f32, at: [f32; 3]) -> Floater {
     let mut f = Floater::sphere(radius, 1.0, at);
@@ -27,11 +33,9 @@ fn what_the_water_gets_is_minus_what_the_body_gets_every_step() {
     // A free sheet without viscosity: the springs' forces cancel in pairs, so the water's
     // momentum changes only by the bodies' reactions. The body's momentum changes by its
     // water force, gravity and push: the two water forces must be opposite every step.
-    let p = Params {
-        viscosity: 0.0,
-        boundary: Boundary::Free,
-        ..Params::with_size(40, 40)
-    };
+    let p = Params::with_size(40, 40)
+        .with_viscosity(0.0)
+        .with_boundary(Boundary::Free);
     let mut s = Surface::new(p).unwrap();
     let a = s
         .add_floater(ball(&s, 3.0, 0.4, [20.0, 2.0, 20.0]))
@@ -119,10 +123,7 @@ fn up_crossings(y: &[f32], dt: f32) -> Vec<f32> {
 fn a_body_riding_a_passing_wave_bobs_with_the_waves_period() {
     // A long plane wave driven along a line of nodes in open water; a small light ball
     // further along rides it.
-    let p = Params {
-        boundary: Boundary::Absorbing { width: 16 },
-        ..Params::with_size(260, 72)
-    };
+    let p = Params::with_size(260, 72).with_boundary(Boundary::Absorbing { width: 16 });
     let mut s = Surface::new(p).unwrap();
     let body = s
         .add_floater(ball(&s, 1.0, 0.3, [150.0, 0.0, 36.0]))
@@ -167,10 +168,7 @@ fn largest_height(s: &Surface, region: impl Fn(f32, f32) -> bool) -> f32 {
 /// Drives a ball along the middle of a pool at `speed` (a multiple of the ripple speed)
 /// and returns the largest heights ahead of it and behind it.
 fn drive(speed: f32) -> (f32, f32) {
-    let p = Params {
-        boundary: Boundary::absorbing(),
-        ..Params::with_size(260, 120)
-    };
+    let p = Params::with_size(260, 120).with_boundary(Boundary::absorbing());
     let mut s = Surface::new(p).unwrap();
     let v = speed * p.ripple_speed() / p.time_scale;
     let mut b = ball(&s, 2.0, 0.5, [50.0, 0.0, 60.0]);
@@ -225,10 +223,7 @@ fn crowded(share: f32) -> Surface {
     };
     let mut probe = Surface::new(base).unwrap();
     bodies(&mut probe);
-    let p = Params {
-        dt: share * probe.critical_dt(),
-        ..base
-    };
+    let p = base.with_dt(share * probe.critical_dt());
     let mut s = Surface::new(p).unwrap();
     bodies(&mut s);
     s
@@ -313,15 +308,9 @@ fn bad_bodies_are_refused_and_change_nothing() {
         Floater::sphere(1.0, 1e-40, [1.0, 0.0, 1.0]),
         Floater::cuboid([1.0, -1.0, 1.0], 1.0, [1.0, 0.0, 1.0]),
         Floater::sphere(1.0, 1.0, [f32::INFINITY, 0.0, 1.0]),
-        Floater {
-            velocity: Vec3::new(0.0, 2e9, 0.0),
-            ..good
-        },
-        Floater { drag: -1.0, ..good },
-        Floater {
-            push: Vec3::new(f32::NAN, 0.0, 0.0),
-            ..good
-        },
+        edited(good, |f| f.velocity = Vec3::new(0.0, 2e9, 0.0)),
+        edited(good, |f| f.drag = -1.0),
+        edited(good, |f| f.push = Vec3::new(f32::NAN, 0.0, 0.0)),
     ];
     for f in bad {
         assert!(
@@ -485,21 +474,14 @@ fn ids_run_out_with_an_error_not_an_overflow() {
 #[test]
 fn water_force_is_read_only() {
     let mut s = Surface::new(Params::with_size(16, 16)).unwrap();
-    let f = Floater {
-        water_force: Vec3::NAN,
-        ..Floater::sphere(1.0, 2.0, [8.0, 0.0, 8.0])
-    };
+    let f = edited(Floater::sphere(1.0, 2.0, [8.0, 0.0, 8.0]), |f| {
+        f.water_force = Vec3::NAN
+    });
     let id = s.add_floater(f).unwrap();
     assert_eq!(s.floater(id).unwrap().water_force, Vec3::ZERO);
     s.step().unwrap();
     let felt = s.floater(id).unwrap().water_force;
-    s.set_floater(
-        id,
-        Floater {
-            water_force: Vec3::splat(7.0),
-            ..f
-        },
-    )
-    .unwrap();
+    s.set_floater(id, edited(f, |f| f.water_force = Vec3::splat(7.0)))
+        .unwrap();
     assert_eq!(s.floater(id).unwrap().water_force, felt);
 }

@@ -151,11 +151,12 @@ fn triangles(lod: &LodMesh) -> Vec<[u32; 3]> {
 
 fn params_strategy() -> impl Strategy<Value = LodParams> {
     (0u32..6, 1.0f32..80.0, 0.0f32..0.5).prop_flat_map(|(k, range, hys)| {
-        (1..=k + 1).prop_map(move |levels| LodParams {
-            patch_cells: 1 << k,
-            first_range: range,
-            levels,
-            hysteresis: hys,
+        (1..=k + 1).prop_map(move |levels| {
+            LodParams::default()
+                .with_patch_cells(1 << k)
+                .with_first_range(range)
+                .with_levels(levels)
+                .with_hysteresis(hys)
         })
     })
 }
@@ -204,7 +205,7 @@ proptest! {
     fn arbitrary_levels_stitch_without_cracks(
         (cols, rows, k, seed) in (2usize..200, 2usize..200, 0u32..6, any::<u64>())
     ) {
-        let params = LodParams { patch_cells: 1 << k, levels: k + 1, ..Default::default() };
+        let params = LodParams::default().with_patch_cells(1 << k).with_levels(k + 1);
         let flat = Flat::new(cols, rows, 1.0);
         let mut lod = LodMesh::new(params).unwrap();
         let p = 1usize << k;
@@ -228,7 +229,7 @@ proptest! {
         (cols, rows, k) in (2usize..120, 2usize..120, 0u32..6)
     ) {
         let flat = Flat::new(cols, rows, 1.0);
-        let mut lod = LodMesh::new(LodParams { patch_cells: 1 << k, levels: 1, ..Default::default() }).unwrap();
+        let mut lod = LodMesh::new(LodParams::default().with_patch_cells(1 << k).with_levels(1)).unwrap();
         lod.update(&flat.view(), Vec3::new(1e4, 1e4, 1e4));
         prop_assert!(lod.patch_levels().iter().all(|&l| l == 0));
         prop_assert_eq!(triangles(&lod), full_grid(flat.grid));
@@ -285,11 +286,9 @@ fn spacing_scales_the_ranges() {
 #[test]
 fn hysteresis_keeps_the_mesh_at_a_range_boundary() {
     let flat = Flat::new(65, 65, 1.0);
-    let params = LodParams {
-        first_range: 8.0,
-        hysteresis: 0.1,
-        ..Default::default()
-    };
+    let params = LodParams::default()
+        .with_first_range(8.0)
+        .with_hysteresis(0.1);
     let mut lod = LodMesh::new(params).unwrap();
     let at = |y: f32| Vec3::new(0.0, y, 0.0);
     lod.update(&flat.view(), at(16.0)); // exactly at the 1→2 boundary: level 2
@@ -311,11 +310,9 @@ fn hysteresis_keeps_the_mesh_at_a_range_boundary() {
 #[test]
 fn without_hysteresis_a_boundary_flips_the_mesh() {
     let flat = Flat::new(65, 65, 1.0);
-    let params = LodParams {
-        first_range: 8.0,
-        hysteresis: 0.0,
-        ..Default::default()
-    };
+    let params = LodParams::default()
+        .with_first_range(8.0)
+        .with_hysteresis(0.0);
     let mut lod = LodMesh::new(params).unwrap();
     lod.update(&flat.view(), Vec3::new(0.0, 16.0, 0.0));
     assert!(lod.update(&flat.view(), Vec3::new(0.0, 15.9, 0.0)));
@@ -367,50 +364,21 @@ fn parameters_are_validated() {
     let ok = LodParams::default();
     assert!(ok.validate().is_ok());
     for bad in [
-        LodParams {
-            patch_cells: 0,
-            ..ok
-        },
-        LodParams {
-            patch_cells: 12,
-            ..ok
-        },
-        LodParams {
-            patch_cells: 8192,
-            ..ok
-        },
-        LodParams {
-            first_range: 0.0,
-            ..ok
-        },
-        LodParams {
-            first_range: f32::NAN,
-            ..ok
-        },
-        LodParams { levels: 0, ..ok },
-        LodParams { levels: 6, ..ok },
-        LodParams {
-            hysteresis: -0.1,
-            ..ok
-        },
-        LodParams {
-            hysteresis: 1.5,
-            ..ok
-        },
-        LodParams {
-            hysteresis: f32::INFINITY,
-            ..ok
-        },
+        ok.with_patch_cells(0),
+        ok.with_patch_cells(12),
+        ok.with_patch_cells(8192),
+        ok.with_first_range(0.0),
+        ok.with_first_range(f32::NAN),
+        ok.with_levels(0),
+        ok.with_levels(6),
+        ok.with_hysteresis(-0.1),
+        ok.with_hysteresis(1.5),
+        ok.with_hysteresis(f32::INFINITY),
     ] {
         let err = LodMesh::new(bad).unwrap_err();
         assert!(!err.to_string().is_empty());
     }
-    assert!(LodMesh::new(LodParams {
-        patch_cells: 1,
-        levels: 1,
-        ..ok
-    })
-    .is_ok());
+    assert!(LodMesh::new(ok.with_patch_cells(1).with_levels(1)).is_ok());
     let flat = Flat::new(20, 20, 1.0);
     let mut lod = LodMesh::new(ok).unwrap();
     assert!(lod.set_levels(&flat.view(), &[0; 3]).is_err());
@@ -418,11 +386,7 @@ fn parameters_are_validated() {
 
 #[test]
 fn level_for_distance_doubles_each_range() {
-    let p = LodParams {
-        first_range: 10.0,
-        levels: 5,
-        ..Default::default()
-    };
+    let p = LodParams::default().with_first_range(10.0).with_levels(5);
     let cases = [
         (0.0, 0),
         (9.99, 0),

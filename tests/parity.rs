@@ -62,21 +62,17 @@ fn case() -> impl Strategy<Value = Case> {
                 band_rows,
                 edits,
             )| {
-                let mut params = Params {
-                    cols,
-                    rows,
-                    mass,
-                    stiffness,
-                    viscosity,
-                    rest_ratio,
-                    spacing,
-                    boundary: if free {
+                let mut params = Params::with_size(cols, rows)
+                    .with_mass(mass)
+                    .with_stiffness(stiffness)
+                    .with_viscosity(viscosity)
+                    .with_rest_ratio(rest_ratio)
+                    .with_spacing(spacing)
+                    .with_boundary(if free {
                         Boundary::Free
                     } else {
                         Boundary::Pinned
-                    },
-                    ..Params::default()
-                };
+                    });
                 params.dt = params.critical_dt() * dt_frac;
                 let drops = drops
                     .into_iter()

@@ -7,10 +7,7 @@ use proptest::prelude::*;
 use springwater::{Params, Surface};
 
 fn undamped(cols: usize, rows: usize) -> Params {
-    Params {
-        viscosity: 0.0,
-        ..Params::with_size(cols, rows)
-    }
+    Params::with_size(cols, rows).with_viscosity(0.0)
 }
 
 #[test]

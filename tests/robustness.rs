@@ -27,11 +27,7 @@ fn nan_force_is_refused_and_changes_nothing() {
 
 /// A light node: `f32::MAX / m` overflows within the step itself.
 fn light_surface() -> Surface {
-    let p = Params {
-        mass: 0.1,
-        stiffness: 0.1,
-        ..Params::with_size(16, 12)
-    };
+    let p = Params::with_size(16, 12).with_mass(0.1).with_stiffness(0.1);
     let mut s = Surface::new(p).unwrap();
     s.drop_at(8.0, 6.0, 1.0, 2.0).unwrap();
     for _ in 0..5 {
@@ -305,75 +301,35 @@ fn drop_clipped_by_the_pinned_ring_stays_finite() {
 fn validation_refuses_bad_params() {
     let ok = Params::with_size(8, 8);
     let cases: Vec<(&str, Params)> = vec![
-        ("1-wide grid", Params { cols: 1, ..ok }),
-        ("0 rows", Params { rows: 0, ..ok }),
-        (
-            "huge grid",
-            Params {
-                cols: usize::MAX,
-                rows: 3,
-                ..ok
-            },
-        ),
-        (
-            "NaN mass",
-            Params {
-                mass: f32::NAN,
-                ..ok
-            },
-        ),
-        (
-            "subnormal mass",
-            Params {
-                mass: 1e-40,
-                stiffness: 1e-41,
-                ..ok
-            },
-        ),
-        (
-            "negative stiffness",
-            Params {
-                stiffness: -1.0,
-                ..ok
-            },
-        ),
-        (
-            "inf viscosity",
-            Params {
-                viscosity: f32::INFINITY,
-                ..ok
-            },
-        ),
-        (
-            "negative viscosity",
-            Params {
-                viscosity: -0.1,
-                ..ok
-            },
-        ),
-        ("zero dt", Params { dt: 0.0, ..ok }),
-        ("dt past critical", Params { dt: 0.44, ..ok }),
-        (
-            "rest ratio > 1",
-            Params {
-                rest_ratio: 1.5,
-                ..ok
-            },
-        ),
-        ("zero spacing", Params { spacing: 0.0, ..ok }),
-        (
-            "spacing too large",
-            Params {
-                spacing: 1e30,
-                ..ok
-            },
-        ),
+        ("1-wide grid", {
+            let mut p = ok;
+            p.cols = 1;
+            p
+        }),
+        ("0 rows", {
+            let mut p = ok;
+            p.rows = 0;
+            p
+        }),
+        ("huge grid", {
+            let mut p = ok;
+            p.cols = usize::MAX;
+            p.rows = 3;
+            p
+        }),
+        ("NaN mass", ok.with_mass(f32::NAN)),
+        ("subnormal mass", ok.with_mass(1e-40).with_stiffness(1e-41)),
+        ("negative stiffness", ok.with_stiffness(-1.0)),
+        ("inf viscosity", ok.with_viscosity(f32::INFINITY)),
+        ("negative viscosity", ok.with_viscosity(-0.1)),
+        ("zero dt", ok.with_dt(0.0)),
+        ("dt past critical", ok.with_dt(0.44)),
+        ("rest ratio > 1", ok.with_rest_ratio(1.5)),
+        ("zero spacing", ok.with_spacing(0.0)),
+        ("spacing too large", ok.with_spacing(1e30)),
         (
             "NaN acceleration",
-            Params {
-                acceleration: [0.0, f32::NAN, 0.0],
-                ..ok
-            },
+            ok.with_acceleration([0.0, f32::NAN, 0.0]),
         ),
     ];
     for (what, p) in cases {
@@ -386,29 +342,17 @@ fn validation_refuses_bad_params() {
 /// undamped limit and reached NaN within about 100 steps.
 #[test]
 fn heavy_viscosity_lowers_the_critical_timestep() {
-    let undamped = Params {
-        viscosity: 0.0,
-        ..Params::with_size(32, 32)
-    };
-    let damped = Params {
-        viscosity: 6.0,
-        ..undamped
-    };
+    let undamped = Params::with_size(32, 32).with_viscosity(0.0);
+    let damped = undamped.with_viscosity(6.0);
     assert_eq!(undamped.critical_dt(), (4.0f32 / 21.0).sqrt());
     assert!(damped.critical_dt() < 0.9 * undamped.critical_dt());
-    let p = Params {
-        dt: 0.99 * undamped.critical_dt(),
-        ..damped
-    };
+    let p = damped.with_dt(0.99 * undamped.critical_dt());
     assert!(matches!(
         Surface::new(p),
         Err(Error::TimestepTooLarge { .. })
     ));
     // At 99% of the damped limit it is stable.
-    let p = Params {
-        dt: 0.99 * damped.critical_dt(),
-        ..damped
-    };
+    let p = damped.with_dt(0.99 * damped.critical_dt());
     let mut s = Surface::new(p).unwrap();
     s.drop_at(16.0, 16.0, 1.0, 2.0).unwrap();
     for _ in 0..3_000 {
@@ -478,11 +422,9 @@ fn free_pretensioned_sheet_collapses_without_going_non_finite() {
 #[test]
 fn a_sheet_far_from_the_origin_steps_like_the_reference() {
     for cols in [3, 9, 17] {
-        let p = Params {
-            boundary: Boundary::Free,
-            rest_ratio: 1.0,
-            ..Params::with_size(cols, 6)
-        };
+        let p = Params::with_size(cols, 6)
+            .with_boundary(Boundary::Free)
+            .with_rest_ratio(1.0);
         let mut engine = Surface::new(p).unwrap();
         for node in 0..engine.node_count() {
             engine.add_velocity(node, [1e20, 0.0, -1e20]).unwrap();

@@ -167,11 +167,7 @@ fn downgrade(v4: &[u8], version: u32) -> Vec<u8> {
 /// the default time scale; a version 1 snapshot with that field set is refused.
 #[test]
 fn version_1_snapshots_load_with_the_default_time_scale() {
-    let mut s = Surface::new(Params {
-        time_scale: 50.0,
-        ..Params::with_size(5, 4)
-    })
-    .unwrap();
+    let mut s = Surface::new(Params::with_size(5, 4).with_time_scale(50.0)).unwrap();
     s.drop_at(2.0, 2.0, 0.5, 1.0).unwrap();
     s.step().unwrap();
     let v2 = downgrade(&s.to_bytes(), 2);
@@ -516,16 +512,8 @@ fn library_errors_do_not_speak_command_line_flags() {
     let errors = [
         Surface::new(Params::with_size(100_000, 100_000)).unwrap_err(),
         Surface::new(Params::with_size(1, 5)).unwrap_err(),
-        Surface::new(Params {
-            rest_ratio: 2.0,
-            ..Params::default()
-        })
-        .unwrap_err(),
-        Surface::new(Params {
-            dt: 1.0,
-            ..Params::default()
-        })
-        .unwrap_err(),
+        Surface::new(Params::default().with_rest_ratio(2.0)).unwrap_err(),
+        Surface::new(Params::default().with_dt(1.0)).unwrap_err(),
     ];
     for e in errors {
         let m = e.to_string();

@@ -19,13 +19,11 @@ use springwater::{Boundary, Params, Surface};
 fn pool(h: f32) -> Params {
     let scale = h * h; // mass per node ∝ the cell's area
     let cells = (32.0 / h).round() as usize;
-    Params {
-        spacing: h,
-        mass: 4.0 * scale,
-        viscosity: 0.05 * scale,
-        dt: 0.4 * h,
-        ..Params::with_size(cells + 1, cells + 1)
-    }
+    Params::with_size(cells + 1, cells + 1)
+        .with_spacing(h)
+        .with_mass(4.0 * scale)
+        .with_viscosity(0.05 * scale)
+        .with_dt(0.4 * h)
 }
 
 /// Heights at every integer world point of the 32 × 32 pool.
@@ -157,11 +155,9 @@ fn rain_falls_on_the_same_world_points_at_any_spacing() {
 
 /// A free surface of `cols × rows` nodes, spacing `h`, whose heights are `field`.
 fn surface_with_heights(cols: usize, rows: usize, h: f32, field: &[f32]) -> Surface {
-    let p = Params {
-        spacing: h,
-        boundary: Boundary::Free,
-        ..Params::with_size(cols, rows)
-    };
+    let p = Params::with_size(cols, rows)
+        .with_spacing(h)
+        .with_boundary(Boundary::Free);
     let mut snap = Surface::new(p).unwrap().snapshot();
     snap.positions[1].copy_from_slice(field);
     Surface::from_snapshot(snap).unwrap()

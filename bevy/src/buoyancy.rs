@@ -74,15 +74,11 @@ impl Buoyant {
     /// The body in the water's local space and model time.
     fn floater(&self, centre: Vec3, space: &Space, time_scale: f32) -> Floater {
         let local = |v: Vec3| springwater::glam::Vec3::from_array(v.to_array());
-        Floater {
-            shape: self.shape,
-            mass: self.mass,
-            drag: self.drag / time_scale,
-            position: local(space.local_point(centre)),
-            velocity: local(space.local_vector(self.velocity) / time_scale),
-            push: springwater::glam::Vec3::ZERO,
-            water_force: springwater::glam::Vec3::ZERO,
-        }
+        let mut body = Floater::sphere(1.0, self.mass, local(space.local_point(centre)));
+        body.shape = self.shape;
+        body.drag = self.drag / time_scale;
+        body.velocity = local(space.local_vector(self.velocity) / time_scale);
+        body
     }
 }
 

@@ -214,11 +214,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         } else {
             1
         };
-        let mut lod = LodMesh::new(LodParams {
-            levels,
-            ..LodParams::default()
-        })
-        .map_err(lib_error)?;
+        let mut lod = LodMesh::new(LodParams::default().with_levels(levels)).map_err(lib_error)?;
         lod.update(&surface.mesh_view(), uv_eye);
         let rest = Rest {
             indices: lod.indices().to_vec(),

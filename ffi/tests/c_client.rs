@@ -155,6 +155,7 @@ fn floater_floats(f: &Floater) -> Vec<f32> {
     let (radius, half_extents) = match f.shape {
         Shape::Sphere { radius } => (radius, [0.0; 3]),
         Shape::Box { half_extents } => (0.0, half_extents.to_array()),
+        other => panic!("the C client has no code for {other:?}"),
     };
     let mut floats = vec![radius];
     floats.extend(half_extents);
@@ -174,10 +175,7 @@ fn floaters_fingerprint(s: &Surface) -> String {
 
 /// The C client's floating bodies on open water, through the Rust API.
 fn expected_floaters() -> Vec<(&'static str, String)> {
-    let p = Params {
-        boundary: Boundary::Absorbing { width: 6 },
-        ..Params::with_size(32, 28)
-    };
+    let p = Params::with_size(32, 28).with_boundary(Boundary::Absorbing { width: 6 });
     let mut s = Surface::new(p).unwrap();
     let calm = Buoyancy::default();
     s.set_buoyancy(Buoyancy {
@@ -264,12 +262,12 @@ fn expected() -> HashMap<&'static str, String> {
     let height = s.height_at(20.5, 15.25).unwrap();
     let normal = s.normal_at(20.5, 15.25).unwrap();
     let velocity = s.velocity_at(20.5, 15.25).unwrap();
-    let mut lod = LodMesh::new(LodParams {
-        patch_cells: 8,
-        levels: 3,
-        first_range: 12.0,
-        ..Default::default()
-    })
+    let mut lod = LodMesh::new(
+        LodParams::default()
+            .with_patch_cells(8)
+            .with_levels(3)
+            .with_first_range(12.0),
+    )
     .unwrap();
     lod.update(&view, glam::Vec3::new(0.0, 10.0, 0.0));
     HashMap::from([

@@ -60,13 +60,12 @@ fuzz_target!(|input: Input| {
         0 => Boundary::Pinned,
         1 => Boundary::Free,
         k => Boundary::Absorbing {
-            width: (k as usize % 16 + 1).min((cols.min(rows).saturating_sub(2)) / 2).max(1),
+            width: (k as usize % 16 + 1)
+                .min((cols.min(rows).saturating_sub(2)) / 2)
+                .max(1),
         },
     };
-    let base = Params {
-        boundary,
-        ..Params::with_size(cols, rows)
-    };
+    let base = Params::with_size(cols, rows).with_boundary(boundary);
     if base.validate().is_err() {
         return;
     }
@@ -100,10 +99,7 @@ fuzz_target!(|input: Input| {
         let _ = s.add_floater(f);
     }
     let share = 0.05 + 0.94 * input.dt as f32 / 255.0;
-    let p = Params {
-        dt: share * s.critical_dt(),
-        ..base
-    };
+    let p = base.with_dt(share * s.critical_dt());
     let Ok(mut s) = Surface::new(p) else {
         return;
     };
@@ -115,7 +111,12 @@ fuzz_target!(|input: Input| {
         }
     }
     for &(c, r, h) in input.drops.iter().take(8) {
-        let _ = s.drop_at(c as f32 % cols as f32, r as f32 % rows as f32, h as f32 / 64.0, 2.0);
+        let _ = s.drop_at(
+            c as f32 % cols as f32,
+            r as f32 % rows as f32,
+            h as f32 / 64.0,
+            2.0,
+        );
     }
     assert!(finite(&s));
     let mut reference = s.clone();
@@ -133,7 +134,10 @@ fuzz_target!(|input: Input| {
         let engine = s.step();
         let scalar = reference.step();
         assert_eq!(engine, scalar);
-        assert!(s.to_bytes() == reference.to_bytes(), "engine and reference differ");
+        assert!(
+            s.to_bytes() == reference.to_bytes(),
+            "engine and reference differ"
+        );
         match engine {
             Ok(()) => assert!(finite(&s), "a successful step left a non-finite state"),
             Err(_) => {

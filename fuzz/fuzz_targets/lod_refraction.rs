@@ -70,12 +70,11 @@ fuzz_target!(|input: Input| {
     }
 
     let patch_cells = 1usize << (input.patch_log2 % 8);
-    let lod_params = LodParams {
-        patch_cells,
-        first_range: input.first_range,
-        levels: 1 + input.levels as u32 % 8,
-        hysteresis: input.hysteresis as f32 / 255.0,
-    };
+    let lod_params = LodParams::default()
+        .with_patch_cells(patch_cells)
+        .with_first_range(input.first_range)
+        .with_levels(1 + input.levels as u32 % 8)
+        .with_hysteresis(input.hysteresis as f32 / 255.0);
     let mut lod = LodMesh::new(lod_params).ok();
     let bottom = RefractionParams {
         depth: input.depth,

@@ -38,25 +38,22 @@ struct Input {
 }
 
 fuzz_target!(|input: Input| {
-    let p = Params {
-        cols: input.cols as usize,
-        rows: input.rows as usize,
-        spacing: input.spacing,
-        mass: input.mass,
-        stiffness: input.stiffness,
-        viscosity: input.viscosity,
-        dt: input.dt,
-        rest_ratio: input.rest_ratio,
-        boundary: match input.boundary {
+    let p = Params::with_size(input.cols as usize, input.rows as usize)
+        .with_spacing(input.spacing)
+        .with_mass(input.mass)
+        .with_stiffness(input.stiffness)
+        .with_viscosity(input.viscosity)
+        .with_dt(input.dt)
+        .with_rest_ratio(input.rest_ratio)
+        .with_boundary(match input.boundary {
             0 => Boundary::Pinned,
             1 => Boundary::Free,
             k => Boundary::Absorbing {
                 width: k as usize - 2,
             },
-        },
-        acceleration: input.acceleration,
-        time_scale: input.time_scale,
-    };
+        })
+        .with_acceleration(input.acceleration)
+        .with_time_scale(input.time_scale);
     if p.validate().is_ok() && p.node_count() <= MAX_BUILD {
         let mut s = Surface::new(p).expect("validate() accepted these params");
         exercise(&mut s, &input);

@@ -93,7 +93,7 @@ fn max_slope(s: &Surface) -> f32 {
     let g = s.grid();
     let y = s.positions()[1];
     let mut m = 0.0f32;
-    for i in 0..g.len() {
+    for i in 0..g.node_count() {
         let (c, r) = g.coords(i);
         if c + 1 < g.cols {
             m = m.max((y[i + 1] - y[i]).abs());
@@ -194,7 +194,7 @@ fuzz_target!(|input: Input| {
     }
     let mut s = Surface::new(p).expect("params inside the documented ranges are valid");
     let h = p.spacing;
-    let n = s.len();
+    let n = s.node_count();
 
     for d in input.drops.iter().take(3) {
         let (col, row) = (unit(d.col) * cols as f32, unit(d.row) * rows as f32);

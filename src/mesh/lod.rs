@@ -6,7 +6,11 @@ use crate::view::MeshView;
 use glam::Vec3;
 
 /// LOD parameters. Plain data with defaults; [`LodParams::validate`] checks it.
+/// `#[non_exhaustive]` (a parameter may come): outside the crate, start from
+/// `LodParams::default()` and change fields or use the `with_*` methods
+/// (`LodParams::default().with_levels(1)` is the full grid).
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct LodParams {
     /// Patch size in cells, a power of two from 1 to 4096 (default: `16`).
     pub patch_cells: usize,
@@ -19,6 +23,34 @@ pub struct LodParams {
     /// Relative distance a patch must move past a range boundary before its level changes,
     /// in `[0, 1]` (default: `0.1`, 10%).
     pub hysteresis: f32,
+}
+
+impl LodParams {
+    /// With patches of `patch_cells` cells ([`LodParams::patch_cells`]).
+    pub fn with_patch_cells(self, patch_cells: usize) -> Self {
+        Self {
+            patch_cells,
+            ..self
+        }
+    }
+
+    /// With full detail within `first_range` ([`LodParams::first_range`]).
+    pub fn with_first_range(self, first_range: f32) -> Self {
+        Self {
+            first_range,
+            ..self
+        }
+    }
+
+    /// With `levels` levels ([`LodParams::levels`]; 1 is the full grid everywhere).
+    pub fn with_levels(self, levels: u32) -> Self {
+        Self { levels, ..self }
+    }
+
+    /// With `hysteresis` ([`LodParams::hysteresis`]).
+    pub fn with_hysteresis(self, hysteresis: f32) -> Self {
+        Self { hysteresis, ..self }
+    }
 }
 
 impl Default for LodParams {

@@ -31,11 +31,9 @@ pub enum Source {
 
 /// The seed's lattice without viscosity on an `n × n` grid.
 pub fn params(n: usize, boundary: Boundary) -> Params {
-    Params {
-        viscosity: 0.0,
-        boundary,
-        ..Params::with_size(n, n)
-    }
+    Params::with_size(n, n)
+        .with_viscosity(0.0)
+        .with_boundary(boundary)
 }
 
 /// Width of a surface's damping frame, read off its viscosities (the frame damps the
