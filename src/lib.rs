@@ -3,7 +3,8 @@
 //! A water surface for games and animation, simulated on the CPU as a mass-spring
 //! lattice (Markhichev & Soupikov): a `cols × rows` grid of nodes joined by springs on
 //! every grid edge and both diagonals, moved by `m x'' + γ x' + f = f_ext` with
-//! symplectic Euler at the seed's near-critical timestep.
+//! symplectic Euler at a near-critical timestep. The defaults (h 1, m 4, c 7, γ 0.05,
+//! Δt 0.4) are the ones that presentation gives, called "the seed's" in these docs.
 //!
 //! ```
 //! use springwater::{Params, Surface};
@@ -71,9 +72,11 @@
 //!   perspective with the bottom refracted through it, sky reflections and caustics.
 //!
 //! * [`SimdLevel`]: the instruction set the engine and the render-side stages run. The
-//!   default build detects the CPU once and runs the widest it has (SSE2, AVX2,
-//!   AVX-512); `SPRINGWATER_SIMD=scalar|sse2|avx2|avx512` or
-//!   [`Surface::set_simd_level`] force one. Every level gives the same bits.
+//!   default build detects the CPU once and runs the widest it has: SSE2, AVX2 or
+//!   AVX-512 on x86-64, NEON on AArch64, SIMD128 on wasm32 builds made with
+//!   `+simd128`, portable lanes elsewhere; `SPRINGWATER_SIMD` (`scalar`, `sse2`, `avx2`,
+//!   `avx512`, `neon`, `simd128`, `portable`) or [`Surface::set_simd_level`] force one.
+//!   Every level, on every target, gives the same bits.
 //!
 //! ## Features
 //!
