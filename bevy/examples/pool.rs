@@ -11,6 +11,10 @@
 //! `SPRINGWATER_SCREENSHOT=pool.png` runs on a fixed 1/60 s clock instead, saves the
 //! window after `SPRINGWATER_SCREENSHOT_FRAME` frames (default 180) and exits: the
 //! picture in the README was made so, under Xvfb with Mesa's software Vulkan.
+//! `SPRINGWATER_FOLLOW=1` as well makes the second one: the window follows the ball from
+//! the start, and the ball cruises to the right at twice the ripple speed with 30 times
+//! the gravity, so that it dents the water enough for its wake to show (no rain, no deck,
+//! the camera further back).
 
 use bevy::asset::RenderAssetUsages;
 use bevy::image::{ImageAddressMode, ImageSampler, ImageSamplerDescriptor};
@@ -45,6 +49,15 @@ fn main() {
         ))
         .insert_resource(ScreenshotAt { path, frame })
         .add_systems(Update, screenshot);
+        if std::env::var("SPRINGWATER_FOLLOW").is_ok_and(|v| v == "1") {
+            let gravity = 30.0 * BuoyancySettings::default().gravity;
+            app.insert_resource(Cruise)
+                .insert_resource(BuoyancySettings {
+                    gravity,
+                    ..default()
+                })
+                .add_systems(Update, cruise);
+        }
     }
     app.run();
 }
@@ -67,6 +80,31 @@ fn screenshot(mut frames: Local<u32>, at: Res<ScreenshotAt>, mut commands: Comma
                     exit.write(AppExit::Success);
                 },
             );
+    }
+}
+
+/// Screenshot mode with `SPRINGWATER_FOLLOW=1`: the ball cruises, the window following.
+#[derive(Resource)]
+struct Cruise;
+
+/// Makes the window follow the ball and pushes the ball to the camera's right, as D does
+/// but some 40 times harder: about 80 units per second, twice the ripple speed, so that it
+/// leaves a V-shaped wake.
+fn cruise(
+    cameras: Query<&Transform, With<Camera3d>>,
+    mut balls: Query<(Entity, &mut Buoyant, Has<WaterFollow>), With<Ball>>,
+    mut commands: Commands,
+) {
+    let Ok(camera) = cameras.single() else {
+        return;
+    };
+    let right = (camera.right().as_vec3() * Vec3::new(1.0, 0.0, 1.0)).normalize_or_zero();
+    for (ball, mut buoyant, following) in &mut balls {
+        if !following {
+            commands.entity(ball).insert(WaterFollow::default());
+        }
+        let push = right * buoyant.mass * 500.0;
+        buoyant.force += push;
     }
 }
 
@@ -141,14 +179,16 @@ fn setup(
     mut materials: ResMut<Assets<StandardMaterial>>,
     mut images: ResMut<Assets<Image>>,
     buoyancy: Res<BuoyancySettings>,
+    cruise: Option<Res<Cruise>>,
 ) {
+    let cruising = cruise.is_some();
     let bottom = images.add(tiles());
     let (w, d) = ((COLS - 1) as f32, (ROWS - 1) as f32);
     // The water: its mesh and `UV_0` come from the plugin; the material samples the
     // bottom's tiles at the refracted coordinates, tinted like water.
     commands.spawn((
         Water::with_size(COLS, ROWS).with_depth(6.0),
-        WaterDisturbance::new(Toggled(Rain::new(RAIN, 7), true)),
+        WaterDisturbance::new(Toggled(Rain::new(RAIN, 7), !cruising)),
         MeshMaterial3d(materials.add(StandardMaterial {
             base_color: Color::srgb(0.55, 0.8, 0.95),
             base_color_texture: Some(bottom),
@@ -172,7 +212,8 @@ fn setup(
         })),
         Transform::from_xyz(-10.0, 4.0, 5.0),
     ));
-    // The deck around the pool: four stone slabs whose tops stand a little above the water.
+    // The deck around the pool: four stone slabs whose tops stand a little above the water
+    // (hidden when the ball cruises: the window leaves the pool and would pass under it).
     let stone = materials.add(StandardMaterial {
         base_color: Color::srgb(0.5, 0.47, 0.42),
         perceptual_roughness: 0.9,
@@ -190,6 +231,11 @@ fn setup(
             Mesh3d(meshes.add(Cuboid::from_corners(min, max))),
             MeshMaterial3d(stone.clone()),
             Transform::from_translation((min + max) / 2.0),
+            if cruising {
+                Visibility::Hidden
+            } else {
+                Visibility::Inherited
+            },
         ));
     }
     // A low sun behind the pool, so that the ripples glint towards the camera.
@@ -200,6 +246,8 @@ fn setup(
         },
         Transform::from_xyz(-30.0, 30.0, -45.0).looking_at(Vec3::ZERO, Vec3::Y),
     ));
+    // Further and higher when the ball cruises, to see the whole window and the wake.
+    let (distance, pitch) = if cruising { (150.0, 0.8) } else { (85.0, 0.6) };
     commands.spawn((
         Camera3d::default(),
         Transform::default(),
@@ -215,9 +263,9 @@ fn setup(
         },
         Orbit {
             focus: Vec3::new(-4.0, 0.0, 0.0),
-            distance: 85.0,
+            distance,
             yaw: 0.6,
-            pitch: 0.6,
+            pitch,
         },
     ));
 }
