@@ -198,7 +198,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut frames: Vec<Vec<u8>> = Vec::new();
     let mut histogram = Histogram::new();
     let mut png_time = Duration::ZERO;
-    let raindrops = model.with_threads(|| {
+    let (raindrops, window) = model.with_threads(|| {
         animate(
             &model,
             &o,
@@ -297,6 +297,13 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     if o.floaters > 0 {
         say!("floaters     {} balls", o.floaters);
     }
+    if o.follow {
+        say!(
+            "window       moved {} columns and {} rows with the ball",
+            window[0],
+            window[1]
+        );
+    }
     say!(
         "per frame    simulation {:.2} ms, normals {:.2} ms, LOD {:.2} ms, refraction {:.2} ms, drawing {:.2} ms",
         ms(clock.simulation),
@@ -345,7 +352,8 @@ struct Clock {
 }
 
 /// Builds the surface and its disturbances, runs the warm-up steps, then simulates and
-/// draws every frame in order, handing each to `each`. Returns the raindrops that fell.
+/// draws every frame in order, handing each to `each`. Returns the raindrops that fell and
+/// the whole cells the window travelled (`Surface::origin_cells`).
 fn animate(
     model: &ModelArgs,
     o: &Options,
@@ -353,7 +361,7 @@ fn animate(
     camera: &Camera,
     clock: &mut Clock,
     mut each: impl FnMut(usize, &Frame) -> CliResult<()>,
-) -> CliResult<u64> {
+) -> CliResult<(u64, [i64; 2])> {
     let mut surface = model.surface()?;
     // Every pass starts from the same LOD state, so passes draw the same frames.
     renderer.reset().map_err(|e| e.to_string())?;
@@ -437,7 +445,7 @@ fn animate(
         clock.stages += renderer.times();
         each(k, renderer.frame())?;
     }
-    Ok(rain.fallen())
+    Ok((rain.fallen(), surface.origin_cells()))
 }
 
 /// Stripe colours of the floating balls, linear RGB.

@@ -149,6 +149,19 @@ fn render_follow_draws_a_ball_crossing_open_water() {
     );
     let frames = std::fs::read_dir(&dir).unwrap().count();
     assert_eq!(frames, 40);
+    // The ball crosses 2.5 cells per unit of model time along +x, one cell a step of 0.4:
+    // 60 warm-up steps and 39 frames of 3 are 177 cells, and the window follows all of it
+    // but the 16 cells from the ball's start to the window's middle and its dead zone.
+    let report = String::from_utf8_lossy(&out.stdout);
+    let line = report
+        .lines()
+        .find(|l| l.starts_with("window"))
+        .unwrap_or_else(|| panic!("no window line in\n{report}"));
+    let numbers: Vec<i64> = line
+        .split_whitespace()
+        .filter_map(|w| w.parse().ok())
+        .collect();
+    assert!(numbers[0] >= 150 && numbers[1] == 0, "{line}");
     // The last frame differs from the first (the water and its wake moved with the ball).
     let first = std::fs::read(dir.join("frame_0000.png")).unwrap();
     let last = std::fs::read(dir.join("frame_0039.png")).unwrap();
