@@ -1,10 +1,10 @@
 //! # springwater
 //!
 //! A water surface for games and animation, simulated on the CPU as a mass-spring
-//! lattice (Markhichev & Soupikov): a `cols × rows` grid of nodes joined by springs on
-//! every grid edge and both diagonals, moved by `m x'' + γ x' + f = f_ext` with
-//! symplectic Euler at a near-critical timestep. The defaults (h 1, m 4, c 7, γ 0.05,
-//! Δt 0.4) are the ones that presentation gives, called "the seed's" in these docs.
+//! lattice (from Markhichev & Soupikov's presentation on water surface animation, "the
+//! seed" in these docs): a `cols × rows` grid of nodes joined by springs on every grid
+//! edge and both diagonals, moved by `m x'' + γ x' + f = f_ext` with symplectic Euler at
+//! a near-critical timestep. The defaults (h 1, m 4, c 7, γ 0.05, Δt 0.4) are the seed's.
 //!
 //! ```
 //! use springwater::{Params, Surface};

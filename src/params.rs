@@ -194,41 +194,49 @@ impl Params {
     }
 
     /// With grid step `spacing` ([`Params::spacing`]).
+    #[must_use]
     pub fn with_spacing(self, spacing: f32) -> Self {
         Self { spacing, ..self }
     }
 
     /// With nodal mass `mass` ([`Params::mass`]).
+    #[must_use]
     pub fn with_mass(self, mass: f32) -> Self {
         Self { mass, ..self }
     }
 
     /// With spring coefficient `stiffness` ([`Params::stiffness`]).
+    #[must_use]
     pub fn with_stiffness(self, stiffness: f32) -> Self {
         Self { stiffness, ..self }
     }
 
     /// With viscosity `viscosity` ([`Params::viscosity`]).
+    #[must_use]
     pub fn with_viscosity(self, viscosity: f32) -> Self {
         Self { viscosity, ..self }
     }
 
     /// With timestep `dt` ([`Params::dt`]).
+    #[must_use]
     pub fn with_dt(self, dt: f32) -> Self {
         Self { dt, ..self }
     }
 
     /// With rest length ratio `rest_ratio` ([`Params::rest_ratio`]).
+    #[must_use]
     pub fn with_rest_ratio(self, rest_ratio: f32) -> Self {
         Self { rest_ratio, ..self }
     }
 
     /// With edge condition `boundary` ([`Params::boundary`]).
+    #[must_use]
     pub fn with_boundary(self, boundary: Boundary) -> Self {
         Self { boundary, ..self }
     }
 
     /// With uniform acceleration `acceleration` ([`Params::acceleration`]).
+    #[must_use]
     pub fn with_acceleration(self, acceleration: [f32; 3]) -> Self {
         Self {
             acceleration,
@@ -237,6 +245,7 @@ impl Params {
     }
 
     /// With `time_scale` model time units per second ([`Params::time_scale`]).
+    #[must_use]
     pub fn with_time_scale(self, time_scale: f32) -> Self {
         Self { time_scale, ..self }
     }

@@ -520,3 +520,27 @@ fn library_errors_do_not_speak_command_line_flags() {
         assert!(!m.contains("--"), "{m}");
     }
 }
+
+#[test]
+fn edited_plain_data_is_judged_on_its_values() {
+    // The public arrays of a `Snapshot` may be edited; the private bounds and flags follow
+    // them when it becomes a surface again.
+    let calm = Surface::new(Params::with_size(12, 10)).unwrap();
+    let mut snap = calm.snapshot();
+    snap.mass[40] = 3.8; // lighter than any mass set so far, still a safe timestep
+    snap.forces[1][41] = -0.5; // a force where none was pending
+    snap.viscosity[42] = 0.1; // more than any viscosity set so far
+    let s = Surface::from_snapshot(snap.clone()).unwrap();
+    assert_eq!(s.masses()[40], 3.8);
+    assert_eq!(s.forces()[1][41], -0.5);
+    assert!(s.critical_dt() < calm.critical_dt());
+    // The force is applied by the next step, as a pending force is.
+    let mut stepped = s;
+    stepped.step().unwrap();
+    assert!(stepped.velocities()[1][41] < 0.0);
+
+    // An edit the timestep cannot take is still refused.
+    snap.mass[40] = 0.5;
+    let err = Surface::from_snapshot(snap).unwrap_err();
+    assert!(matches!(err, Error::Snapshot(_)), "{err}");
+}

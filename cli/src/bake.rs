@@ -154,10 +154,12 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut steps = 0usize;
     // A bake owes every frame its whole time: the game's cap on steps per frame (which
     // drops what a stall owes) would cut frames short. Raised to the most `advance` takes;
-    // a frame that needs more is refused here, before any step.
+    // a frame that could need more (its steps, plus one the clock's carried fraction may
+    // complete) is refused here, before any step.
+    let frame = 1.0f32 / fps;
     let per_frame =
-        (f64::from(surface.params().time_scale) / f64::from(fps) / f64::from(dt)).ceil();
-    if per_frame > Surface::MAX_SUBSTEPS as f64 {
+        (f64::from(frame) * f64::from(surface.params().time_scale) / f64::from(dt)).ceil();
+    if per_frame + 1.0 > Surface::MAX_SUBSTEPS as f64 {
         return Err(format!(
             "bake: a frame of 1/{fps} s is {per_frame} steps of dt {dt}, more than the {} one frame may take: raise --fps",
             Surface::MAX_SUBSTEPS
@@ -206,6 +208,12 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         // The warm-up stops at Ctrl-C too; the first frame then reports the interruption.
         let hidden = indicatif::ProgressBar::hidden();
         crate::simulate::run_steps_until(&mut surface, model.steps, &interrupted, &hidden)?;
+        if interrupted.load(std::sync::atomic::Ordering::Relaxed) {
+            return Err(format!(
+                "interrupted in the {} warm-up steps, before frame 1; nothing was written",
+                model.steps
+            ));
+        }
         let mut shading = Shading::new(uv_eye, optics);
         shading.update(&surface)?;
         // The triangles: full detail, or for a .glb baked for an eye, that eye's LOD.
@@ -248,10 +256,16 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                 ));
             }
             let step = match (&mut rain, &mut wake) {
-                (None, None) => surface.advance(1.0 / fps),
-                _ => surface.advance_with(1.0 / fps, &mut (&mut rain, &mut wake)),
+                (None, None) => surface.advance(frame),
+                _ => surface.advance_with(frame, &mut (&mut rain, &mut wake)),
             };
             steps += step.map_err(|e| format!("frame {k}: {e}"))?;
+            // Checked above, so never: a frame whose time was cut is not the frame asked for.
+            if surface.dropped_seconds() > 0.0 {
+                return Err(format!(
+                    "frame {k}: the clock dropped time; lower --dt or raise --fps"
+                ));
+            }
             shading.update(&surface)?;
             writer
                 .frame(k, &shading.frame(&surface))

@@ -10,7 +10,8 @@
 // free it with `sw_surface_destroy`.
 typedef struct SwSurface SwSurface;
 
-// What happens at the edge of the grid (`SW_BOUNDARY_*`).
+// What happens at the edge of the grid (`SW_BOUNDARY_*`; parameters read back with an
+// edge this version of the C ABI has no code for, which it cannot make, would say -1).
 typedef int32_t SwBoundary;
 
 // The model's parameters; `sw_params_default()` gives the seed's defaults.
@@ -133,7 +134,8 @@ typedef struct SwEnergy {
   double total;
 } SwEnergy;
 
-// The shape of a floating body (`SW_SHAPE_*`).
+// The shape of a floating body (`SW_SHAPE_*`; a body read back with a shape this version
+// of the C ABI has no code for, which it cannot make, would say -1).
 typedef int32_t SwShape;
 
 // A floating body: `sw_floater_sphere()` and `sw_floater_box()` make one at rest with the

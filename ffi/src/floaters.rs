@@ -9,7 +9,8 @@ use crate::{input, out_ref, read_into, write_sized, Input, SwSurface};
 use glam::Vec3;
 use springwater::{Buoyancy, Floater, FloaterId, Shape};
 
-/// The shape of a floating body (`SW_SHAPE_*`).
+/// The shape of a floating body (`SW_SHAPE_*`; a body read back with a shape this version
+/// of the C ABI has no code for, which it cannot make, would say -1).
 pub type SwShape = i32;
 /// A ball of `SwFloater::radius`.
 pub const SW_SHAPE_SPHERE: SwShape = 0;

@@ -52,7 +52,8 @@ use springwater::refraction::RefractionParams;
 use springwater::{Boundary, Overflow, Params, SimdLevel, Surface};
 use std::ffi::c_char;
 
-/// What happens at the edge of the grid (`SW_BOUNDARY_*`).
+/// What happens at the edge of the grid (`SW_BOUNDARY_*`; parameters read back with an
+/// edge this version of the C ABI has no code for, which it cannot make, would say -1).
 pub type SwBoundary = i32;
 /// The outer ring of nodes is pinned: a pool with walls.
 pub const SW_BOUNDARY_PINNED: SwBoundary = 0;

@@ -27,6 +27,7 @@ pub struct LodParams {
 
 impl LodParams {
     /// With patches of `patch_cells` cells ([`LodParams::patch_cells`]).
+    #[must_use]
     pub fn with_patch_cells(self, patch_cells: usize) -> Self {
         Self {
             patch_cells,
@@ -35,6 +36,7 @@ impl LodParams {
     }
 
     /// With full detail within `first_range` ([`LodParams::first_range`]).
+    #[must_use]
     pub fn with_first_range(self, first_range: f32) -> Self {
         Self {
             first_range,
@@ -43,11 +45,13 @@ impl LodParams {
     }
 
     /// With `levels` levels ([`LodParams::levels`]; 1 is the full grid everywhere).
+    #[must_use]
     pub fn with_levels(self, levels: u32) -> Self {
         Self { levels, ..self }
     }
 
     /// With `hysteresis` ([`LodParams::hysteresis`]).
+    #[must_use]
     pub fn with_hysteresis(self, hysteresis: f32) -> Self {
         Self { hysteresis, ..self }
     }

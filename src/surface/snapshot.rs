@@ -42,7 +42,9 @@ const FLAG_FORCES_PENDING: u32 = 1;
 ///
 /// Engines that serialise their own way convert to the plain-data [`Snapshot`] with
 /// [`Surface::snapshot`] and back with [`Surface::from_snapshot`]; with the `serde` feature
-/// it implements `Serialize` and `Deserialize`. Both paths run the same validation.
+/// it implements `Serialize` and `Deserialize`. Both paths run the same validation; the plain
+/// data's arrays may be edited first (its bounds and flags follow them, see
+/// [`Surface::from_snapshot`]).
 ///
 /// # Format (version 4)
 ///
@@ -511,6 +513,26 @@ impl Snapshot {
         })
     }
 
+    /// Widens the derived state to what the arrays hold: the mass, stiffness and viscosity
+    /// bounds to cover every node and spring, forces pending when any is stored, the next
+    /// floater id above every body's. (Non-finite values are left for validation.)
+    fn cover_the_arrays(&mut self) {
+        self.min_mass = self.mass.iter().fold(self.min_mass, |a, &m| a.min(m));
+        self.max_viscosity = self
+            .viscosity
+            .iter()
+            .fold(self.max_viscosity, |a, &g| a.max(g));
+        self.max_stiffness = self
+            .stiffness
+            .iter()
+            .flatten()
+            .fold(self.max_stiffness, |a, &c| a.max(c));
+        self.forces_pending |= self.forces.iter().flatten().any(|f| f.to_bits() != 0);
+        if let Some(last) = self.floaters.iter().map(|(id, _)| id.0).max() {
+            self.next_floater_id = self.next_floater_id.max(last.saturating_add(1));
+        }
+    }
+
     /// Checks every invariant a surface relies on. See [`Surface::from_snapshot`].
     pub fn validate(&self) -> Result<()> {
         let p = &self.params;
@@ -806,7 +828,20 @@ impl Surface {
 
     /// A surface from a snapshot, after checking every invariant the engine relies on
     /// (see the [`Snapshot`] docs). Errors are [`Error::Snapshot`].
-    pub fn from_snapshot(snap: Snapshot) -> Result<Surface> {
+    ///
+    /// The snapshot's public arrays may have been edited: its private derived state (the
+    /// bounds behind `critical_dt`, whether forces are pending, the next floater id) is
+    /// first widened to cover them, so an edit is judged on its values (a lighter node
+    /// must still leave the timestep below the critical one) rather than refused for
+    /// disagreeing with state the caller cannot set. The binary format is checked as
+    /// stored ([`Surface::from_bytes`]).
+    pub fn from_snapshot(mut snap: Snapshot) -> Result<Surface> {
+        snap.cover_the_arrays();
+        Surface::from_checked(snap)
+    }
+
+    /// [`Surface::from_snapshot`] without widening the derived state.
+    fn from_checked(snap: Snapshot) -> Result<Surface> {
         snap.validate()?;
         let p = snap.params;
         let n = p.cols * p.rows;
@@ -864,7 +899,7 @@ impl Surface {
 
     /// A surface from a binary snapshot: exactly the bytes [`Surface::to_bytes`] wrote.
     pub fn from_bytes(bytes: &[u8]) -> Result<Surface> {
-        Surface::from_snapshot(Snapshot::from_bytes(bytes)?)
+        Surface::from_checked(Snapshot::from_bytes(bytes)?)
     }
 
     /// Reads one snapshot from `r` (exactly its bytes; data after it stays unread).
