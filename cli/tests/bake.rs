@@ -378,7 +378,9 @@ fn the_khronos_validator_finds_no_error_and_no_warning() {
     // `npm install --prefix cli/tests/gltf gltf-validator` puts it where this looks.
     let here = Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/gltf");
     if !here.join("node_modules/gltf-validator").exists() {
-        skipped("gltf-validator is not installed (npm install --prefix cli/tests/gltf gltf-validator)");
+        skipped(
+            "gltf-validator is not installed (npm install --prefix cli/tests/gltf gltf-validator)",
+        );
         return;
     }
     let glb = scratch("validate.glb");
