@@ -10,6 +10,8 @@
 //! absorbing frame at its new place) meets, every node of the overlap is the same
 //! computation in both runs and must give the same bits.
 
+mod common;
+
 #[cfg(feature = "parallel")]
 use std::sync::Arc;
 
@@ -385,31 +387,13 @@ fn snapshots_keep_the_origin() {
     v3[8..12].copy_from_slice(&3u32.to_le_bytes());
     let len = v3.len() as u64;
     v3[16..24].copy_from_slice(&len.to_le_bytes());
-    let body = v3.len() - 4;
-    let crc = crc32(&v3[..body]);
-    v3[body..].copy_from_slice(&crc.to_le_bytes());
+    common::fix_crc(&mut v3);
     let old = Surface::from_bytes(&v3).unwrap();
     assert_eq!(old.origin_cells(), [0, 0]);
     assert_eq!(
         old.positions(),
         Surface::from_bytes(&fresh).unwrap().positions()
     );
-}
-
-/// CRC-32 (IEEE), bit by bit: the snapshot's checksum.
-fn crc32(bytes: &[u8]) -> u32 {
-    let mut crc = !0u32;
-    for &b in bytes {
-        crc ^= b as u32;
-        for _ in 0..8 {
-            crc = if crc & 1 != 0 {
-                (crc >> 1) ^ 0xEDB8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
 }
 
 #[test]
