@@ -441,3 +441,104 @@ fn the_lod_follows_the_window() {
     stay.update(&s.mesh_view(), eye);
     assert_ne!(stay.indices(), &before[..]);
 }
+
+/// A calm window `cells` away from the water frame's origin, then a drop at `(64, 56)` of
+/// the window, stepped 40 times.
+fn far_run(cells: [i32; 2], rebase: bool) -> Surface {
+    let mut p = Params::with_size(128, 112);
+    p.boundary = Boundary::Absorbing { width: 8 };
+    let mut s = Surface::new(p).unwrap();
+    s.shift(cells[0], cells[1]).unwrap();
+    if rebase {
+        s.rebase(cells[0] as i64, cells[1] as i64).unwrap();
+    }
+    let [ox, oz] = s.origin();
+    s.drop_at(ox + 64.0, oz + 56.0, 1.0, 2.0).unwrap();
+    s.step_n(40).unwrap();
+    s
+}
+
+#[test]
+fn a_far_window_rebased_to_the_origin_steps_like_a_fresh_one() {
+    let far = [100_000, -70_000];
+    let near = far_run([0, 0], false);
+    let rebased = far_run(far, true);
+    assert_eq!(rebased.origin_cells(), [0, 0]);
+    assert_eq!(rebased.positions(), near.positions());
+    assert_eq!(rebased.velocities(), near.velocities());
+    // Without the rebase, the same water 10^5 units out has coarse horizontal coordinates
+    // (0.008 units apart), its spring forces lose digits, and its heights drift.
+    let unrebased = far_run(far, false);
+    let drift = (unrebased.positions()[1].iter())
+        .zip(near.positions()[1])
+        .map(|(a, b)| (a - b).abs())
+        .fold(0.0f32, f32::max);
+    assert!(
+        drift > 1e-4,
+        "far from the origin the heights drift by only {drift:e}"
+    );
+}
+
+#[test]
+fn a_rebase_moves_the_frame_and_nothing_else() {
+    let mut s = open_water();
+    s.add_floater(Floater::sphere(1.5, 3.0, [60.0, 0.0, 52.0]))
+        .unwrap();
+    s.step_n(12).unwrap();
+    s.shift(5, 3).unwrap();
+    let before = s.clone();
+    s.rebase(40, -20).unwrap();
+    assert_eq!(s.origin_cells(), [5 - 40, 3 + 20]);
+    assert_eq!(s.origin(), [-35.0, 23.0]);
+    assert_eq!(s.positions()[1], before.positions()[1], "heights");
+    assert_eq!(s.velocities(), before.velocities(), "velocities");
+    // Horizontal coordinates move by exactly (−40, +20) here: h is 1 and every value is
+    // small, so re-expressing a node from its rest place rounds nothing.
+    for k in [0, 2] {
+        let d = if k == 0 { 40.0 } else { -20.0 };
+        let (new, old) = (&s.positions()[k], &before.positions()[k]);
+        for i in 0..s.node_count() {
+            assert_eq!(new[i], old[i] - d, "coordinate {k} of node {i}");
+        }
+    }
+    let (a, b) = (
+        s.floaters().next().unwrap().1,
+        before.floaters().next().unwrap().1,
+    );
+    assert_eq!(
+        a.position.to_array(),
+        [b.position.x - 40.0, b.position.y, b.position.z + 20.0]
+    );
+    assert_eq!(a.velocity, b.velocity);
+    let p = b.position;
+    assert_eq!(
+        s.height_at(p.x - 40.0, p.z + 20.0).unwrap().to_bits(),
+        before.height_at(p.x, p.z).unwrap().to_bits()
+    );
+    // The window and everything in it keep working in the new frame, and back.
+    s.step().unwrap();
+    s.rebase(-40, 20).unwrap();
+    assert_eq!(s.origin_cells(), [5, 3]);
+    assert!(s.positions()[1].iter().all(|y| y.is_finite()));
+}
+
+#[test]
+fn a_rebase_out_of_range_changes_nothing() {
+    let mut s = open_water();
+    s.step_n(3).unwrap();
+    s.shift(2, 2).unwrap();
+    let before = s.clone();
+    for (dc, dr) in [
+        (i64::MAX, 0),
+        (0, i64::MIN),
+        (-16_000_000, 0),
+        (0, 15_728_643),
+    ] {
+        let err = s.rebase(dc, dr).unwrap_err().to_string();
+        assert!(err.contains("rebase"), "{err}");
+        assert_eq!(s.positions(), before.positions());
+        assert_eq!(s.origin_cells(), before.origin_cells());
+    }
+    s.rebase(0, 0).unwrap();
+    assert_eq!(s.positions(), before.positions());
+}

@@ -483,6 +483,19 @@ pub unsafe extern "C" fn sw_surface_origin(surface: *const SwSurface, out: *mut 
     })
 }
 
+/// A floating origin: moves the frame the surface speaks `dcols` cells along +x and `drows`
+/// along +z, for a host that moved its own world's origin (round the host's offset to whole
+/// cells and put the remainder into the water's transform). Every node position, floater
+/// and world-unit call is afterwards measured from the new point, so coordinates far from
+/// the old origin become small again and keep full `float` resolution; heights and
+/// velocities do not change, and `sw_surface_origin` reads `spacing` times the cells less.
+/// `SW_ERROR_INVALID_ARGUMENT`, with nothing changed, if the window would be more than
+/// 15,728,640 cells from the new origin.
+#[no_mangle]
+pub extern "C" fn sw_surface_rebase(surface: *mut SwSurface, dcols: i64, drows: i64) -> SwStatus {
+    guard(|| handle::with(surface, |w| Ok(w.surface.rebase(dcols, drows)?)))
+}
+
 /// Adds the force `(fx, fy, fz)` at world `(x, z)` for the next step, spread onto the
 /// four nodes around the point with the weights `sw_surface_height_at` reads with: what
 /// a floating body feels and what it pushes back agree.

@@ -25,22 +25,29 @@
 //! forces see the same differences of the same numbers), and a shift followed by the
 //! opposite shift the same as none.
 //!
-//! # Precision far from the origin
+//! # Precision far from the origin: a floating origin
 //!
 //! Heights (`y`) keep full `f32` precision anywhere, since they stay near 0. Horizontal
 //! coordinates have the resolution of `f32` at their magnitude: about `|x|·6·10⁻⁸`, so
 //! 0.008 units at 10⁵ units from the water frame's origin, where a node's horizontal
-//! sway (a few hundredths of a cell with the seed's parameters) is resolved only coarsely.
-//! Windows within about 10⁴ cells of the frame's origin are unaffected in practice. An
-//! open world larger than that keeps a floating origin, as engines do for every other
-//! object: when the host rebases its world, it starts a fresh surface in the new frame
-//! near `0` (the water there is calm or comes from its far field through
-//! [`Surface::shift_with`]; a snapshot keeps the old frame's coordinates, so it does not
-//! rebase) — the mesh's coordinates are then small again and the host's transform, in
-//! `f64` or in its own rebased frame, carries the rest. The crate has no in-place rebase
-//! yet: moving every stored coordinate by a whole number of cells rounds, so it would end
-//! the bit-for-bit equality with an unmoved run. Shifts never round anything: the window may travel up to
-//! [`MAX_ORIGIN_CELLS`] cells, the range in which every cell index is an exact `f32`.
+//! sway (a few hundredths of a cell with the seed's parameters) is resolved only coarsely
+//! and the spring forces, which see differences of those coordinates, lose digits with it.
+//! Windows within about 10⁴ cells of the frame's origin are unaffected in practice.
+//!
+//! An open world larger than that keeps a floating origin, as engines do for every other
+//! object: when the camera has gone far, the host moves its world's origin near the camera
+//! and every object's coordinates by the same offset. The water takes part with
+//! [`Surface::rebase`]: it moves the water frame by whole cells (the host rounds its offset
+//! to cells and leaves the remainder in the water's transform), re-expressing every node,
+//! floater and query in the new frame, so the mesh's coordinates are small again and keep
+//! their full resolution. A rebase changes no height or velocity. Positions change by at
+//! most the rounding of their old magnitude, and a node at rest lands exactly on its new
+//! rest place. A window rebased to the origin after travelling steps as a fresh one near
+//! the origin would, bit for bit (`tests/window.rs`); without the rebase the same run drifts.
+//! Shifts never round anything: the window may travel up to [`MAX_ORIGIN_CELLS`] cells
+//! from the frame's origin, the range in which every cell index is an exact `f32`. Things
+//! the host holds in the water frame (a [`Wake`](crate::disturb::Wake)'s path, a point it follows,
+//! its camera for the LOD and refraction) are the host's to move by the same offset.
 //!
 //! # What moves and what stays
 //!
@@ -539,6 +546,76 @@ impl Surface {
         shifted_origin(self.window_origin, shift[0], shift[1])?;
         self.shift(shift[0], shift[1])?;
         Ok(shift)
+    }
+
+    /// Moves the water frame itself `dcols` cells along +x and `drows` along +z, for a host
+    /// with a floating origin: the water stays where it is in the world, but every
+    /// coordinate the surface stores or hands out (node positions, floaters, queries, the
+    /// mesh) is now measured from a point `(dcols·h, drows·h)` further along. Afterwards
+    /// [`Surface::origin_cells`] is smaller by `[dcols, drows]`, heights and velocities are
+    /// unchanged bit for bit, and the host moves the water's transform by the same
+    /// `(dcols·h, 0, drows·h)` (plus, if its own rebase was not a whole number of cells, the
+    /// remainder). See [the module docs](crate::window) for when and why.
+    ///
+    /// Each node is re-expressed as its rest place in the new frame plus its displacement
+    /// from its old rest place (an exact difference), so a node at rest lands exactly on its
+    /// new rest place, and a node near the new frame's origin gets the finer resolution of
+    /// the smaller numbers. Refused, with nothing changed, if the window would end up past
+    /// [`MAX_ORIGIN_CELLS`] from the new origin.
+    ///
+    /// ```
+    /// use springwater::{Params, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(64, 64))?;
+    /// water.shift(100_000, 0)?;                  // far out: x near 10^5
+    /// water.drop_at(100_032.0, 32.0, 0.5, 3.0)?;
+    /// let before = water.height_at(100_032.0, 32.0)?;
+    /// water.rebase(100_000, 0)?;                 // the host's floating origin moved too
+    /// assert_eq!(water.origin_cells(), [0, 0]);
+    /// assert_eq!(water.height_at(32.0, 32.0)?, before);
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn rebase(&mut self, dcols: i64, drows: i64) -> Result<()> {
+        let old = self.window_origin;
+        let mut new = [0i64; 2];
+        for (k, (d, name)) in [(dcols, "rebase columns"), (drows, "rebase rows")]
+            .into_iter()
+            .enumerate()
+        {
+            new[k] = old[k]
+                .checked_sub(d)
+                .filter(|v| v.abs() <= MAX_ORIGIN_CELLS)
+                .ok_or(Error::InvalidParam {
+                    name,
+                    value: d as f64,
+                    expected: "a rebase that leaves the window within 15,728,640 cells \
+                               (2^24 - 2^20) of the new origin",
+                })?;
+        }
+        if new == old {
+            return Ok(());
+        }
+        let grid = self.grid();
+        let h = self.params.spacing;
+        // Rest coordinate of column or row `c` of a window at origin `o` (the same
+        // expression as everywhere else, so a calm node lands on it exactly).
+        let rest = |c: usize, o: i64| (c as i64 + o) as f32 * h;
+        let [x, _, z] = &mut self.state.pos;
+        for r in 0..grid.rows {
+            let (z_old, z_new) = (rest(r, old[1]), rest(r, new[1]));
+            let row = r * grid.cols..(r + 1) * grid.cols;
+            for (c, (x, z)) in x[row.clone()].iter_mut().zip(&mut z[row]).enumerate() {
+                *x = rest(c, new[0]) + (*x - rest(c, old[0]));
+                *z = z_new + (*z - z_old);
+            }
+        }
+        let (dx, dz) = (dcols as f64 * h as f64, drows as f64 * h as f64);
+        for (_, body) in &mut self.floaters.bodies {
+            body.position.x = (body.position.x as f64 - dx) as f32;
+            body.position.z = (body.position.z as f64 - dz) as f32;
+        }
+        self.window_origin = new;
+        Ok(())
     }
 
     /// Half the side of [`Surface::follow`]'s dead zone, in cells: an eighth of the

@@ -610,6 +610,17 @@ static void moving_window(void) {
     FAILS(SW_ERROR_NULL_POINTER, sw_surface_shift(NULL, 1, 0));
     OK(sw_surface_origin(w, origin));
     CHECK(origin[0] == 20.0f && origin[1] == -2.0f);
+    /* A floating origin: the frame moves by (20, -2) cells, the water does not. */
+    OK(sw_surface_height_at(w, 30.5f, 14.25f, &before));
+    OK(sw_surface_rebase(w, 20, -2));
+    OK(sw_surface_origin(w, origin));
+    CHECK(origin[0] == 0.0f && origin[1] == 0.0f);
+    OK(sw_surface_height_at(w, 10.5f, 16.25f, &after));
+    CHECK(float_bits(before) == float_bits(after));
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_rebase(w, INT64_MIN, 0));
+    FAILS(SW_ERROR_NULL_POINTER, sw_surface_rebase(NULL, 1, 0));
+    OK(sw_surface_origin(w, origin));
+    CHECK(origin[0] == 0.0f && origin[1] == 0.0f);
     sw_surface_destroy(w);
 }
 
