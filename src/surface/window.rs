@@ -70,20 +70,33 @@
 //!
 //! # Moving rows, not a ring buffer
 //!
-//! A shift copies the overlap into place with `copy_within` on every per-node array that
-//! holds more than its positional default (positions, velocities; forces only while some
-//! are pending; mass, viscosity, pins and spring tables only when a caller made them
-//! non-uniform), then fills the incoming strip. Wrap-around (ring-buffer) addressing would
-//! make the shift free, but the engine streams whole rows through SIMD lanes with
-//! neighbours one lane over: a seam inside a row would cut every row the window crosses,
-//! and every kernel, query and view would pay for the indirection on every step and
-//! frame. Moving rows costs one pass over the six position and velocity arrays (48 bytes
-//! read and written per node, against a step's 104) in the common case (no pending forces,
-//! uniform parameters), the arrays as tasks on the host's threads. Measured with
-//! `benches/window.rs` (AMD EPYC Zen 4, 2 threads): 0.57–0.75 of one step at 512², about
-//! one step at 1024² (`docs/performance.md`). Folding the shift into the next step's reads
-//! (the step writes a second buffer anyway) would make it free without a seam, at the
-//! price of every kernel's addressing.
+//! A shift copies the overlap into place on every per-node array that holds more than its
+//! positional default (positions and velocities; forces only while some are pending;
+//! mass, viscosity, pins and spring tables only when a caller made them non-uniform), one
+//! `copy_within` per row (one for all rows when only rows move), then fills the incoming
+//! strip. The arrays move as tasks on the host's threads.
+//!
+//! Three ways were weighed, by what they cost per node and what they cost everything else:
+//!
+//! - **Moving rows** (this): 24 bytes read and 24 written per node, the same as the
+//!   step's own floor (it reads and writes positions and velocities), so a shift costs a
+//!   fraction of a step and nothing at all between shifts. Measured with
+//!   `benches/window.rs` (AMD EPYC Zen 5, 2 threads, `docs/performance.md`): a shift of 1,
+//!   8 or 64 cells along both axes takes 0.33–0.43 of one step at 512² and 0.40–0.47 at
+//!   1024², within 1.2–2× of six plain `copy_within`s of the same arrays (`floor`).
+//! - **A ring buffer** (wrap-around addressing, as clipmaps do) makes the shift free, but
+//!   the engine streams whole rows through SIMD lanes with neighbours one lane over: a
+//!   seam inside a row would cut every row the window crosses, and every kernel, query,
+//!   mesh view and vertex buffer would pay for the indirection on every step and frame,
+//!   which the zero-copy `MeshView` (row-major slices) cannot express.
+//! - **Folding the shift into the next step's reads** (the step writes a second buffer
+//!   anyway) would save the copy without a seam, but the nodes next to the incoming strip
+//!   need the strip's values as neighbours before the step, and the strip has no slots of
+//!   its own in the front buffer: every kernel would need a second source for its edge
+//!   lanes. For a cost that is already under half a step, and paid once per shift (a
+//!   window following a ship at 10 cells per second shifts a few times a second), that
+//!   complexity is not worth it.
+//!
 
 use super::Surface;
 use crate::absorb::Frame;
@@ -195,31 +208,19 @@ impl Move {
             buf.copy_within(src..src + kept_rows * cols, dst);
             return;
         }
-        // Rows go through a small buffer in pieces: a direct copy whose source and
-        // destination lie a multiple of 4 KiB apart plus a few bytes (a shift of one
-        // column on a 1024-wide grid) makes every load wait on the store before it
-        // (4K aliasing), which measured three times slower.
-        let mut piece = [T::default(); 256];
-        let mut copy_row = |r: usize| {
+        // One `copy_within` per row. (Sending rows through a small buffer in L1, against
+        // the 4K aliasing of a source and destination a multiple of 4 KiB plus a few bytes
+        // apart, cost 1.5 times as much on Zen 5 and gained nothing: docs/performance.md.)
+        let copy_row = |r: usize| {
             if let Some(src_row) = r.checked_add_signed(self.dr).filter(|&s| s < rows) {
-                let dst = r * cols + kept.start;
                 let src = src_row * cols + kept.start.wrapping_add_signed(self.dc);
-                let order: Box<dyn Iterator<Item = usize>> = if self.dc > 0 {
-                    Box::new((0..kept.len()).step_by(piece.len()))
-                } else {
-                    Box::new((0..kept.len()).step_by(piece.len()).rev())
-                };
-                for at in order {
-                    let len = piece.len().min(kept.len() - at);
-                    piece[..len].copy_from_slice(&buf[src + at..src + at + len]);
-                    buf[dst + at..dst + at + len].copy_from_slice(&piece[..len]);
-                }
+                buf.copy_within(src..src + kept.len(), r * cols + kept.start);
             }
         };
         if delta > 0 {
-            (0..rows).for_each(&mut copy_row);
+            (0..rows).for_each(copy_row);
         } else {
-            (0..rows).rev().for_each(&mut copy_row);
+            (0..rows).rev().for_each(copy_row);
         }
     }
 
@@ -394,7 +395,9 @@ impl Surface {
 
         // Per-node parameters: a default stays with its place, a set value travels.
         let defaults = Defaults::of(self);
-        let was_pinned = self.state.pinned.clone();
+        // Which nodes were pinned before: the outer ring, unless a caller set pins (then a
+        // copy, since moving the parameters rewrites them).
+        let was_pinned = self.window_custom.then(|| self.state.pinned.clone());
         let params_moved = self.window_custom && self.move_parameters(mv, &defaults);
         self.window_custom = params_moved;
 
@@ -457,7 +460,10 @@ impl Surface {
             Vec::new()
         };
         for i in pinned_now {
-            let was = mv.source(i).is_some_and(|s| was_pinned[s]);
+            let was = mv.source(i).is_some_and(|s| match &was_pinned {
+                Some(pinned) => pinned[s],
+                None => pins_border && grid.is_border(s),
+            });
             if !was {
                 let (c, r) = grid.coords(i);
                 let (x, z) = rest(c, r);
