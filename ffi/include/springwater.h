@@ -16,9 +16,9 @@ typedef int32_t SwBoundary;
 
 // The model's parameters; `sw_params_default()` gives the seed's defaults.
 typedef struct SwParams {
-  // `sizeof(SwParams)`, set by `sw_params_default()`: calls that read the struct refuse any
-  // other value (a struct not started from `sw_params_default()`, or built with a header of
-  // another version than the library's).
+  // `sizeof(SwParams)`, set by `sw_params_default()`: calls that read or fill the struct
+  // refuse any other value (a struct not started from `sw_params_default()`, or built with
+  // a header of another version than the library's).
   uint32_t struct_size;
   // Nodes per row (at least 2).
   uint32_t cols;
@@ -355,7 +355,9 @@ SwStatus sw_surface_create(const struct SwParams *params, struct SwSurface **out
 // destroyed, are no-ops.
 void sw_surface_destroy(struct SwSurface *surface);
 
-// Writes the surface's parameters to `out`.
+// Writes the surface's parameters to `out`, whose `struct_size` must be
+// `sizeof(SwParams)` (start it from `sw_params_default()`, or set the field), or the call
+// is `SW_ERROR_INVALID_ARGUMENT` and writes nothing.
 //
 // # Safety
 //

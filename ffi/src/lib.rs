@@ -90,9 +90,9 @@ pub type SwBool = i32;
 #[repr(C)]
 #[derive(Debug, Clone, Copy)]
 pub struct SwParams {
-    /// `sizeof(SwParams)`, set by `sw_params_default()`: calls that read the struct refuse any
-    /// other value (a struct not started from `sw_params_default()`, or built with a header of
-    /// another version than the library's).
+    /// `sizeof(SwParams)`, set by `sw_params_default()`: calls that read or fill the struct
+    /// refuse any other value (a struct not started from `sw_params_default()`, or built with
+    /// a header of another version than the library's).
     pub struct_size: u32,
     /// Nodes per row (at least 2).
     pub cols: u32,
@@ -306,7 +306,9 @@ pub extern "C" fn sw_surface_destroy(surface: *mut SwSurface) {
     let _ = std::panic::catch_unwind(|| handle::remove(surface));
 }
 
-/// Writes the surface's parameters to `out`.
+/// Writes the surface's parameters to `out`, whose `struct_size` must be
+/// `sizeof(SwParams)` (start it from `sw_params_default()`, or set the field), or the call
+/// is `SW_ERROR_INVALID_ARGUMENT` and writes nothing.
 ///
 /// # Safety
 ///
@@ -316,7 +318,8 @@ pub unsafe extern "C" fn sw_surface_params(
     surface: *const SwSurface,
     out: *mut SwParams,
 ) -> SwStatus {
-    read_into(surface, out, |w| Ok(c_params(w.surface.params())))
+    // SAFETY: `out` is NULL or a valid `SwParams`.
+    unsafe { read_sized_into(surface, out, |w| Ok(c_params(w.surface.params()))) }
 }
 
 /// Writes the number of nodes (`cols × rows`) to `out`: the length, in elements, of every
@@ -1182,13 +1185,26 @@ const _: () = {
 };
 
 /// Copies the struct the caller passed at `ptr` after checking it: not NULL, aligned, and
-/// its `struct_size` this version's. The size is read alone first, so that a smaller
-/// struct (from an older header) is never read past its end.
+/// its `struct_size` this version's ([`sized`]).
 ///
 /// # Safety
 ///
 /// `ptr` is NULL or points to a readable struct that starts with a `u32` size.
 pub(crate) unsafe fn input<T: Input>(ptr: *const T, what: &str) -> Outcome<T> {
+    // SAFETY: as the caller promises.
+    unsafe { sized(ptr, what) }?;
+    // SAFETY: the caller's struct is as large as this version's (its size says so).
+    Ok(unsafe { ptr.read() })
+}
+
+/// Checks that the struct at `ptr` is not NULL, is aligned, and says in its `struct_size`
+/// that it is as large as this version's. The size is read alone, so that a smaller
+/// struct (from an older header) is never read or written past its end.
+///
+/// # Safety
+///
+/// `ptr` is NULL or points to a readable struct that starts with a `u32` size.
+unsafe fn sized<T: Input>(ptr: *const T, what: &str) -> Outcome {
     aligned(ptr, what)?;
     if ptr.is_null() {
         return Err(Failure::null(what));
@@ -1199,12 +1215,33 @@ pub(crate) unsafe fn input<T: Input>(ptr: *const T, what: &str) -> Outcome<T> {
     if size as usize != want {
         return Err(Failure::invalid(format!(
             "{what}->struct_size is {size}, this library's struct is {want} bytes: start it \
-             from {} (a header of another version than the library's gives another size)",
+             from {} or set it to sizeof the struct (a header of another version than the \
+             library's gives another size)",
             T::MAKER
         )));
     }
-    // SAFETY: the caller's struct is as large as this version's (its size says so).
-    Ok(unsafe { ptr.read() })
+    Ok(())
+}
+
+/// The body of every call that writes a sized struct (one with `struct_size` first) to
+/// `out`: like [`read_into`], and the caller's struct must first say it is this version's
+/// size, so that a caller built against another header is never written past its end.
+///
+/// # Safety
+///
+/// `out` is NULL or points to a writable struct that starts with a `u32` size.
+pub(crate) unsafe fn read_sized_into<T: Input>(
+    surface: *const SwSurface,
+    out: *mut T,
+    read: impl FnOnce(&mut Water) -> Outcome<T>,
+) -> SwStatus {
+    guard(|| {
+        // SAFETY: as the caller promises.
+        unsafe { sized(out.cast_const(), "out") }?;
+        let out = out_ref(out, "out")?;
+        *out = handle::with(surface, read)?;
+        Ok(())
+    })
 }
 
 /// An out-pointer the call must write.

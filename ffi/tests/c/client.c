@@ -198,7 +198,11 @@ static void floating_bodies(void) {
     params.absorbing_width = 6;
     SwSurface *open = NULL;
     OK(sw_surface_create(&params, &open));
-    SwParams read_back;
+    /* An output struct says its size too: one without it is refused and left as it was. */
+    SwParams read_back = {0};
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_params(open, &read_back));
+    CHECK(read_back.cols == 0 && read_back.rows == 0);
+    read_back.struct_size = sizeof read_back;
     OK(sw_surface_params(open, &read_back));
     CHECK(memcmp(&read_back, &params, sizeof params) == 0);
     SwSurface *again = NULL;
@@ -632,7 +636,7 @@ int main(void) {
     size_t nodes = 0;
     OK(sw_surface_node_count(water, &nodes));
     CHECK(nodes == 48 * 40);
-    SwParams read_back;
+    SwParams read_back = {.struct_size = sizeof read_back};
     OK(sw_surface_params(water, &read_back));
     CHECK(read_back.cols == 48 && read_back.rows == 40 && read_back.boundary == SW_BOUNDARY_PINNED);
     SwParams given = sw_params_default();
