@@ -407,7 +407,7 @@ impl Params {
 fn check_time_scale(time_scale: f32) -> Result<()> {
     positive("time_scale", time_scale)?;
     let square = time_scale * time_scale;
-    if !(square.is_normal()) {
+    if !square.is_normal() {
         return Err(Error::InvalidParam {
             name: "time_scale",
             value: time_scale as f64,
