@@ -18,8 +18,8 @@ fn picture(c: &mut Criterion) {
         let mut water = Surface::new(Params::with_size(n, n)).unwrap();
         let mut rain = Rain::new(24.0, 1);
         for _ in 0..60 {
-            let dt = water.params().dt;
-            rain.apply(&mut water, dt).unwrap();
+            let seconds = water.params().dt / water.params().time_scale;
+            rain.apply(&mut water, seconds).unwrap();
             water.step().unwrap();
         }
         let camera = Camera::framing(n, n, 1.0, w, h);

@@ -3,9 +3,10 @@
 //!
 //! Both drive a [`Surface`] only through its public API (`drop_at`, `add_force`), so a
 //! game can use them as they are, or read them as examples of writing its own. Lengths
-//! are world units, rates and speeds per second of the game's clock: a disturbance is
-//! handed each substep's model timestep and divides it by
-//! [`Params::time_scale`](crate::Params::time_scale) to get seconds.
+//! are world units, rates, speeds and times seconds of the game's clock: a disturbance is
+//! handed each step's length in seconds (`dt / time_scale`,
+//! [`Params::time_scale`](crate::Params::time_scale)). Forces pushed into the water are
+//! the lattice's (see [`Surface::add_force`]).
 //! [`Surface::advance_with`] applies a disturbance before every substep of a frame; a
 //! pair, a tuple of up to four, a slice or an `Option` of disturbances is a disturbance too:
 //!
@@ -23,7 +24,7 @@
 //! ```
 //!
 //! Stepping by hand, call [`Disturbance::apply`] right before each [`Surface::step`] with
-//! that step's timestep.
+//! that step's length in seconds, `params().dt / params().time_scale`.
 //!
 //! Both keep to the regime where the timestep limit holds: a raindrop's depth never
 //! exceeds its radius, and the wake pushes with a bounded force spread over several nodes.
@@ -145,7 +146,7 @@ impl Disturbance for Rain {
             self.fallen += 1;
             self.next += self.wait();
         }
-        self.time += seconds(surface, dt);
+        self.time += dt as f64;
         Ok(())
     }
 }
@@ -154,7 +155,8 @@ impl Disturbance for Rain {
 /// speed, pushing the water down under it with a Gaussian footprint.
 ///
 /// Each step it presses down with the pressure `strength · exp(−d²/radius²)` (force per
-/// unit area, `d` the distance from the object), over the disc of radius `3 × radius`:
+/// unit area in the lattice's force units, like every force on the water; `d` the
+/// distance from the object), over the disc of radius `3 × radius`:
 /// every node there gets that pressure times its cell's area `h²`. Everything is in world
 /// units, so the same wake pushes the same total force along the same path on any
 /// spacing. Moving faster than the ripples ([`Params::ripple_speed`](crate::Params::ripple_speed),
@@ -170,8 +172,8 @@ pub struct Wake {
     pub speed: f32,
     /// Footprint radius in world units (default: `2.5`).
     pub radius: f32,
-    /// Peak downward pressure under the object, force per unit area (default: `1.5`: a
-    /// force of 1.5 on the node under it at the default spacing of 1).
+    /// Peak downward pressure under the object, lattice force units per unit area (default:
+    /// `1.5`: a force of 1.5 on the node under it at the default spacing of 1).
     pub strength: f32,
     distance: f32,
 }
@@ -277,15 +279,10 @@ impl Disturbance for Wake {
         }
         // Keep the distance small so f32 keeps its precision on long runs.
         let total = *self.lengths.last().expect("at least one corner");
-        let step = self.speed * seconds(surface, dt) as f32;
+        let step = self.speed * dt;
         self.distance = (self.distance + step).rem_euclid(total);
         Ok(())
     }
-}
-
-/// The seconds of the game's clock in `dt` of `surface`'s model time.
-fn seconds(surface: &Surface, dt: f32) -> f64 {
-    dt as f64 / surface.params().time_scale as f64
 }
 
 #[cfg(test)]
@@ -300,12 +297,12 @@ mod tests {
         let mut s2 = Surface::new(p).unwrap();
         let mut r1 = Rain::new(48.0, 9);
         let mut r2 = Rain::new(48.0, 9);
-        // Same drops when the same total time is passed in 1 call or in 10 (model times
-        // whose seconds, at the time scale of 24, are exact binary fractions: 1/32 each).
-        r1.apply(&mut s1, 7.5).unwrap();
+        // Same drops when the same total time is passed in 1 call or in 10 (exact binary
+        // fractions of a second: 1/32 each).
+        r1.apply(&mut s1, 0.3125).unwrap();
         r1.apply(&mut s1, 0.0).unwrap();
         for _ in 0..10 {
-            r2.apply(&mut s2, 0.75).unwrap();
+            r2.apply(&mut s2, 0.03125).unwrap();
         }
         r2.apply(&mut s2, 0.0).unwrap();
         assert_eq!(r1.fallen(), r2.fallen());
@@ -318,7 +315,7 @@ mod tests {
         let mut s = Surface::new(Params::with_size(48, 48)).unwrap();
         let mut rain = Rain::new(24.0, 3);
         for _ in 0..2000 {
-            let dt = s.params().dt;
+            let dt = s.params().dt / s.params().time_scale;
             rain.apply(&mut s, dt).unwrap();
             s.step().unwrap();
         }
@@ -333,7 +330,7 @@ mod tests {
         let start = wake.position();
         assert!((start[0] - 51.5).abs() < 1e-4 && (start[1] - 31.5).abs() < 1e-4);
         for _ in 0..500 {
-            let dt = s.params().dt;
+            let dt = s.params().dt / s.params().time_scale;
             wake.apply(&mut s, dt).unwrap();
             s.step().unwrap();
         }
@@ -363,7 +360,7 @@ mod tests {
 
     #[test]
     fn advance_with_applies_every_disturbance_before_every_substep() {
-        /// Counts its calls and the model time it was given.
+        /// Counts its calls and the seconds it was given.
         struct Count(usize, f64);
         impl Disturbance for Count {
             fn apply(&mut self, _: &mut Surface, dt: f32) -> Result<()> {
@@ -375,9 +372,10 @@ mod tests {
         let mut s = Surface::new(Params::with_size(16, 16)).unwrap();
         let (mut a, mut b) = (Count(0, 0.0), Count(0, 0.0));
         let n = s.advance_with(0.1, &mut (&mut a, &mut b)).unwrap();
-        assert_eq!(n, 6); // 2.4 units of model time in steps of 0.4
+        assert_eq!(n, 6); // 0.1 s: 2.4 units of model time in steps of 0.4
         assert_eq!((a.0, b.0), (6, 6));
-        assert!((a.1 - 2.4).abs() < 1e-5 && (s.time() - 2.4).abs() < 1e-5);
+        assert!((a.1 - 0.1).abs() < 1e-6 && (s.time() - 0.1).abs() < 1e-6);
+        assert!((s.model_time() - 2.4).abs() < 1e-5);
         let mut list: Vec<&mut dyn Disturbance> = vec![&mut a, &mut b];
         s.advance_with(1.0 / 60.0, list.as_mut_slice()).unwrap();
         assert_eq!((a.0, b.0), (7, 7));

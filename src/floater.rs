@@ -2,12 +2,15 @@
 //!
 //! A [`Floater`] is a rigid body that translates (it does not rotate) on a [`Surface`]
 //! (added with [`Surface::add_floater`]); the surface steps its bodies with every step and
-//! substep, and keeps them in snapshots. Everything is in the surface's units: world
-//! units for lengths, the lattice's mass units, model time (velocities are world units per
-//! unit of model time; [`Params::time_scale`](crate::Params::time_scale) converts to
-//! seconds).
+//! substep, and keeps them in snapshots. Lengths are world units, masses the lattice's mass
+//! units, and time is **seconds** of the game's clock: velocities are world units per
+//! second, gravity world units per second², the drag rate per second, forces mass × world
+//! units per second² (see `docs/units.md`). A body's state is stored in those units and its
+//! step runs in them, `Δt = dt / time_scale` seconds for a step of model time `dt`
+//! ([`Params::time_scale`](crate::Params::time_scale)); only where a body meets the lattice
+//! are its numbers converted (next section).
 //!
-//! # The model, per step of `Δt`
+//! # The model, per step of `Δt` seconds
 //!
 //! **Columns.** The body's footprint is cut into vertical columns at most one grid cell
 //! wide: a square lattice over the box's footprint, or over the sphere's disc keeping the
@@ -40,14 +43,18 @@
 //!
 //! **Two-way.** Each column pushes `−f` into the water at its own point with
 //! [`Surface::add_force_at`], for the same step: what the water gets is exactly minus what
-//! the body gets (to the rounding of the bilinear spread). A body at rest dents the
+//! the body gets (to the rounding of the bilinear spread and of the change of units: the
+//! lattice counts forces per unit of model time², so `−f` goes in divided by
+//! `time_scale²`, and the water velocity `w` a column reads is the lattice's times
+//! `time_scale`). A body at rest dents the
 //! surface by its weight; a moving one pushes a travelling dent, which is what leaves a
 //! wake. Columns over no water (outside the patch) see calm water at rest height `y = 0`
 //! with zero velocity and push nothing back: the patch is taken to sit in open water.
 //!
 //! **The water's stability.** To the water, a column is a spring of stiffness `ρ_w g a` and
 //! a damper `κ` on the nodes under it, which the explicit step must carry:
-//! [`Surface::critical_dt`] adds `ρ_w g h²` to the lattice's largest node stiffness while
+//! [`Surface::critical_dt`] adds `ρ_w g h² / time_scale²` (the waterline's stiffness in the
+//! lattice's units) to the lattice's largest node stiffness while
 //! bodies float (a body whose buoyancy would push the timestep past the limit is refused),
 //! and each column's `κ` is capped at half of what the damped limit leaves the four nodes
 //! under it (`m b_lim − γ`, see the `absorb` module). Deep, draggy bodies in an absorbing
@@ -109,10 +116,10 @@ impl Shape {
 /// let mut ball = Floater::sphere(2.0, 1.0, [32.0, 1.0, 32.0]);
 /// ball.mass = 0.5 * water.buoyancy().density * ball.shape.volume();
 /// let id = water.add_floater(ball)?;
-/// water.step_n(1500)?;
+/// water.step_n(1500)?;                             // 25 s at the defaults
 /// let ball = water.floater(id)?;
 /// assert!(ball.position.y.abs() < 0.3);             // about half under
-/// assert!(ball.velocity.length() < 1e-3);           // at rest
+/// assert!(ball.velocity.length() < 0.024);          // at rest (world units per second)
 /// # Ok::<(), springwater::Error>(())
 /// ```
 ///
@@ -126,24 +133,28 @@ pub struct Floater {
     pub shape: Shape,
     /// Mass, in the lattice's mass units (> 0; a node has [`Params::mass`](crate::Params::mass)).
     pub mass: f32,
-    /// Drag rate `k` per unit of model time (≥ 0): the drag is `k` times the mass of the
-    /// displaced water times the velocity relative to the water (default 0.25).
+    /// Drag rate `k`, per second (≥ 0, at most 1e8): the drag is `k` times the mass of the
+    /// displaced water times the velocity relative to the water (default
+    /// [`Floater::DEFAULT_DRAG`], 6 per second).
     pub drag: f32,
     /// Centre, world units in the water's local space (the calm surface is `y = 0`).
     pub position: Vec3,
-    /// Velocity, world units per unit of model time.
+    /// Velocity, world units per second (components at most 1e11; default zero).
     pub velocity: Vec3,
     /// External force (engine, wind, a player's push) for the next step only, cleared by
-    /// it; [`Surface::push_floater`] adds to it.
+    /// it; [`Surface::push_floater`] adds to it. Mass units × world units per second²
+    /// (default zero).
     pub push: Vec3,
     /// Read only: the force the water exerted on the body during its last step (buoyancy
-    /// and drag, without gravity and push). The water got exactly minus this.
+    /// and drag, without gravity and push), mass units × world units per second². The
+    /// water got exactly minus this (in the lattice's units, divided by `time_scale²`).
     pub water_force: Vec3,
 }
 
 impl Floater {
-    /// Default drag rate `k`.
-    pub const DEFAULT_DRAG: f32 = 0.25;
+    /// Default drag rate `k`: 6 per second (0.25 per unit of model time at the default
+    /// time scale of 24).
+    pub const DEFAULT_DRAG: f32 = 6.0;
 
     /// A sphere of `radius` and `mass` centred at `position`, at rest.
     pub fn sphere(radius: f32, mass: f32, position: impl Into<Vec3>) -> Self {
@@ -206,7 +217,12 @@ impl Floater {
             });
         }
         params::non_negative("floater drag", self.drag)?;
-        bounded("floater drag", self.drag, MAX_RATE, RATE)?;
+        bounded(
+            "floater drag",
+            self.drag,
+            MAX_DRAG,
+            "at most 1e8 per second",
+        )?;
         for (name, v, max, expected) in [
             (
                 "floater position",
@@ -218,7 +234,7 @@ impl Floater {
                 "floater velocity",
                 self.velocity,
                 MAX_SPEED,
-                "components of at most 1e9 (world units per model time)",
+                "components of at most 1e11 (world units per second)",
             ),
             ("floater push", self.push, f32::MAX, "finite components"),
             (
@@ -239,10 +255,12 @@ impl Floater {
 
 /// Largest radius or half extent a floater may have, world units.
 const MAX_SIZE: f32 = 1e9;
-/// Largest speed component, world units per unit of model time.
-const MAX_SPEED: f32 = 1e9;
-/// Largest drag rate, per unit of model time.
-const MAX_RATE: f32 = 1e6;
+/// Largest speed component, world units per second.
+const MAX_SPEED: f32 = 1e11;
+/// Largest drag rate, per second.
+const MAX_DRAG: f32 = 1e8;
+/// Largest gravity, world units per second².
+const MAX_GRAVITY: f32 = 1e9;
 
 /// `v ≤ max`, else an error saying `expected`.
 fn bounded(name: &'static str, v: f32, max: f32, expected: &'static str) -> Result<()> {
@@ -257,16 +275,15 @@ fn bounded(name: &'static str, v: f32, max: f32, expected: &'static str) -> Resu
     }
 }
 
-const RATE: &str = "at most 1e6 per unit of model time";
-
 /// The world the bodies float in: gravity and the water's density, for every body of a
 /// surface ([`Surface::set_buoyancy`]).
 #[derive(Debug, Clone, Copy, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 pub struct Buoyancy {
-    /// Gravity pulling bodies down (−y), world units per unit of model time² (≥ 0; default
-    /// 0.1: a ball of radius 2 half under bobs with a period of about 23 units of model time,
-    /// one second at the default time scale).
+    /// Gravity pulling bodies down (−y), world units per second² (≥ 0, at most 1e9;
+    /// default 57.6: a ball of radius 2 half under bobs with a period of about one second.
+    /// It is 0.1 per unit of model time² at the default time scale of 24; with metres as
+    /// world units, Earth's is 9.81).
     pub gravity: f32,
     /// Density of the water, mass units per cubic world unit (≥ 0; default 1: the seed's
     /// node mass 4 per cell is a layer 4 cells deep).
@@ -276,24 +293,31 @@ pub struct Buoyancy {
 impl Default for Buoyancy {
     fn default() -> Self {
         Self {
-            gravity: 0.1,
+            gravity: 57.6,
             density: 1.0,
         }
     }
 }
 
 impl Buoyancy {
-    /// Checks both fields: finite, ≥ 0 and at most 1e6.
+    /// Checks both fields: finite, ≥ 0, gravity at most 1e9 and density at most 1e6.
     pub fn validate(&self) -> Result<()> {
         params::non_negative("gravity", self.gravity)?;
-        bounded("gravity", self.gravity, MAX_RATE, RATE)?;
+        bounded(
+            "gravity",
+            self.gravity,
+            MAX_GRAVITY,
+            "at most 1e9 world units per second²",
+        )?;
         params::non_negative("water density", self.density)?;
-        bounded("water density", self.density, MAX_RATE, "at most 1e6")
+        bounded("water density", self.density, 1e6, "at most 1e6")
     }
 
-    /// The stiffness `ρ_w g h²` a column of one cell adds to the nodes under it.
-    pub(crate) fn node_stiffness(&self, spacing: f32) -> f32 {
-        self.density * self.gravity * spacing * spacing
+    /// The stiffness `ρ_w g h²` a column of one cell adds to the nodes under it, in the
+    /// lattice's units (force per unit of model time² per world unit): divided by
+    /// `time_scale²`, since `g` is per second².
+    pub(crate) fn node_stiffness(&self, spacing: f32, time_scale: f32) -> f32 {
+        self.density * self.gravity * spacing * spacing / (time_scale * time_scale)
     }
 }
 
@@ -422,8 +446,9 @@ pub(crate) struct ColumnForce {
 }
 
 /// The body's implicit velocity update (see the module docs) and each column's force at
-/// it. Returns `v'` and fills `forces` (parallel to `columns`). `gravity` is the body's
-/// gravity magnitude; `dt` the step.
+/// it. Returns `v'` and fills `forces` (parallel to `columns`). Everything in seconds:
+/// `gravity` is the body's gravity magnitude (per second²), `dt` the step in seconds, the
+/// columns' drag and flow per second.
 pub(crate) fn solve(
     body: &Floater,
     columns: &[ColumnForce],

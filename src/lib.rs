@@ -33,10 +33,16 @@
 //!   [`Params::dt`]; [`Params`] explains the stability limit the timestep must stay below
 //!   and what validation checks.
 //! * **Units.** Lengths are world units everywhere (the unit of `spacing`): drops, forces
-//!   at a point, queries, wakes. Time is *model time* inside the model (`dt`, floating
-//!   bodies' velocities and gravity); a game passes seconds to [`Surface::advance`], rain
-//!   rates and wake speeds are per second, and [`Params::time_scale`] (model time per
-//!   second, with [`Params::ripple_speed`] to read it as a speed) converts.
+//!   at a point, queries, wakes. Everything with time in it that a game sets or reads is
+//!   in **seconds**: [`Surface::advance`], [`Surface::time`], velocity queries, the uniform
+//!   acceleration, floating bodies (velocity, drag, gravity, forces), rain rates and wake
+//!   speeds. *Model time* stays inside the model and in the lattice's constants (`dt`,
+//!   `mass`, `stiffness`, `viscosity`), with [`Surface::model_time`] to read its clock;
+//!   the lattice's own arrays ([`Surface::velocities`]) and the forces pushed into the
+//!   water ([`Surface::add_force_at`]) are in its units. [`Params::time_scale`] (model time
+//!   per second, with [`Params::ripple_speed`] to read it as a speed) converts: with the
+//!   defaults 1 s is 24 units of model time, 60 steps of 0.4. `docs/units.md` lists every
+//!   quantity with its unit.
 //!
 //! ## The pipeline
 //!
@@ -160,6 +166,11 @@ pub struct ReadmeDoctests;
 #[cfg(doctest)]
 #[doc = include_str!("../docs/guide.md")]
 pub struct GuideDoctests;
+
+/// The examples of docs/units.md, compiled and run as doc tests.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/units.md")]
+pub struct UnitsDoctests;
 
 /// The examples of docs/reliability.md, compiled and run as doc tests.
 #[cfg(doctest)]

@@ -55,10 +55,14 @@ impl Boundary {
 /// Model parameters. Plain data with the seed's defaults; [`Params::validate`] checks it.
 ///
 /// Lengths are world units (the unit of `spacing`, the water's local space); mass is in
-/// mass units; `dt` is in *model time*, the seed's time unit, as are the velocities and
-/// gravity of floating bodies. [`Params::time_scale`] says how much model time passes per
-/// second of a game's clock, which is what [`Surface::advance`](crate::Surface::advance)
-/// takes and what the rates and speeds of [`crate::disturb`] are counted in.
+/// mass units. The lattice's constants `dt`, `mass`, `stiffness` and `viscosity` are in
+/// *model time*, the seed's time unit, and define the model; everything else a game sets
+/// or reads is in seconds of its clock ([`Params::acceleration`],
+/// [`Surface::advance`](crate::Surface::advance), [`Surface::time`](crate::Surface::time),
+/// velocity queries, floating bodies, the rates and speeds of [`crate::disturb`]).
+/// [`Params::time_scale`] says how much model time passes per second: with the defaults,
+/// 1 s is 24 units of model time, 60 steps of 0.4 (`docs/units.md` lists every quantity
+/// with its unit).
 ///
 /// # Where the timestep limits come from
 ///
@@ -124,18 +128,22 @@ pub struct Params {
     pub spacing: f32,
     /// Nodal mass `m` (default: `4.0`).
     pub mass: f32,
-    /// Spring coefficient `c` of every spring (default: `7.0`).
+    /// Spring coefficient `c` of every spring, mass units per unit of model time² (default:
+    /// `7.0`).
     pub stiffness: f32,
-    /// Viscosity `γ`, velocity damping per node (default: `0.05`). Zero disables damping.
+    /// Viscosity `γ`, velocity damping per node, mass units per unit of model time
+    /// (default: `0.05`). Zero disables damping.
     pub viscosity: f32,
-    /// Integration timestep `Δt` (default: `0.4`). Must be below [`Params::critical_dt`].
+    /// Integration timestep `Δt`, in model time (default: `0.4`, 1/60 s at the default
+    /// [`Params::time_scale`]). Must be below [`Params::critical_dt`].
     pub dt: f32,
     /// Rest length as a fraction of the initial length (default: `0.5`), in `[0, 1]`.
     /// Below 1 the flat surface is pre-tensioned and vertical ripples travel.
     pub rest_ratio: f32,
     /// Edge condition (default: [`Boundary::Pinned`]).
     pub boundary: Boundary,
-    /// Uniform acceleration applied to every free node, `[x, y, z]` (default: zero).
+    /// Uniform acceleration applied to every free node, `[x, y, z]`, world units per second²
+    /// (default: zero). The step adds it divided by `time_scale²`.
     pub acceleration: [f32; 3],
     /// Model time units per second of the caller's clock, used by
     /// [`Surface::advance`](crate::Surface::advance) (default: `24.0`). It sets how fast the
@@ -145,7 +153,9 @@ pub struct Params {
     /// The default makes a 60 Hz frame one step of the seed's `dt = 0.4` (the cheapest
     /// animation that uses the seed's timestep), and ripples then cross about 39 cells per
     /// second: a 128-cell pool in about 3.3 s, which is what the `springwater render`
-    /// preview shows (3 steps per frame at 20 frames per second). Must be finite and > 0.
+    /// preview shows (3 steps per frame at 20 frames per second). Must be finite and > 0,
+    /// with `time_scale²` a normal `f32` (about 1.1e-19 to 1.8e19): accelerations and the
+    /// forces of floating bodies are converted with it.
     #[cfg_attr(feature = "serde", serde(default = "default_time_scale"))]
     pub time_scale: f32,
 }
@@ -312,7 +322,7 @@ impl Params {
                 expected: "a speed the lattice can have: it needs rest_ratio < 1 and valid spacing, mass and stiffness",
             });
         }
-        positive("time_scale", time_scale)?;
+        check_time_scale(time_scale)?;
         self.time_scale = time_scale;
         Ok(())
     }
@@ -367,7 +377,7 @@ impl Params {
                 expected: "a number in [0, 1]",
             });
         }
-        positive("time_scale", self.time_scale)?;
+        check_time_scale(self.time_scale)?;
         if let Boundary::Absorbing { width } = self.boundary {
             let across = self.cols.min(self.rows);
             let fitted = crate::absorb::frame_width(width, self.cols, self.rows);
@@ -390,6 +400,21 @@ impl Params {
         }
         Ok(())
     }
+}
+
+/// Checks a time scale: finite, > 0, and its square a normal `f32` (it converts
+/// accelerations and forces between seconds and model time).
+fn check_time_scale(time_scale: f32) -> Result<()> {
+    positive("time_scale", time_scale)?;
+    let square = time_scale * time_scale;
+    if !square.is_normal() {
+        return Err(Error::InvalidParam {
+            name: "time_scale",
+            value: time_scale as f64,
+            expected: "a time scale whose square is a normal f32 (about 1.1e-19 to 1.8e19)",
+        });
+    }
+    Ok(())
 }
 
 /// Largest grid extent `spacing × (max(cols, rows) − 1)` that validation accepts.

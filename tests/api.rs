@@ -65,7 +65,8 @@ fn advance_takes_whole_steps_and_keeps_the_rest_for_the_next_frame() {
     assert_eq!(s.advance(0.1).unwrap(), 2); // 1.01: 0.21 owed
     assert!((s.interpolation() - 0.525).abs() < 1e-4);
     assert!((s.owed_seconds() - 0.021).abs() < 1e-6);
-    assert!((s.time() - 1.6).abs() < 1e-5);
+    assert!((s.model_time() - 1.6).abs() < 1e-5);
+    assert!((s.time() - 0.16).abs() < 1e-6, "seconds: {}", s.time());
     for bad in [-1.0, f32::NAN, f32::INFINITY, f32::NEG_INFINITY] {
         let (before, owed) = (state_bits(&s), s.owed_seconds());
         assert!(s.advance(bad).is_err(), "{bad}");
@@ -80,15 +81,17 @@ fn advance_variable_splits_a_frame_into_substeps_no_longer_than_dt() {
     assert_eq!(s.advance_variable(0.04).unwrap(), 1);
     assert_eq!(s.advance_variable(0.041).unwrap(), 2);
     assert_eq!(s.advance_variable(0.1).unwrap(), 3);
-    assert!((s.time() - 1.81).abs() < 1e-5);
+    assert!((s.model_time() - 1.81).abs() < 1e-5);
+    assert!((s.time() - 0.181).abs() < 1e-6);
     assert_eq!(
         s.interpolation(),
         0.0,
         "the variable split leaves the accumulator"
     );
+    // Two substeps of 0.0205 s, that is 0.205 units of model time.
     let (n, sub) = s.split_frame(0.041).unwrap();
     assert_eq!(n, 2);
-    assert!((sub - 0.205).abs() < 1e-6 && sub <= s.params().dt);
+    assert!((sub - 0.0205).abs() < 1e-7 && sub <= s.params().dt / 10.0);
     for bad in [-1.0, f32::NAN, f32::INFINITY, 1e9] {
         let before = state_bits(&s);
         assert!(s.advance_variable(bad).is_err(), "{bad}");
@@ -105,7 +108,8 @@ fn the_default_time_scale_takes_one_step_per_60_hz_frame() {
         assert_eq!(s.advance(1.0 / 60.0).unwrap(), 1);
     }
     // Ten seconds of frames are 240 units of model time.
-    assert!((s.time() - 240.0).abs() < 240.0 * 1e-5, "{}", s.time());
+    assert!((s.time() - 10.0).abs() < 10.0 * 1e-5, "{}", s.time());
+    assert!((s.model_time() - 240.0).abs() < 240.0 * 1e-5);
     assert_eq!(s.advance(1.0 / 30.0).unwrap(), 2);
     // A 144 Hz frame is 0.4167 of a step: none now, one in the third frame.
     let steps: Vec<usize> = (0..3).map(|_| s.advance(1.0 / 144.0).unwrap()).collect();
@@ -119,12 +123,14 @@ fn the_ripple_speed_sets_the_time_scale() {
     let mut p = Params::with_size(65, 65);
     p.set_ripple_speed(32.0).unwrap();
     assert!((p.ripple_speed() - 32.0).abs() < 1e-4);
-    // Doubling the speed doubles the model time of a frame.
+    // Doubling the speed doubles the model time of a frame: twice the steps of `dt`,
+    // each half as many seconds long.
     let frame = Surface::new(p).unwrap().split_frame(1.0).unwrap();
     p.set_ripple_speed(64.0).unwrap();
     let double = Surface::new(p).unwrap().split_frame(1.0).unwrap();
-    let model = |(n, dt): (usize, f32)| n as f32 * dt;
-    assert!((model(double) - 2.0 * model(frame)).abs() < 1e-3);
+    let seconds = |(n, dt): (usize, f32)| n as f32 * dt;
+    assert!((seconds(frame) - 1.0).abs() < 1e-4 && (seconds(double) - 1.0).abs() < 1e-4);
+    assert!((double.0 as f32 - 2.0 * frame.0 as f32).abs() <= 1.0);
     // Refused, nothing changed.
     let before = p;
     for bad in [0.0, -1.0, f32::NAN, f32::INFINITY] {

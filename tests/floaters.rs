@@ -32,7 +32,8 @@ fn vertical_momentum(s: &Surface) -> f64 {
 fn what_the_water_gets_is_minus_what_the_body_gets_every_step() {
     // A free sheet without viscosity: the springs' forces cancel in pairs, so the water's
     // momentum changes only by the bodies' reactions. The body's momentum changes by its
-    // water force, gravity and push: the two water forces must be opposite every step.
+    // water force, gravity and push: the two water forces must be opposite every step
+    // (the body's in seconds, the water's in the lattice's units: `time_scale²` apart).
     let p = Params::with_size(40, 40)
         .with_viscosity(0.0)
         .with_boundary(Boundary::Free);
@@ -41,13 +42,14 @@ fn what_the_water_gets_is_minus_what_the_body_gets_every_step() {
         .add_floater(ball(&s, 3.0, 0.4, [20.0, 2.0, 20.0]))
         .unwrap();
     let mut boxy = Floater::cuboid([2.0, 1.0, 1.5], 8.0, [9.3, 0.0, 27.6]);
-    boxy.velocity = Vec3::new(0.3, -0.2, 0.1);
+    boxy.velocity = Vec3::new(7.2, -4.8, 2.4);
     let b = s.add_floater(boxy).unwrap();
     let dt = p.dt as f64;
+    let ts2 = (p.time_scale as f64).powi(2);
     let (mut worst, mut felt) = (0.0f64, 0.0);
     for step in 0..300 {
         if step % 50 == 0 {
-            s.push_floater(a, [1.0, 0.0, -0.5]).unwrap();
+            s.push_floater(a, [576.0, 0.0, -288.0]).unwrap();
         }
         let before = vertical_momentum(&s);
         s.step().unwrap();
@@ -55,7 +57,8 @@ fn what_the_water_gets_is_minus_what_the_body_gets_every_step() {
         let bodies: f64 = [a, b]
             .iter()
             .map(|&id| s.floater(id).unwrap().water_force.y as f64)
-            .sum();
+            .sum::<f64>()
+            / ts2;
         felt += bodies.abs();
         // The springs' forces cancel only to rounding, which grows as the free sheet
         // deforms: measured about 1e-6 per step on the same sheet without bodies, up to a
@@ -170,7 +173,7 @@ fn largest_height(s: &Surface, region: impl Fn(f32, f32) -> bool) -> f32 {
 fn drive(speed: f32) -> (f32, f32) {
     let p = Params::with_size(260, 120).with_boundary(Boundary::absorbing());
     let mut s = Surface::new(p).unwrap();
-    let v = speed * p.ripple_speed() / p.time_scale;
+    let v = speed * p.ripple_speed();
     let mut b = ball(&s, 2.0, 0.5, [50.0, 0.0, 60.0]);
     let id = s.add_floater(b).unwrap();
     for _ in 0..300 {
@@ -216,8 +219,8 @@ fn crowded(share: f32) -> Surface {
                 Floater::sphere(size, 1.0, [x, 0.5, z])
             };
             f.mass = [0.05, 0.3, 0.7, 0.95, 0.5][k as usize % 5] * f.shape.volume();
-            f.velocity = Vec3::new((k % 7) as f32 - 3.0, 0.5, (k % 4) as f32 - 1.5);
-            f.drag = [0.0, 0.25, 2.0, 50.0][k as usize % 4];
+            f.velocity = 24.0 * Vec3::new((k % 7) as f32 - 3.0, 0.5, (k % 4) as f32 - 1.5);
+            f.drag = [0.0, 6.0, 48.0, 1200.0][k as usize % 4];
             s.add_floater(f).unwrap();
         }
     };
@@ -249,7 +252,7 @@ fn many_bodies_stay_stable_at_099_of_the_critical_timestep() {
     );
     for (id, f) in s.floaters() {
         assert!(
-            f.position.is_finite() && f.velocity.length() < 10.0,
+            f.position.is_finite() && f.velocity.length() < 240.0,
             "{id:?}: {f:?}"
         );
     }
@@ -277,7 +280,7 @@ fn bodies_are_part_of_snapshots() {
     let mut a = crowded(0.9);
     a.step_n(25).unwrap();
     let id = a.floaters().nth(3).unwrap().0;
-    a.push_floater(id, [0.0, 5.0, 0.0]).unwrap();
+    a.push_floater(id, [0.0, 2880.0, 0.0]).unwrap();
     let first = a.floaters().next().unwrap().0;
     a.remove_floater(first).unwrap();
     let mut b = Surface::from_bytes(&a.to_bytes()).unwrap();
@@ -308,7 +311,7 @@ fn bad_bodies_are_refused_and_change_nothing() {
         Floater::sphere(1.0, 1e-40, [1.0, 0.0, 1.0]),
         Floater::cuboid([1.0, -1.0, 1.0], 1.0, [1.0, 0.0, 1.0]),
         Floater::sphere(1.0, 1.0, [f32::INFINITY, 0.0, 1.0]),
-        edited(good, |f| f.velocity = Vec3::new(0.0, 2e9, 0.0)),
+        edited(good, |f| f.velocity = Vec3::new(0.0, 2e11, 0.0)),
         edited(good, |f| f.drag = -1.0),
         edited(good, |f| f.push = Vec3::new(f32::NAN, 0.0, 0.0)),
     ];
@@ -337,7 +340,7 @@ fn bad_bodies_are_refused_and_change_nothing() {
         },
         // A waterline stiff enough to need a smaller timestep.
         Buoyancy {
-            gravity: 100.0,
+            gravity: 57_600.0,
             density: 100.0,
         },
     ] {
@@ -408,7 +411,7 @@ fn a_large_body_keeps_the_water_stable() {
     let mut s = Surface::new(Params::with_size(128, 128)).unwrap();
     let mut raft = Floater::sphere(16.0, 1.0, [64.0, 8.0, 64.0]);
     raft.mass = 0.5 * raft.shape.volume();
-    raft.drag = 2.0;
+    raft.drag = 48.0;
     s.add_floater(raft).unwrap();
     s.step_n(2000).unwrap();
     assert!(s.energy().total().is_finite());
@@ -484,4 +487,127 @@ fn water_force_is_read_only() {
     s.set_floater(id, edited(f, |f| f.water_force = Vec3::splat(7.0)))
         .unwrap();
     assert_eq!(s.floater(id).unwrap().water_force, felt);
+}
+
+#[test]
+fn a_body_set_is_read_back_exactly() {
+    // A body's state is kept in the units it is given in (seconds): nothing is converted
+    // on the way in or out, at the default time scale or any other.
+    for time_scale in [24.0, 10.0 / 3.0] {
+        let p = Params::with_size(32, 32).with_time_scale(time_scale);
+        let mut s = Surface::new(p).unwrap();
+        let id = s
+            .add_floater(Floater::sphere(1.5, 3.0, [16.0, 0.0, 16.0]))
+            .unwrap();
+        s.step_n(5).unwrap();
+        let mut f = *s.floater(id).unwrap();
+        f.velocity = Vec3::new(0.1, -1.0 / 3.0, std::f32::consts::E);
+        f.drag = 0.3;
+        f.push = Vec3::new(1.0 / 7.0, 0.0, -0.2);
+        f.position = Vec3::new(15.123_457, 0.1, 16.9);
+        s.set_floater(id, f).unwrap();
+        assert_eq!(*s.floater(id).unwrap(), f);
+        let other = s.add_floater(f).unwrap();
+        let fresh = edited(f, |f| f.water_force = Vec3::ZERO);
+        assert_eq!(*s.floater(other).unwrap(), fresh);
+        // And through a snapshot.
+        let back = Surface::from_bytes(&s.to_bytes()).unwrap();
+        assert_eq!(*back.floater(id).unwrap(), f);
+        assert_eq!(*back.floater(other).unwrap(), fresh);
+        assert_eq!(back.buoyancy(), s.buoyancy());
+    }
+}
+
+#[test]
+fn a_body_released_at_rest_settles_at_archimedes_depth_at_any_time_scale() {
+    // A box released at rest with its centre on calm water sinks until the water it
+    // displaces weighs what it weighs: draft = mass / (density × footprint). Gravity is set
+    // to the same 0.1 per unit of model time² at every time scale, so the lattice sees the
+    // same forces and the body must come to the same place, to rounding: the time scale
+    // only changes the units the body is counted in.
+    let e = Vec3::new(2.0, 1.0, 2.5);
+    let mut depths = Vec::new();
+    for time_scale in [24.0f32, 10.0, 60.0] {
+        let p = Params::with_size(48, 48).with_time_scale(time_scale);
+        let mut s = Surface::new(p).unwrap();
+        let gravity = 0.1 * time_scale * time_scale;
+        s.set_buoyancy(Buoyancy {
+            gravity,
+            density: 1.0,
+        })
+        .unwrap();
+        let id = s
+            .add_floater(Floater::cuboid(e, 12.0, [24.0, 0.0, 24.0]))
+            .unwrap();
+        s.step_n(3000).unwrap();
+        let f = *s.floater(id).unwrap();
+        let weight = f.mass * gravity;
+        assert!(
+            f.velocity.length() < 1e-3 * time_scale,
+            "{time_scale}: {f:?}"
+        );
+        assert!(
+            (f.water_force.y - weight).abs() < 1e-3 * weight,
+            "{time_scale}: buoyancy {} vs weight {weight}",
+            f.water_force.y
+        );
+        let draft = f.mass / (4.0 * e.x * e.z);
+        let under = s.height_at(f.position.x, f.position.z).unwrap();
+        let wet = under - (f.position.y - e.y);
+        assert!(
+            (wet - draft).abs() < 0.1 * draft,
+            "{time_scale}: draft {wet} vs {draft}"
+        );
+        depths.push(f.position.y);
+    }
+    println!("centre heights at time scales 24, 10, 60: {depths:?}");
+    for y in &depths[1..] {
+        assert!((y - depths[0]).abs() < 1e-4, "{depths:?}");
+    }
+    // At the default gravity (57.6 per second², 0.1 per unit of model time² at the
+    // default time scale) the box floats where it did at the first time scale above.
+    let mut s = Surface::new(Params::with_size(48, 48)).unwrap();
+    assert_eq!(s.buoyancy().gravity, 57.6);
+    let id = s
+        .add_floater(Floater::cuboid(e, 12.0, [24.0, 0.0, 24.0]))
+        .unwrap();
+    s.step_n(3000).unwrap();
+    let y = s.floater(id).unwrap().position.y;
+    assert!((y - depths[0]).abs() < 1e-4, "{y} vs {}", depths[0]);
+}
+
+#[test]
+fn a_bodys_velocity_is_its_change_of_position_per_second() {
+    let mut s = Surface::new(Params::with_size(48, 48)).unwrap();
+    let mut b = ball(&s, 2.0, 0.5, [16.0, 3.0, 24.0]);
+    b.velocity = Vec3::new(12.0, 0.0, -6.0);
+    let id = s.add_floater(b).unwrap();
+    let seconds = s.params().dt / s.params().time_scale;
+    for _ in 0..90 {
+        let before = s.floater(id).unwrap().position;
+        s.step().unwrap();
+        let after = *s.floater(id).unwrap();
+        let rate = (after.position - before) / seconds;
+        // Positions of about 20 carry about 2e-6 of rounding, over a 60th of a second.
+        assert!(
+            (rate - after.velocity).abs().max_element() < 1e-3,
+            "{rate} vs {}",
+            after.velocity
+        );
+    }
+    // Over a second of the game's clock the body moves by about its mean velocity.
+    let (start, v0) = {
+        let f = s.floater(id).unwrap();
+        (f.position, f.velocity)
+    };
+    let mut mean = Vec3::ZERO;
+    for _ in 0..60 {
+        assert_eq!(s.advance(1.0 / 60.0).unwrap(), 1);
+        mean += s.floater(id).unwrap().velocity / 60.0;
+    }
+    let moved = s.floater(id).unwrap().position - start;
+    assert!(
+        (moved - mean).abs().max_element() < 1e-3,
+        "moved {moved} in 1 s, mean velocity {mean} (started at {v0})"
+    );
 }

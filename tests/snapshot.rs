@@ -11,7 +11,7 @@ use springwater::{Boundary, Error, Family, Params, Spring, SpringId, Surface};
 /// mass/viscosity/pins, per-spring tables, steps taken.
 fn busy_surface() -> Surface {
     let mut p = Params::with_size(19, 13);
-    p.acceleration = [0.0, -0.01, 0.0];
+    p.acceleration = [0.0, -5.76, 0.0]; // per second²: 0.01 per unit of model time²
     let mut s = Surface::new(p).unwrap();
 
     s.drop_at(9.0, 6.0, 1.5, 2.5).unwrap();
@@ -177,7 +177,7 @@ fn version_1_snapshots_load_with_the_default_time_scale() {
     assert_eq!(
         downgrade(&loaded.to_bytes(), 2),
         v2,
-        "read as version 2, written as 4"
+        "read as version 2, written as 5"
     );
     let mut v1 = v2.clone();
     v1[8..12].copy_from_slice(&1u32.to_le_bytes());
@@ -269,7 +269,7 @@ fn invalid_contents_with_a_valid_checksum_are_refused() {
         ),
         ("dt past critical", Box::new(|s| s.params.dt = 1.0)),
         ("invalid param", Box::new(|s| s.params.rest_ratio = 2.0)),
-        ("negative time", Box::new(|s| s.time = -1.0)),
+        ("negative time", Box::new(|s| s.model_time = -1.0)),
         (
             "wrong array length",
             Box::new(move |s| s.mass.truncate(n - 1)),
@@ -543,4 +543,120 @@ fn edited_plain_data_is_judged_on_its_values() {
     snap.mass[40] = 0.5;
     let err = Surface::from_snapshot(snap).unwrap_err();
     assert!(matches!(err, Error::Snapshot(_)), "{err}");
+}
+
+/// Reads the `f32` at byte `at`.
+fn f32_at(b: &[u8], at: usize) -> f32 {
+    f32::from_le_bytes(b[at..at + 4].try_into().unwrap())
+}
+
+/// Writes `v` at byte `at`.
+fn put_f32(b: &mut [u8], at: usize, v: f32) {
+    b[at..at + 4].copy_from_slice(&v.to_le_bytes());
+}
+
+/// The same state in version 4's units: the acceleration (offset 68), gravity (128) and
+/// each body's drag, velocity, push and water force in model time. Built from a version 5
+/// snapshot of a surface with `n` nodes and `bodies` bodies at the time scale `ts`.
+fn as_version_4(v5: &[u8], n: usize, bodies: usize, ts: f32) -> Vec<u8> {
+    let mut b = v5.to_vec();
+    b[8..12].copy_from_slice(&4u32.to_le_bytes());
+    let ts2 = ts * ts;
+    for at in [68, 72, 76, 128] {
+        put_f32(&mut b, at, f32_at(v5, at) / ts2);
+    }
+    for k in 0..bodies {
+        // id u64, shape u32, size 3 × f32, mass, then drag at +28, position at +32,
+        // velocity at +44, push at +56, water force at +68.
+        let body = 136 + 77 * n + 80 * k;
+        put_f32(&mut b, body + 28, f32_at(v5, body + 28) / ts);
+        for c in 0..3 {
+            let v = body + 44 + 4 * c;
+            put_f32(&mut b, v, f32_at(v5, v) / ts);
+            for at in [body + 56 + 4 * c, body + 68 + 4 * c] {
+                put_f32(&mut b, at, f32_at(v5, at) / ts2);
+            }
+        }
+    }
+    common::fix_crc(&mut b);
+    b
+}
+
+/// Version 4 kept bodies, gravity and the acceleration in model time: such a snapshot
+/// loads with them in seconds, and continues as the surface it was taken from does.
+#[test]
+fn version_4_snapshots_load_in_seconds() {
+    use glam::Vec3;
+    use springwater::{Buoyancy, Floater};
+    let close = |a: Vec3, b: Vec3| (a - b).abs().max_element() <= 1e-6 * a.abs().max_element();
+
+    // Water alone: the acceleration converts back to the bits the lattice used, so the
+    // loaded surface continues bit for bit.
+    let p = Params::with_size(24, 20)
+        .with_boundary(Boundary::Free)
+        .with_acceleration([0.3, -5.76, 1.0 / 3.0]);
+    let mut water = Surface::new(p).unwrap();
+    water.drop_at(12.0, 10.0, 1.0, 2.0).unwrap();
+    water.step_n(7).unwrap();
+    let v4 = as_version_4(&water.to_bytes(), water.node_count(), 0, p.time_scale);
+    let mut old = Surface::from_bytes(&v4).unwrap();
+    for (a, b) in old.params().acceleration.iter().zip(p.acceleration) {
+        assert!((a - b).abs() <= 1e-6 * b.abs(), "{a} vs {b}");
+    }
+    water.step_n(20).unwrap();
+    old.step_n(20).unwrap();
+    assert_eq!(old.positions(), water.positions());
+    assert_eq!(old.velocities(), water.velocities());
+    assert_eq!(
+        u32::from_le_bytes(old.to_bytes()[8..12].try_into().unwrap()),
+        VERSION
+    );
+
+    // With bodies: their state comes back in seconds, to the rounding of the conversion.
+    let mut s = Surface::new(Params::with_size(24, 20).with_time_scale(30.0)).unwrap();
+    s.set_buoyancy(Buoyancy {
+        gravity: 80.0,
+        density: 1.2,
+    })
+    .unwrap();
+    let mut ball = Floater::sphere(2.0, 10.0, [12.0, 1.0, 10.0]);
+    ball.velocity = Vec3::new(2.4, -1.2, 0.7);
+    ball.drag = 7.5;
+    let a = s.add_floater(ball).unwrap();
+    let b = s
+        .add_floater(Floater::cuboid([1.0, 0.5, 1.5], 2.0, [6.0, 0.0, 14.0]))
+        .unwrap();
+    s.step_n(10).unwrap();
+    s.push_floater(a, [90.0, 0.0, -45.0]).unwrap();
+    let v4 = as_version_4(&s.to_bytes(), s.node_count(), 2, 30.0);
+    let mut old = Surface::from_bytes(&v4).unwrap();
+    assert!((old.buoyancy().gravity - 80.0).abs() < 1e-4);
+    assert_eq!(old.buoyancy().density, 1.2);
+    for id in [a, b] {
+        let (new, was) = (s.floater(id).unwrap(), old.floater(id).unwrap());
+        assert_eq!(was.position, new.position);
+        assert!((was.drag - new.drag).abs() <= 1e-6 * new.drag, "{was:?}");
+        for (x, y) in [
+            (was.velocity, new.velocity),
+            (was.push, new.push),
+            (was.water_force, new.water_force),
+        ] {
+            assert!(close(y, x), "{x} vs {y}");
+        }
+    }
+    s.step_n(100).unwrap();
+    old.step_n(100).unwrap();
+    for id in [a, b] {
+        let (new, was) = (s.floater(id).unwrap(), old.floater(id).unwrap());
+        assert!(
+            (was.position - new.position).abs().max_element() < 1e-4,
+            "{was:?} vs {new:?}"
+        );
+    }
+    let (y_old, y_new) = (old.positions()[1], s.positions()[1]);
+    let worst = y_old
+        .iter()
+        .zip(y_new)
+        .fold(0.0f32, |w, (a, b)| w.max((a - b).abs()));
+    assert!(worst < 1e-4, "{worst}");
 }

@@ -55,11 +55,13 @@ fn run_all(time: f32, mut disturb: impl FnMut(&mut Surface, f32)) -> [Vec<f32>; 
         let mut s = Surface::new(pool(h)).unwrap();
         let dt = s.params().dt;
         let steps = (time / dt).round() as usize;
+        // Disturbances are handed each step's seconds.
+        let seconds = dt / s.params().time_scale;
         for _ in 0..steps {
-            disturb(&mut s, dt);
+            disturb(&mut s, seconds);
             s.step().unwrap();
         }
-        assert!((s.time() as f32 - time).abs() < 1e-3);
+        assert!((s.model_time() as f32 - time).abs() < 1e-3);
         heights(&s)
     })
 }
@@ -141,8 +143,8 @@ fn a_wake_moves_the_same_way_at_spacing_1_and_half() {
 fn rain_falls_on_the_same_world_points_at_any_spacing() {
     let [coarse, fine] = [1.0, 0.5].map(|h| {
         let mut s = Surface::new(pool(h)).unwrap();
-        let mut rain = Rain::new(12.0, 11); // drops per second: 20 model units is 5/6 s
-        rain.apply(&mut s, 20.0).unwrap();
+        let mut rain = Rain::new(12.0, 11); // drops per second, over 5/6 s
+        rain.apply(&mut s, 5.0 / 6.0).unwrap();
         rain.apply(&mut s, 0.0).unwrap();
         assert!(rain.fallen() > 3);
         heights(&s)
@@ -250,7 +252,8 @@ fn a_frame_in_seconds_is_the_same_model_time_at_any_spacing() {
             substeps += s.advance(1.0 / 60.0).unwrap();
         }
         assert_eq!(substeps, (40.0 / h) as usize);
-        assert!((s.time() - 16.0).abs() < 1e-3, "{}", s.time());
+        assert!((s.model_time() - 16.0).abs() < 1e-3, "{}", s.model_time());
+        assert!((s.time() - 2.0 / 3.0).abs() < 1e-4, "{}", s.time());
         heights(&s)
     });
     let d = relative_difference(&coarse, &fine);

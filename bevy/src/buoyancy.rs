@@ -17,11 +17,10 @@ use crate::water::{report, Space, WaterError, WaterSurface};
 /// when it appears: the water lifts and drags it from the height and velocity under each
 /// column of its footprint and gets exactly minus that force back, every substep, so a
 /// floating body dents the water and a moving one leaves a wake. The model is
-/// [`springwater::floater`]'s; this component speaks world units and seconds:
+/// [`springwater::floater`]'s, and so are the units, world units and seconds:
 /// `velocity` in units per second, `force` and [`Buoyant::water_force`] in mass × units
-/// per second², `drag` per second. They are converted with the water's
-/// [`Params::time_scale`](springwater::Params::time_scale) (model time per second) and its
-/// `GlobalTransform`.
+/// per second², `drag` per second. They pass to the library as they are; only the water's
+/// `GlobalTransform` turns them between world space and the water's local space.
 ///
 /// A body away from every water's footprint floats on calm water at the water's rest
 /// height (springwater's open-water assumption); with no water at all it stays where it is.
@@ -34,8 +33,8 @@ pub struct Buoyant {
     pub shape: Shape,
     /// Mass, in the units of [`BuoyancySettings::density`] × volume (> 0).
     pub mass: f32,
-    /// Drag rate per second at full immersion (≥ 0; default 6, springwater's default rate
-    /// at the default time scale): the drag is this rate times the displaced water's mass
+    /// Drag rate per second at full immersion (≥ 0; default 6,
+    /// [`Floater::DEFAULT_DRAG`]): the drag is this rate times the displaced water's mass
     /// times the velocity relative to the water.
     pub drag: f32,
     /// World velocity, per second. Set it to throw the body.
@@ -64,28 +63,28 @@ impl Buoyant {
         Self {
             shape,
             mass: relative_density * settings.density * shape.volume(),
-            drag: 6.0,
+            drag: Floater::DEFAULT_DRAG,
             velocity: Vec3::ZERO,
             force: Vec3::ZERO,
             water_force: Vec3::ZERO,
         }
     }
 
-    /// The body in the water's local space and model time.
-    fn floater(&self, centre: Vec3, space: &Space, time_scale: f32) -> Floater {
+    /// The body in the water's local space.
+    fn floater(&self, centre: Vec3, space: &Space) -> Floater {
         let local = |v: Vec3| springwater::glam::Vec3::from_array(v.to_array());
         let mut body = Floater::sphere(1.0, self.mass, local(space.local_point(centre)));
         body.shape = self.shape;
-        body.drag = self.drag / time_scale;
-        body.velocity = local(space.local_vector(self.velocity) / time_scale);
+        body.drag = self.drag;
+        body.velocity = local(space.local_vector(self.velocity));
         body
     }
 }
 
 /// Gravity and the water's density for every [`Buoyant`] body.
 ///
-/// The default is springwater's [`Buoyancy::default`] at the default time scale (24 units
-/// of model time per second): gravity 57.6 units per second², density 1. The seed's
+/// The default is springwater's [`Buoyancy::default`]: gravity 57.6 units per second²,
+/// density 1. The seed's
 /// lattice is fast water (ripples cross about 39 units per second), and bodies fall to
 /// match. With real gravity (9.81 for metres) they float the same but, being 6 times
 /// lighter for the lattice, dent it and make waves 6 times less.
@@ -99,12 +98,8 @@ pub struct BuoyancySettings {
 
 impl Default for BuoyancySettings {
     fn default() -> Self {
-        let model = Buoyancy::default();
-        let ts = springwater::Params::default().time_scale;
-        Self {
-            gravity: model.gravity * ts * ts,
-            density: model.density,
-        }
+        let Buoyancy { gravity, density } = Buoyancy::default();
+        Self { gravity, density }
     }
 }
 
@@ -147,9 +142,8 @@ pub(crate) fn sync_bodies(
     });
     for (entity, mut ws, _) in &mut waters {
         ws.pushes.0.clear();
-        let ts = ws.surface.params().time_scale;
         let buoyancy = Buoyancy {
-            gravity: settings.gravity / (ts * ts),
+            gravity: settings.gravity,
             density: settings.density,
         };
         if ws.surface.buoyancy() != buoyancy {
@@ -182,8 +176,7 @@ pub(crate) fn sync_bodies(
             continue;
         };
         let space = Space::new(global);
-        let ts = ws.surface.params().time_scale;
-        let floater = buoyant.floater(centre, &space, ts);
+        let floater = buoyant.floater(centre, &space);
         let done = match linked {
             // Untouched since the plugin wrote it: the library's state is the exact one.
             Some(link) if link.written == Some((*buoyant, centre)) => Ok(link.id),
@@ -194,7 +187,7 @@ pub(crate) fn sync_bodies(
             Ok(id) => {
                 let written = linked.and_then(|link| link.written);
                 registry.0.insert(body, Link { water, id, written });
-                let push = space.local_vector(buoyant.force) / (ts * ts);
+                let push = space.local_vector(buoyant.force);
                 ws.pushes
                     .0
                     .push((id, springwater::glam::Vec3::from_array(push.to_array())));
@@ -228,11 +221,10 @@ pub(crate) fn write_bodies(
             continue;
         }
         let space = Space::new(global);
-        let ts = ws.surface.params().time_scale;
         let world = |v: springwater::glam::Vec3| space.world_vector(Vec3::from_array(v.to_array()));
         transform.translation = space.world_point(Vec3::from_array(f.position.to_array()));
-        buoyant.velocity = world(f.velocity) * ts;
-        buoyant.water_force = world(f.water_force) * (ts * ts);
+        buoyant.velocity = world(f.velocity);
+        buoyant.water_force = world(f.water_force);
         buoyant.force = Vec3::ZERO;
         link.written = Some((*buoyant, transform.translation));
     }

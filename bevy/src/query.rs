@@ -20,8 +20,8 @@ pub struct WaterSample {
     pub point: Vec3,
     /// Unit normal of the surface there.
     pub normal: Vec3,
-    /// Velocity of the surface there, in world units per second (springwater's velocity,
-    /// which is per unit of model time, times `Params::time_scale`).
+    /// Velocity of the surface there, in world units per second (springwater's
+    /// `velocity_at`, turned into world space).
     pub velocity: Vec3,
 }
 
@@ -62,8 +62,7 @@ fn sample_one(
     let s = &ws.surface;
     let height = s.height_at(p.x, p.z).ok()?;
     let normal = Vec3::from_array(s.normal_at(p.x, p.z).ok()?.to_array());
-    let velocity =
-        Vec3::from_array(s.velocity_at(p.x, p.z).ok()?.to_array()) * s.params().time_scale;
+    let velocity = Vec3::from_array(s.velocity_at(p.x, p.z).ok()?.to_array());
     Some(WaterSample {
         water: entity,
         point: space.world_point(Vec3::new(p.x, height, p.z)),
@@ -208,11 +207,10 @@ macro_rules! read_api {
                 springwater::Surface::velocities_at,
             )?;
             out.clear();
-            let per_second = ws.surface.params().time_scale;
             out.extend(
                 local
                     .iter()
-                    .map(|&v| space.world_vector(Vec3::from_array(v.to_array()) * per_second)),
+                    .map(|&v| space.world_vector(Vec3::from_array(v.to_array()))),
             );
             Ok(())
         }
@@ -277,8 +275,9 @@ impl WaterQueryMut<'_, '_> {
         Ok(Some(e))
     }
 
-    /// A world force at a world point on the water under it, for the next step. Returns
-    /// the water entity, or `None` if no water is there.
+    /// A world force at a world point on the water under it, for the next step, in the
+    /// lattice's force units ([`springwater::Surface::add_force_at`]). Returns the water
+    /// entity, or `None` if no water is there.
     pub fn add_force_at(
         &mut self,
         point: Vec3,

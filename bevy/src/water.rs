@@ -228,7 +228,7 @@ impl Space {
 }
 
 /// The external forces of the frame on a water's floating bodies (the [`Buoyant`]
-/// components' `force`, in the water's local space and model time), filled by the
+/// components' `force`, in the water's local space, per second²), filled by the
 /// buoyancy sync and applied before every substep of the step.
 ///
 /// [`Buoyant`]: crate::Buoyant

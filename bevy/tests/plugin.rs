@@ -460,8 +460,15 @@ fn a_buoyant_body_is_the_librarys_floater_and_goes_with_its_entity() {
         body.position.to_array(),
         "the entity sits where its floater is"
     );
-    // At rest: the water carries its weight (mass × g in world units).
+    // The component holds the library's numbers as they are (seconds on both sides; the
+    // water's transform is the identity here).
     let b = *app.world().get::<Buoyant>(crate_).unwrap();
+    assert_eq!(b.velocity.to_array(), body.velocity.to_array());
+    assert_eq!(b.water_force.to_array(), body.water_force.to_array());
+    assert_eq!(b.drag, body.drag);
+    let ws = app.world().get::<WaterSurface>(water).unwrap();
+    assert_eq!(ws.surface().buoyancy().gravity, settings.gravity);
+    // At rest: the water carries its weight (mass × g in world units).
     let weight = b.mass * settings.gravity;
     assert!(
         (b.water_force.y - weight).abs() < 0.02 * weight,

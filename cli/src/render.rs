@@ -501,9 +501,10 @@ fn run_steps(
     steps: u64,
 ) -> CliResult<()> {
     for _ in 0..steps {
-        let dt = surface.params().dt;
+        // Disturbances take the step's length in seconds.
+        let seconds = surface.params().dt / surface.params().time_scale;
         for d in disturbances.iter_mut() {
-            d.apply(surface, dt).map_err(|e| e.to_string())?;
+            d.apply(surface, seconds).map_err(|e| e.to_string())?;
         }
         surface.step().map_err(|e| e.to_string())?;
     }

@@ -259,7 +259,12 @@ pub fn print_summary(s: &Surface, steps_run: u64, seconds: f64) -> CliResult<()>
         100.0 * p.dt / s.critical_dt(),
         s.critical_dt()
     );
-    say!("steps       {} (model time {:.2})", s.steps(), s.time());
+    say!(
+        "steps       {} (model time {:.2}, {:.3} s)",
+        s.steps(),
+        s.model_time(),
+        s.time()
+    );
     say!("height      min {lo:.5}  max {hi:.5}");
     say!(
         "energy      kinetic {:.6}  potential {:.6}  total {:.6}",

@@ -362,6 +362,24 @@ fn simulate_prints_one_line_per_floater_in_the_order_given() {
         assert!((v[0] - x).abs() < 0.5, "{line}: the ball drifted");
         assert!(v.iter().all(|c| c.is_finite()), "{line}");
     }
+    // The numbers are the library's, bit for bit: velocities in world units per second.
+    let p = springwater::Params::with_size(80, 80)
+        .with_boundary(springwater::Boundary::Absorbing { width: 16 });
+    let mut s = springwater::Surface::new(p).unwrap();
+    for [x, z, mass, radius] in [[40.0, 40.0, 8.0, 2.0], [20.5, 30.0, 1.0, 1.0]] {
+        s.add_floater(springwater::Floater::sphere(radius, mass, [x, 0.0, z]))
+            .unwrap();
+    }
+    s.step_n(200).unwrap();
+    for (line, (_, f)) in lines.iter().zip(s.floaters()) {
+        let words: Vec<f32> = line
+            .split(' ')
+            .filter_map(|w| w.parse().ok())
+            .skip(1)
+            .collect();
+        let expected = [f.position.to_array(), f.velocity.to_array()].concat();
+        assert_eq!(words, expected, "{line}");
+    }
 }
 
 /// A reader that has gone away (`springwater simulate … | head -1`) is no error: no panic,

@@ -26,11 +26,11 @@ typedef struct SwParams {
   uint32_t rows;
   // Rest distance between neighbouring nodes, in world units.
   float spacing;
-  // Mass of each node.
+  // Mass of each node, mass units.
   float mass;
-  // Spring coefficient `c`.
+  // Spring coefficient `c`, mass units per unit of model time².
   float stiffness;
-  // Viscosity `γ` (damping per unit of velocity).
+  // Viscosity `γ` (damping per unit of velocity), mass units per unit of model time.
   float viscosity;
   // Timestep of one step, in model time (below the critical timestep).
   float dt;
@@ -39,11 +39,11 @@ typedef struct SwParams {
   float rest_ratio;
   // Model time per second of the caller's clock (how fast the water moves).
   float time_scale;
-  // Uniform acceleration on free nodes, x.
+  // Uniform acceleration on free nodes, x, world units per second² (default 0).
   float acceleration_x;
-  // Uniform acceleration on free nodes, y.
+  // Uniform acceleration on free nodes, y, world units per second² (default 0).
   float acceleration_y;
-  // Uniform acceleration on free nodes, z.
+  // Uniform acceleration on free nodes, z, world units per second² (default 0).
   float acceleration_z;
   // `SW_BOUNDARY_PINNED`, `SW_BOUNDARY_FREE` or `SW_BOUNDARY_ABSORBING`.
   SwBoundary boundary;
@@ -106,7 +106,7 @@ typedef struct SwSample {
   float height;
   // Unit normal, x y z.
   float normal[3];
-  // Velocity, x y z.
+  // Velocity, x y z, world units per second.
   float velocity[3];
 } SwSample;
 
@@ -157,20 +157,22 @@ typedef struct SwFloater {
   float half_extents[3];
   // Mass, in the lattice's mass units (> 0; a node has `SwParams::mass`).
   float mass;
-  // Drag rate per unit of model time (0 to 1e6): the drag is this times the mass of the
+  // Drag rate, per second (0 to 1e8; default 6): the drag is this times the mass of the
   // displaced water times the velocity relative to the water.
   float drag;
   // Centre in the water's local space (the calm surface is y = 0), world units (each
   // component at most 1e15 in magnitude).
   float position[3];
-  // Velocity, world units per unit of model time (each component at most 1e9 in
-  // magnitude).
+  // Velocity, world units per second (each component at most 1e11 in magnitude; default
+  // 0).
   float velocity[3];
   // External force (an engine, the wind, a player's push) for the next step only, cleared
-  // by it; `sw_surface_push_floater` adds to it. Finite.
+  // by it; `sw_surface_push_floater` adds to it. Mass units × world units per second²,
+  // finite (default 0).
   float push[3];
   // Read only: the force the water exerted on the body during its last step (buoyancy and
-  // drag, without gravity and push); the water got exactly minus this. Ignored on input:
+  // drag, without gravity and push), mass units × world units per second²; the water got
+  // exactly minus this (in its own units, divided by `time_scale²`). Ignored on input:
   // a body added starts at 0, a body set keeps its current value.
   float water_force[3];
 } SwFloater;
@@ -181,8 +183,8 @@ typedef struct SwBuoyancy {
   // other value (a struct not started from one of them, or built with a header of
   // another version than the library's).
   uint32_t struct_size;
-  // Gravity pulling bodies down (−y), world units per unit of model time² (0 to 1e6;
-  // default 0.1).
+  // Gravity pulling bodies down (−y), world units per second² (0 to 1e9; default 57.6,
+  // which is 0.1 per unit of model time² at the default time scale of 24).
   float gravity;
   // Density of the water, mass units per cubic world unit (0 to 1e6; default 1: the
   // seed's node mass 4 per cell is a layer 4 cells deep).
@@ -454,7 +456,9 @@ SwStatus sw_surface_rebase(struct SwSurface *surface, int64_t dcols, int64_t dro
 
 // Adds the force `(fx, fy, fz)` at world `(x, z)` for the next step, spread onto the
 // four nodes around the point with the weights `sw_surface_height_at` reads with: what
-// a floating body feels and what it pushes back agree.
+// a floating body feels and what it pushes back agree. In the lattice's force units
+// (mass units × world units per unit of model time²): a force in per-second² units
+// goes in divided by `time_scale²`.
 SwStatus sw_surface_add_force_at(struct SwSurface *surface,
                                  float x,
                                  float z,
@@ -477,7 +481,7 @@ SwStatus sw_surface_height_at(const struct SwSurface *surface, float x, float z,
 // `out` is NULL or points to 3 writable floats.
 SwStatus sw_surface_normal_at(const struct SwSurface *surface, float x, float z, float *out);
 
-// The water's velocity at world `(x, z)`, written to `out[0..3]`.
+// The water's velocity at world `(x, z)`, world units per second, written to `out[0..3]`.
 //
 // # Safety
 //

@@ -1,7 +1,7 @@
 //! Floating bodies from C: spheres and boxes that ride the waves and push back into them
-//! (the library's `Floater`, whose docs explain the model). Units are the surface's: world
-//! units for lengths, the lattice's mass units, model time for velocities (world units per
-//! unit of model time) and forces.
+//! (the library's `Floater`, whose docs explain the model). Units are the game's: world
+//! units for lengths, the lattice's mass units, seconds for time (velocities per second,
+//! gravity and forces per second², the drag rate per second), as in the Rust API.
 
 use crate::handle;
 use crate::status::{guard, Failure, Outcome, SwStatus};
@@ -42,20 +42,22 @@ pub struct SwFloater {
     pub half_extents: [f32; 3],
     /// Mass, in the lattice's mass units (> 0; a node has `SwParams::mass`).
     pub mass: f32,
-    /// Drag rate per unit of model time (0 to 1e6): the drag is this times the mass of the
+    /// Drag rate, per second (0 to 1e8; default 6): the drag is this times the mass of the
     /// displaced water times the velocity relative to the water.
     pub drag: f32,
     /// Centre in the water's local space (the calm surface is y = 0), world units (each
     /// component at most 1e15 in magnitude).
     pub position: [f32; 3],
-    /// Velocity, world units per unit of model time (each component at most 1e9 in
-    /// magnitude).
+    /// Velocity, world units per second (each component at most 1e11 in magnitude; default
+    /// 0).
     pub velocity: [f32; 3],
     /// External force (an engine, the wind, a player's push) for the next step only, cleared
-    /// by it; `sw_surface_push_floater` adds to it. Finite.
+    /// by it; `sw_surface_push_floater` adds to it. Mass units × world units per second²,
+    /// finite (default 0).
     pub push: [f32; 3],
     /// Read only: the force the water exerted on the body during its last step (buoyancy and
-    /// drag, without gravity and push); the water got exactly minus this. Ignored on input:
+    /// drag, without gravity and push), mass units × world units per second²; the water got
+    /// exactly minus this (in its own units, divided by `time_scale²`). Ignored on input:
     /// a body added starts at 0, a body set keeps its current value.
     pub water_force: [f32; 3],
 }
@@ -68,8 +70,8 @@ pub struct SwBuoyancy {
     /// other value (a struct not started from one of them, or built with a header of
     /// another version than the library's).
     pub struct_size: u32,
-    /// Gravity pulling bodies down (−y), world units per unit of model time² (0 to 1e6;
-    /// default 0.1).
+    /// Gravity pulling bodies down (−y), world units per second² (0 to 1e9; default 57.6,
+    /// which is 0.1 per unit of model time² at the default time scale of 24).
     pub gravity: f32,
     /// Density of the water, mass units per cubic world unit (0 to 1e6; default 1: the
     /// seed's node mass 4 per cell is a layer 4 cells deep).

@@ -29,8 +29,12 @@
 //!   values; structs hold only integers, floats and pointers (C# `StructLayout.Sequential`
 //!   maps them as they are); no varargs, no callbacks but the job system's.
 //! * **Units.** World units for lengths and points (`x, z` in the water's local space, y
-//!   up), seconds for frame times, model time for floating bodies' velocities and the
-//!   buoyancy's gravity; the same as the Rust API.
+//!   up), and seconds for everything with time in it that a game sets or reads: frame
+//!   times, velocities (per second), the uniform acceleration and the buoyancy's gravity
+//!   (per second²), floating bodies' state and forces. `SwParams`' lattice constants
+//!   (`mass`, `stiffness`, `viscosity`, `dt`) are in model time, and `time_scale` converts;
+//!   forces pushed into the water (`sw_surface_add_force_at`) are in the lattice's force
+//!   units. The same as the Rust API (docs/units.md).
 
 mod floaters;
 mod handle;
@@ -100,11 +104,11 @@ pub struct SwParams {
     pub rows: u32,
     /// Rest distance between neighbouring nodes, in world units.
     pub spacing: f32,
-    /// Mass of each node.
+    /// Mass of each node, mass units.
     pub mass: f32,
-    /// Spring coefficient `c`.
+    /// Spring coefficient `c`, mass units per unit of model time².
     pub stiffness: f32,
-    /// Viscosity `γ` (damping per unit of velocity).
+    /// Viscosity `γ` (damping per unit of velocity), mass units per unit of model time.
     pub viscosity: f32,
     /// Timestep of one step, in model time (below the critical timestep).
     pub dt: f32,
@@ -113,11 +117,11 @@ pub struct SwParams {
     pub rest_ratio: f32,
     /// Model time per second of the caller's clock (how fast the water moves).
     pub time_scale: f32,
-    /// Uniform acceleration on free nodes, x.
+    /// Uniform acceleration on free nodes, x, world units per second² (default 0).
     pub acceleration_x: f32,
-    /// Uniform acceleration on free nodes, y.
+    /// Uniform acceleration on free nodes, y, world units per second² (default 0).
     pub acceleration_y: f32,
-    /// Uniform acceleration on free nodes, z.
+    /// Uniform acceleration on free nodes, z, world units per second² (default 0).
     pub acceleration_z: f32,
     /// `SW_BOUNDARY_PINNED`, `SW_BOUNDARY_FREE` or `SW_BOUNDARY_ABSORBING`.
     pub boundary: SwBoundary,
@@ -199,7 +203,7 @@ pub struct SwSample {
     pub height: f32,
     /// Unit normal, x y z.
     pub normal: [f32; 3],
-    /// Velocity, x y z.
+    /// Velocity, x y z, world units per second.
     pub velocity: [f32; 3],
 }
 
@@ -501,7 +505,9 @@ pub extern "C" fn sw_surface_rebase(surface: *mut SwSurface, dcols: i64, drows: 
 
 /// Adds the force `(fx, fy, fz)` at world `(x, z)` for the next step, spread onto the
 /// four nodes around the point with the weights `sw_surface_height_at` reads with: what
-/// a floating body feels and what it pushes back agree.
+/// a floating body feels and what it pushes back agree. In the lattice's force units
+/// (mass units × world units per unit of model time²): a force in per-second² units
+/// goes in divided by `time_scale²`.
 #[no_mangle]
 pub extern "C" fn sw_surface_add_force_at(
     surface: *mut SwSurface,
@@ -556,7 +562,7 @@ pub unsafe extern "C" fn sw_surface_normal_at(
     })
 }
 
-/// The water's velocity at world `(x, z)`, written to `out[0..3]`.
+/// The water's velocity at world `(x, z)`, world units per second, written to `out[0..3]`.
 ///
 /// # Safety
 ///

@@ -179,12 +179,12 @@ fn expected_floaters() -> Vec<(&'static str, String)> {
     let mut s = Surface::new(p).unwrap();
     let calm = Buoyancy::default();
     s.set_buoyancy(Buoyancy {
-        gravity: 0.12,
+        gravity: 69.12,
         density: 1.1,
     })
     .unwrap();
     let mut ball = Floater::sphere(2.0, 10.0, [12.0, 1.0, 14.0]);
-    ball.velocity = glam::Vec3::new(0.05, 0.0, -0.02);
+    ball.velocity = glam::Vec3::new(1.2, 0.0, -0.48);
     let a = s.add_floater(ball).unwrap();
     let b = s
         .add_floater(Floater::cuboid([1.5, 0.5, 2.0], 4.0, [20.0, 0.5, 10.0]))
@@ -204,13 +204,13 @@ fn expected_floaters() -> Vec<(&'static str, String)> {
     s.drop_at(16.0, 14.0, 0.5, 2.0).unwrap();
     for frame in 0..40 {
         if frame == 10 {
-            s.push_floater(a, [0.5, 0.0, 0.2]).unwrap();
+            s.push_floater(a, [288.0, 0.0, 115.2]).unwrap();
         }
         s.advance(1.0 / 60.0).unwrap();
     }
     let mut boxy = *s.floater(b).unwrap();
-    boxy.velocity.x = 0.1;
-    boxy.drag = 1.0;
+    boxy.velocity.x = 2.4;
+    boxy.drag = 24.0;
     s.set_floater(b, boxy).unwrap();
     s.step_n(20).unwrap();
     let floaters = floaters_fingerprint(&s);

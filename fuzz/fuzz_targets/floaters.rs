@@ -70,8 +70,10 @@ fuzz_target!(|input: Input| {
         return;
     }
     let mut s = Surface::new(base).unwrap();
+    // Gravity, drag and speeds per second: the ranges are 1e-4 to 1e4 per unit of model
+    // time², 1e-3 to 1e6 and 1e-3 to 1e9 per unit of model time at the default time scale.
     let buoyancy = Buoyancy {
-        gravity: log_range(input.gravity, 1e-4, 1e4),
+        gravity: log_range(input.gravity, 0.0576, 5.76e6),
         density: log_range(input.density, 1e-4, 1e4),
     };
     let _ = s.set_buoyancy(buoyancy);
@@ -88,8 +90,8 @@ fuzz_target!(|input: Input| {
                 Floater::sphere(size[0], 1.0, at)
             };
             f.mass = log_range(b.mass, 1e-37, 1e37);
-            f.drag = log_range(b.drag, 1e-3, 1e6) - 1e-3;
-            let speed = log_range(b.speed, 1e-3, 1e9);
+            f.drag = log_range(b.drag, 0.024, 2.4e7) - 0.024;
+            let speed = log_range(b.speed, 0.024, 2.4e10);
             f.velocity = glam::Vec3::from_array(b.velocity.map(|v| v as f32 / 128.0 * speed));
             f
         })

@@ -5,12 +5,12 @@
 use super::Surface;
 use crate::error::Result;
 
-/// Something that disturbs a surface as model time passes.
+/// Something that disturbs a surface as the game's time passes.
 pub trait Disturbance {
-    /// Disturbs `surface` for the step of model time `dt` about to be taken, that is
-    /// `dt / surface.params().time_scale` seconds of the game's clock. Call it right
-    /// before [`Surface::step`] (or let [`Surface::advance_with`] call it): forces it adds
-    /// apply to that step only.
+    /// Disturbs `surface` for the step about to be taken, `dt` **seconds** of the game's
+    /// clock long: `params().dt / params().time_scale` for a [`Surface::step`] (what
+    /// [`Surface::advance_with`] passes). Call it right before the step (or let
+    /// `advance_with` call it): forces it adds apply to that step only.
     fn apply(&mut self, surface: &mut Surface, dt: f32) -> Result<()>;
 }
 

@@ -97,8 +97,9 @@ impl Surface {
         self.floaters.bodies.iter().map(|(id, f)| (*id, f))
     }
 
-    /// Adds `force` (world units) to a body for the next step only: an engine, the wind, a
-    /// player's push. On error nothing changes.
+    /// Adds `force` (mass units × world units per second², like every force on a body) to
+    /// a body for the next step only: an engine, the wind, a player's push. On error nothing
+    /// changes.
     pub fn push_floater(&mut self, id: FloaterId, force: impl Into<Vec3>) -> Result<()> {
         let force = force.into();
         let k = self.floaters.index(id)?;
@@ -110,7 +111,7 @@ impl Surface {
         Ok(())
     }
 
-    /// Gravity and water density for the bodies.
+    /// Gravity (world units per second²) and water density for the bodies.
     pub fn buoyancy(&self) -> Buoyancy {
         self.floaters.buoyancy
     }
@@ -133,7 +134,7 @@ impl Surface {
             self.min_mass,
             self.max_stiffness,
             self.max_viscosity,
-            buoyancy.node_stiffness(self.params.spacing),
+            buoyancy.node_stiffness(self.params.spacing, self.params.time_scale),
         )
     }
 
@@ -142,11 +143,13 @@ impl Surface {
         if self.floaters.bodies.is_empty() {
             0.0
         } else {
-            self.floaters.buoyancy.node_stiffness(self.params.spacing)
+            self.floaters
+                .buoyancy
+                .node_stiffness(self.params.spacing, self.params.time_scale)
         }
     }
 
-    /// One step of `dt` with the bodies: their reactions go into the external forces,
+    /// One step of model time `dt` with the bodies: their reactions go into the external forces,
     /// `stepper` steps the water, and the bodies move only if it succeeded. On any error
     /// the surface is unchanged, bodies and pending forces included.
     pub(crate) fn floating_step(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
@@ -189,12 +192,19 @@ impl Surface {
 
     /// Reads the water under every body, solves each body's step (kept in
     /// `scratch.moved`) and pushes the reactions into the external forces (logged).
+    ///
+    /// The bodies live in seconds, the lattice in model time (`dt` is model time): the body
+    /// steps `dt / time_scale` seconds, the water velocity it reads is the lattice's times
+    /// `time_scale`, and the forces it pushes into the water are divided by `time_scale²`.
     fn couple(&mut self, dt: f32, scratch: &mut Scratch) -> Result<()> {
         let Buoyancy { gravity, density } = self.floaters.buoyancy;
         let h = self.params.spacing;
+        let scale = self.params.time_scale;
+        let seconds = dt / scale;
         // Damping room: `b_lim` of the stiffest node with the waterline springs (see the
         // `absorb` module), shared out as half of what it leaves the four nodes under a
-        // column, per cell of area.
+        // column, per cell of area. `rate` is per unit of model time, the body's drag per
+        // second: the cap is `rate × time_scale`.
         let omega2 = (12.0 * self.max_stiffness + self.floater_stiffness()) / self.min_mass;
         let rate = ((4.0 - omega2 * dt * dt) / (2.0 * dt)).max(0.0);
         scratch.moved.clear();
@@ -205,12 +215,14 @@ impl Surface {
             for col in &scratch.columns {
                 let (x, z) = (body.position.x + col.dx, body.position.z + col.dz);
                 let (height, flow, room, at) = match self.water_under(x, z, rate) {
-                    Some((height, flow, room)) => (height, flow, room.max(0.0), Some([x, z])),
+                    Some((height, flow, room)) => {
+                        (height, flow * scale, room.max(0.0), Some([x, z]))
+                    }
                     None => (0.0, Vec3::ZERO, f32::INFINITY, None),
                 };
                 let bottom = body.position.y - 0.5 * col.length;
                 let wet = (height - bottom).clamp(0.0, col.length);
-                let cap = 0.5 * room * (col.area / (h * h)).min(1.0);
+                let cap = 0.5 * room * (col.area / (h * h)).min(1.0) * scale;
                 scratch.under.push(ColumnForce {
                     at,
                     lift: density * gravity * wet * col.area,
@@ -223,9 +235,10 @@ impl Surface {
                     flow,
                 });
             }
-            let velocity = floater::solve(&body, &scratch.under, gravity, dt, &mut scratch.forces);
+            let velocity =
+                floater::solve(&body, &scratch.under, gravity, seconds, &mut scratch.forces);
             let force: Vec3 = scratch.forces.iter().sum();
-            let position = body.position + dt * velocity;
+            let position = body.position + seconds * velocity;
             // The body must stay a valid body (finite, and within the ranges a snapshot
             // accepts), or the step is refused.
             let moved = Floater {
@@ -241,9 +254,13 @@ impl Surface {
                     floater: id.0,
                 });
             }
+            // The lattice's forces are per unit of model time²: a body's force in seconds
+            // goes in divided by `time_scale²`.
+            let to_lattice = scale * scale;
             for (c, f) in scratch.under.iter().zip(&scratch.forces) {
                 if let Some([x, z]) = c.at {
-                    self.add_force_at_logged(x, z, (-*f).to_array(), Some(&mut scratch.log))
+                    let reaction = (-*f / to_lattice).to_array();
+                    self.add_force_at_logged(x, z, reaction, Some(&mut scratch.log))
                         .map_err(|_| Error::FloaterNonFinite {
                             step: self.steps(),
                             floater: id.0,

@@ -232,9 +232,16 @@ impl Surface {
         self.steps
     }
 
-    /// Model time simulated so far (in the seed's time unit; divide by
-    /// `params().time_scale` for seconds of the caller's clock).
+    /// Seconds of the game's clock simulated so far: [`Surface::model_time`] divided by
+    /// `params().time_scale` (1 after 60 steps of the default `dt` 0.4 at the default time
+    /// scale of 24).
     pub fn time(&self) -> f64 {
+        self.time / self.params.time_scale as f64
+    }
+
+    /// Model time simulated so far, in the lattice's own time unit: the sum of the steps'
+    /// `dt` (what the snapshot stores; [`Surface::time`] is the same in seconds).
+    pub fn model_time(&self) -> f64 {
         self.time
     }
 
@@ -267,7 +274,9 @@ impl Surface {
         ]
     }
 
-    /// Velocities `[vx, vy, vz]`, one value per node, row-major.
+    /// Velocities `[vx, vy, vz]`, one value per node, row-major: the lattice's own state,
+    /// in world units per unit of *model time* (borrowed, not converted; multiply by
+    /// `params().time_scale` for per second, or read [`Surface::velocity_at`], which does).
     pub fn velocities(&self) -> [&[f32]; 3] {
         let n = self.node_count();
         [
@@ -321,11 +330,14 @@ impl Surface {
     }
 
     fn config(&self, dt: f32) -> StepConfig {
-        // `+ 0.0` turns a −0 acceleration into +0, which keeps a zero force's sign from
-        // reaching the state (see `forces::engine`).
+        // The acceleration is per second², the lattice's per unit of model time²:
+        // divided by `time_scale²` (a normal number, see `Params::validate`). `+ 0.0`
+        // turns a −0 acceleration into +0, which keeps a zero force's sign from reaching
+        // the state (see `forces::engine`).
+        let ts2 = self.params.time_scale * self.params.time_scale;
         StepConfig {
             dt,
-            accel: self.params.acceleration.map(|a| a + 0.0),
+            accel: self.params.acceleration.map(|a| a / ts2 + 0.0),
         }
     }
 
@@ -534,8 +546,9 @@ impl Surface {
         self.settle(clock, before, steps, result)
     }
 
-    /// [`Surface::advance`] with `disturbance` applied before every step, with the model
-    /// timestep `params().dt`: rain, wakes, buoyancy, anything implementing
+    /// [`Surface::advance`] with `disturbance` applied before every step, with the step's
+    /// length in seconds, `params().dt / params().time_scale`: rain, wakes, buoyancy,
+    /// anything implementing
     /// [`Disturbance`] (tuples, slices and `&mut` of disturbances are disturbances too).
     /// A failing disturbance or step stops the frame there and returns its error.
     ///
@@ -560,8 +573,9 @@ impl Surface {
         let (clock, before) = (self.clock, self.steps);
         let steps = self.tick(frame_seconds)?;
         let dt = self.params.dt;
+        let seconds = dt / self.params.time_scale;
         let result = (0..steps).try_for_each(|_| {
-            disturbance.apply(self, dt)?;
+            disturbance.apply(self, seconds)?;
             self.run_steps(1, dt)
         });
         self.settle(clock, before, steps, result)
@@ -596,20 +610,26 @@ impl Surface {
     /// accumulator of [`Surface::advance`]. Refuses frames of more than
     /// [`Surface::MAX_SUBSTEPS`] steps.
     pub fn advance_variable(&mut self, frame_seconds: f32) -> Result<usize> {
-        let (substeps, dt) = self.split_frame(frame_seconds)?;
+        let (substeps, dt) = self.split_model_frame(frame_seconds)?;
         self.run_steps(substeps as u64, dt)?;
         Ok(substeps)
     }
 
     /// How [`Surface::advance_variable`] cuts a frame of `frame_seconds`: the number of equal
-    /// substeps and their length in model time, never longer than `params().dt` (not even
-    /// by a rounding error).
+    /// substeps and their length in seconds, never longer than one step of `params().dt`.
     ///
     /// A frame whose model time is within a relative 10⁻⁵ of a whole number of timesteps
-    /// takes that number (the sliver of model time left over is dropped), so that a 60 Hz
-    /// frame at the default time scale is one step of `dt`, not two steps of `dt / 2`
-    /// because `(1/60) × 24` rounds a little above 0.4 in `f32`.
+    /// takes that number (the sliver left over is dropped), so that a 60 Hz frame at the
+    /// default time scale is one step of `dt`, not two steps of `dt / 2` because
+    /// `(1/60) × 24` rounds a little above 0.4 in `f32`.
     pub fn split_frame(&self, frame_seconds: f32) -> Result<(usize, f32)> {
+        let (substeps, dt) = self.split_model_frame(frame_seconds)?;
+        Ok((substeps, dt / self.params.time_scale))
+    }
+
+    /// [`Surface::split_frame`] with the substep's length in model time, never longer than
+    /// `params().dt` (not even by a rounding error).
+    fn split_model_frame(&self, frame_seconds: f32) -> Result<(usize, f32)> {
         params::non_negative("frame seconds", frame_seconds)?;
         let dt = self.params.dt;
         let model = frame_seconds as f64 * self.params.time_scale as f64;
@@ -705,7 +725,10 @@ impl Surface {
         Ok(())
     }
 
-    /// Adds `force` to node `node` for the next step only (buoyancy, a paddle, a wake).
+    /// Adds `force` to node `node` for the next step only (buoyancy, a paddle, a wake), in
+    /// the lattice's force units (mass units × world units per unit of model time², the
+    /// units of its springs; a force in seconds' units divided by `time_scale²`, see
+    /// `docs/units.md`).
     pub fn add_force(&mut self, node: usize, force: [f32; 3]) -> Result<()> {
         self.check_node(node)?;
         for f in force {
@@ -728,7 +751,8 @@ impl Surface {
         self.state.clear_ext();
     }
 
-    /// Adds a velocity change `dv` to a free node now (an impulse divided by its mass).
+    /// Adds a velocity change `dv` to a free node now (an impulse divided by its mass), in
+    /// world units per unit of model time like [`Surface::velocities`].
     pub fn add_velocity(&mut self, node: usize, dv: [f32; 3]) -> Result<()> {
         self.check_node(node)?;
         for v in dv {
@@ -747,7 +771,8 @@ impl Surface {
     }
 
     /// Replaces the external force buffer for the next step with `[fx, fy, fz]`, one
-    /// value per node. Every value must be finite; on error nothing changes.
+    /// value per node, in the lattice's force units (as [`Surface::add_force`]). Every
+    /// value must be finite; on error nothing changes.
     pub fn set_forces(&mut self, force: [&[f32]; 3]) -> Result<()> {
         let n = self.node_count();
         for c in force {
@@ -767,7 +792,8 @@ impl Surface {
         Ok(())
     }
 
-    /// Pending external forces `[fx, fy, fz]` for the next step.
+    /// Pending external forces `[fx, fy, fz]` for the next step, in the lattice's force
+    /// units (as [`Surface::add_force`]).
     pub fn forces(&self) -> [&[f32]; 3] {
         let n = self.node_count();
         [
@@ -777,7 +803,8 @@ impl Surface {
         ]
     }
 
-    /// Sets the uniform acceleration applied to every free node (gravity, wind).
+    /// Sets the uniform acceleration applied to every free node (gravity, wind), in world
+    /// units per second² ([`Params::acceleration`]).
     pub fn set_acceleration(&mut self, accel: [f32; 3]) -> Result<()> {
         for a in accel {
             params::finite("acceleration", a)?;

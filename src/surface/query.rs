@@ -83,11 +83,13 @@ impl Sample {
         )
     }
 
-    fn water(&self, view: &MeshView<'_>, vel: [&[f32]; 3]) -> WaterSample {
+    /// The water at the point; `vel` the lattice's velocities and `scale` the time scale
+    /// that turns them into world units per second.
+    fn water(&self, view: &MeshView<'_>, vel: [&[f32]; 3], scale: f32) -> WaterSample {
         WaterSample {
             height: self.blend(view.cols(), view.y()),
             normal: self.normal(view),
-            velocity: self.blend3(view.cols(), vel),
+            velocity: self.blend3(view.cols(), vel) * scale,
         }
     }
 
@@ -110,8 +112,7 @@ pub struct WaterSample {
     pub height: f32,
     /// Unit normal, as [`Surface::normal_at`].
     pub normal: Vec3,
-    /// Velocity of the water, as [`Surface::velocity_at`] (world units per unit of model
-    /// time).
+    /// Velocity of the water, as [`Surface::velocity_at`] (world units per second).
     pub velocity: Vec3,
 }
 
@@ -154,7 +155,8 @@ fn batch<T>(
 ///
 /// So a query at a node's rest position returns that node's value, and values vary
 /// continuously between nodes. Heights are the nodes' current `y`; velocities the nodes'
-/// current velocities; normals the per-node normals of
+/// current velocities in world units per second (the lattice's, per unit of model time,
+/// times `params().time_scale`); normals the per-node normals of
 /// [`MeshView::node_normal`] blended the same way and renormalised.
 /// The lattice also moves sideways a little; the queries follow the nodes (the surface
 /// point whose rest position is `(x, z)`), which is what a floating object riding the
@@ -188,7 +190,9 @@ impl Surface {
         Ok(Sample::at(&view, self.window_origin, x, z)?.blend(view.cols(), view.y()))
     }
 
-    /// Adds `force` at the world point `(x, z)` for the next step only: the force is spread
+    /// Adds `force` at the world point `(x, z)` for the next step only, in the lattice's
+    /// force units like every force on the water ([`Surface::add_force`]; a force in
+    /// seconds' units, such as a body's, divided by `time_scale²`): the force is spread
     /// onto the four nodes of the cell holding the point with exactly the bilinear weights
     /// [`Surface::height_at`] reads with (its adjoint), so what a floating body feels and
     /// what it pushes into the water agree, and the spread forces sum to `force`.
@@ -248,7 +252,7 @@ impl Surface {
     }
 
     /// The water under `(x, z)` for a floating body's column, or `None` outside the
-    /// footprint: height, velocity, and the least `mass × rate − viscosity` over the four
+    /// footprint: height, velocity (the lattice's, per unit of model time), and the least `mass × rate − viscosity` over the four
     /// nodes the point blends (the damping room `rate` leaves them).
     pub(crate) fn water_under(&self, x: f32, z: f32, rate: f32) -> Option<(f32, Vec3, f32)> {
         let view = self.mesh_view();
@@ -273,17 +277,19 @@ impl Surface {
         Ok(Sample::at(&view, self.window_origin, x, z)?.normal(&view))
     }
 
-    /// Velocity of the water at world `(x, z)`, interpolated bilinearly between nodes.
+    /// Velocity of the water at world `(x, z)`, interpolated bilinearly between nodes, in
+    /// world units per second.
     pub fn velocity_at(&self, x: f32, z: f32) -> Result<Vec3> {
         let view = self.mesh_view();
-        Ok(Sample::at(&view, self.window_origin, x, z)?.blend3(view.cols(), self.velocities()))
+        let s = Sample::at(&view, self.window_origin, x, z)?;
+        Ok(s.blend3(view.cols(), self.velocities()) * self.params.time_scale)
     }
 
     /// Height, normal and velocity at world `(x, z)` in one lookup of the cell.
     pub fn sample_at(&self, x: f32, z: f32) -> Result<WaterSample> {
         let view = self.mesh_view();
         let s = Sample::at(&view, self.window_origin, x, z)?;
-        Ok(s.water(&view, self.velocities()))
+        Ok(s.water(&view, self.velocities(), self.params.time_scale))
     }
 
     /// [`Surface::sample_at`] for every `[x, z]` of `points`, point by point: `out[k]` is
@@ -305,11 +311,12 @@ impl Surface {
     pub fn samples_at(&self, points: &[[f32; 2]], out: &mut Vec<Option<WaterSample>>) {
         let view = self.mesh_view();
         let (origin, vel) = (self.window_origin, self.velocities());
+        let scale = self.params.time_scale;
         out.clear();
         out.extend(points.iter().map(|&[x, z]| {
             Sample::at(&view, origin, x, z)
                 .ok()
-                .map(|s| s.water(&view, vel))
+                .map(|s| s.water(&view, vel, scale))
         }));
     }
 
@@ -328,12 +335,13 @@ impl Surface {
         batch(&view, self.window_origin, points, out, |s| s.normal(&view))
     }
 
-    /// [`Surface::velocity_at`] for every `[x, z]` of `points`, into `out`.
+    /// [`Surface::velocity_at`] for every `[x, z]` of `points`, into `out` (world units
+    /// per second).
     pub fn velocities_at(&self, points: &[[f32; 2]], out: &mut Vec<Vec3>) -> Result<()> {
         let view = self.mesh_view();
-        let vel = self.velocities();
+        let (vel, scale) = (self.velocities(), self.params.time_scale);
         batch(&view, self.window_origin, points, out, |s| {
-            s.blend3(view.cols(), vel)
+            s.blend3(view.cols(), vel) * scale
         })
     }
 }

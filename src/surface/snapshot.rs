@@ -13,8 +13,8 @@ use std::io::{Read, Write};
 
 /// The first eight bytes of every snapshot.
 pub(crate) const MAGIC: [u8; 8] = *b"SPRWATER";
-/// The format version this build writes. It reads versions 1 to 4 (see [`Snapshot`]).
-pub(crate) const VERSION: u32 = 4;
+/// The format version this build writes. It reads versions 1 to 5 (see [`Snapshot`]).
+pub(crate) const VERSION: u32 = 5;
 /// Bytes before the per-node arrays in versions 1 and 2.
 const HEADER_V2: usize = 112;
 /// Bytes before the per-node arrays.
@@ -46,7 +46,7 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// data's arrays may be edited first (its bounds and flags follow them, see
 /// [`Surface::from_snapshot`]).
 ///
-/// # Format (version 4)
+/// # Format (version 5)
 ///
 /// Little-endian throughout; `n = cols × rows`, `f` floating bodies. Per-node arrays hold
 /// exactly `n` values (no SIMD padding); spring tables are indexed by origin node, with
@@ -55,13 +55,13 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// | offset | size | field |
 /// |---|---|---|
 /// | 0 | 8 | magic `b"SPRWATER"` |
-/// | 8 | 4 | format version `u32` (4; versions 1 to 3 are read too) |
+/// | 8 | 4 | format version `u32` (5; versions 1 to 4 are read too) |
 /// | 12 | 4 | flags `u32`: bit 0 = external forces pending; other bits 0 |
 /// | 16 | 8 | total length in bytes `u64`, checksum included |
 /// | 24 | 8, 8 | `cols`, `rows` as `u64` |
 /// | 40 | 6 × 4 | `spacing`, `mass`, `stiffness`, `viscosity`, `dt`, `rest_ratio` (`f32`) |
 /// | 64 | 4 | boundary `u32`: 0 = pinned, 1 = free, 2 = absorbing |
-/// | 68 | 3 × 4 | uniform acceleration x, y, z (`f32`) |
+/// | 68 | 3 × 4 | uniform acceleration x, y, z (`f32`, world units per second²) |
 /// | 80 | 8 | steps taken `u64` |
 /// | 88 | 8 | model time `f64` |
 /// | 96 | 3 × 4 | `min_mass`, `max_stiffness`, `max_viscosity` (`f32`): the bounds behind `critical_dt` |
@@ -69,19 +69,24 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// | 112 | 4 | absorbing frame width `u32` (0 unless the boundary is absorbing) |
 /// | 116 | 4 | floating bodies `f` (`u32`) |
 /// | 120 | 8 | the id the next added body gets (`u64`) |
-/// | 128 | 2 × 4 | buoyancy: gravity, water density (`f32`) |
-/// | 136 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z |
+/// | 128 | 2 × 4 | buoyancy: gravity (world units per second²), water density (`f32`) |
+/// | 136 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z (the lattice's units, model time) |
 /// | | 2 × 4n | mass, viscosity per node |
 /// | | n | pinned per node, `u8` 0 or 1 |
 /// | | 8 × 4n | rest length then stiffness, for families E, S, SE, SW |
-/// | | 80 f | per body: id `u64`, shape `u32` (0 = sphere, 1 = box), size (radius, 0, 0 or half extents), mass, drag, position, velocity, push, water force (`f32`) |
+/// | | 80 f | per body: id `u64`, shape `u32` (0 = sphere, 1 = box), size (radius, 0, 0 or half extents), mass, drag (per second), position, velocity (per second), push, water force (mass × world units per second²) (`f32`) |
 /// | end − 44 | 2 × 8 | the window's origin in cells, columns then rows (`i64`, [`Surface::origin_cells`]) |
 /// | end − 28 | 8 | model time [`Surface::advance`] owes and has not stepped (`f64`) |
 /// | end − 20 | 4, 4 | the step cap `u32` and what happens past it `u32`: 0 = drop, 1 = carry ([`Surface::set_step_cap`]) |
 /// | end − 12 | 8 | seconds the cap has dropped so far (`f64`) |
 /// | end − 4 | 4 | CRC-32 (IEEE) of every byte before it |
 ///
-/// The total is `180 + 77 n + 80 f` bytes. Version 3 has no origin and no clock (read as
+/// The total is `180 + 77 n + 80 f` bytes. Version 4 has the same layout with the
+/// acceleration, gravity and bodies in model time (velocities per unit of model time,
+/// drag per unit, accelerations and forces per unit²): loading converts them to seconds
+/// with the stored `time_scale` (the acceleration to the per-second² value that converts
+/// back to the stored bits, where one exists, so water without bodies continues bit for
+/// bit; bodies continue to rounding). Version 3 has no origin and no clock either (read as
 /// `[0, 0]`, a window that never moved, and a fresh clock). Versions 1 and 2 end the header at offset 112
 /// (no bodies, no absorbing boundary; version 1 has no `time_scale` either: such
 /// snapshots get the default). Loading refuses, with [`Error::Snapshot`] and a message
@@ -105,8 +110,9 @@ pub struct Snapshot {
     pub params: Params,
     /// Steps taken.
     pub steps: u64,
-    /// Model time simulated.
-    pub time: f64,
+    /// Model time simulated ([`Surface::model_time`]; [`Surface::time`] is it in seconds).
+    #[cfg_attr(feature = "serde", serde(alias = "time"))]
+    pub model_time: f64,
     // Derived state the surface keeps beside the arrays, private so that it cannot be set
     // against them (the binary format and serde carry it; loading checks it).
     /// Smallest node mass ever set: with `max_stiffness` it sets `critical_dt`.
@@ -119,9 +125,11 @@ pub struct Snapshot {
     pub(crate) forces_pending: bool,
     /// Positions `[x, y, z]`.
     pub positions: [Vec<f32>; 3],
-    /// Velocities `[vx, vy, vz]`.
+    /// Velocities `[vx, vy, vz]`, the lattice's: world units per unit of model time
+    /// ([`Surface::velocities`]).
     pub velocities: [Vec<f32>; 3],
-    /// External forces for the next step `[fx, fy, fz]`.
+    /// External forces for the next step `[fx, fy, fz]`, in the lattice's force units
+    /// ([`Surface::forces`]).
     pub forces: [Vec<f32>; 3],
     /// Node masses.
     pub mass: Vec<f32>,
@@ -135,13 +143,14 @@ pub struct Snapshot {
     /// [`Spring::stiffness`](crate::Spring::stiffness) of each spring).
     #[cfg_attr(feature = "serde", serde(alias = "coef"))]
     pub stiffness: [Vec<f32>; 4],
-    /// Floating bodies with their ids, ids increasing.
+    /// Floating bodies with their ids, ids increasing; their state in seconds, as
+    /// [`Surface::floater`] reads it.
     #[cfg_attr(feature = "serde", serde(default))]
     pub floaters: Vec<(FloaterId, Floater)>,
     /// The id the next added body gets (above every id in `floaters`).
     #[cfg_attr(feature = "serde", serde(default))]
     pub(crate) next_floater_id: u64,
-    /// Gravity and water density for the bodies.
+    /// Gravity (per second²) and water density for the bodies.
     #[cfg_attr(feature = "serde", serde(default))]
     pub buoyancy: Buoyancy,
     /// Whole cells the window has travelled, `[cols, rows]` ([`Surface::origin_cells`]).
@@ -191,9 +200,10 @@ fn bad(msg: impl Into<String>) -> Error {
 impl Snapshot {
     /// The first eight bytes of every binary snapshot.
     pub const MAGIC: [u8; 8] = MAGIC;
-    /// The binary format version this build writes. It reads this one and versions 1 to 3
+    /// The binary format version this build writes. It reads this one and versions 1 to 4
     /// (version 1 had no `time_scale`, version 3 no window origin: such snapshots get the
-    /// default and `[0, 0]`).
+    /// default and `[0, 0]`; versions up to 4 kept bodies and accelerations in model time,
+    /// converted to seconds on loading).
     pub const VERSION: u32 = VERSION;
 
     /// Encodes the snapshot in the binary format of the module docs.
@@ -266,7 +276,7 @@ impl Snapshot {
             b.extend_from_slice(&v.to_le_bytes());
         }
         b.extend_from_slice(&self.steps.to_le_bytes());
-        b.extend_from_slice(&self.time.to_le_bytes());
+        b.extend_from_slice(&self.model_time.to_le_bytes());
         b.extend_from_slice(&self.min_mass.to_le_bytes());
         b.extend_from_slice(&self.max_stiffness.to_le_bytes());
         b.extend_from_slice(&self.max_viscosity.to_le_bytes());
@@ -487,10 +497,15 @@ impl Snapshot {
             (origin, owed, (max_steps, overflow), r.f64())
         };
         debug_assert_eq!(r.at, body.len());
+        let (params, floaters, buoyancy) = if version < 5 {
+            in_seconds(params, floaters, buoyancy)
+        } else {
+            (params, floaters, buoyancy)
+        };
         Ok(Self {
             params,
             steps,
-            time,
+            model_time: time,
             min_mass,
             max_stiffness,
             max_viscosity,
@@ -588,10 +603,10 @@ impl Snapshot {
                 "external forces are stored but not marked pending (flag bit 0)",
             ));
         }
-        if !(self.time.is_finite() && self.time >= 0.0) {
+        if !(self.model_time.is_finite() && self.model_time >= 0.0) {
             return Err(bad(format!(
                 "model time {} is not a finite number >= 0",
-                self.time
+                self.model_time
             )));
         }
         params::positive("min_mass", self.min_mass).map_err(|e| bad(e.to_string()))?;
@@ -688,12 +703,50 @@ impl Snapshot {
         let extra = if self.floaters.is_empty() {
             0.0
         } else {
-            self.buoyancy.node_stiffness(p.spacing)
+            self.buoyancy.node_stiffness(p.spacing, p.time_scale)
         };
         let critical =
             params::critical_dt_with(self.min_mass, self.max_stiffness, self.max_viscosity, extra);
         params::check_dt(p.dt, critical).map_err(|e| bad(e.to_string()))
     }
+}
+
+/// The acceleration, buoyancy and bodies of a snapshot of version 4 or older, stored in
+/// model time, converted to seconds with its time scale `s`: velocities and the drag rate
+/// times `s`, accelerations and forces times `s²`.
+fn in_seconds(
+    params: Params,
+    mut floaters: Vec<(FloaterId, Floater)>,
+    buoyancy: Buoyancy,
+) -> (Params, Vec<(FloaterId, Floater)>, Buoyancy) {
+    let s = params.time_scale;
+    let s2 = s * s;
+    for (_, body) in &mut floaters {
+        body.drag *= s;
+        body.velocity *= s;
+        body.push *= s2;
+        body.water_force *= s2;
+    }
+    let params = Params {
+        acceleration: params.acceleration.map(|a| per_second_squared(a, s2)),
+        ..params
+    };
+    let buoyancy = Buoyancy {
+        gravity: buoyancy.gravity * s2,
+        ..buoyancy
+    };
+    (params, floaters, buoyancy)
+}
+
+/// The acceleration per second² that the step turns back into `model` (per unit of model
+/// time²) bit for bit, `a / s2`: `model × s2`, or the `f32` next to it when the rounding
+/// of the product would not convert back; `model × s2` when none does.
+fn per_second_squared(model: f32, s2: f32) -> f32 {
+    let a = model * s2;
+    [a, a.next_up(), a.next_down()]
+        .into_iter()
+        .find(|c| (c / s2).to_bits() == model.to_bits())
+        .unwrap_or(a)
 }
 
 /// Checks magic, version and lengths; returns the total length the header announces,
@@ -803,7 +856,7 @@ impl Surface {
         Snapshot {
             params: *self.params(),
             steps: self.steps(),
-            time: self.time(),
+            model_time: self.model_time(),
             min_mass: self.min_mass,
             max_stiffness: self.max_stiffness,
             max_viscosity: self.max_viscosity,
@@ -870,7 +923,8 @@ impl Surface {
             std::array::from_fn(|f| snap.stiffness[f].as_slice()),
         );
         let bounds = [snap.min_mass, snap.max_stiffness, snap.max_viscosity];
-        let mut surface = Surface::from_parts(p, state, springs, bounds, (snap.steps, snap.time));
+        let progress = (snap.steps, snap.model_time);
+        let mut surface = Surface::from_parts(p, state, springs, bounds, progress);
         surface.floaters.bodies = snap.floaters;
         surface.floaters.next_id = snap.next_floater_id;
         surface.floaters.buoyancy = snap.buoyancy;

@@ -118,7 +118,8 @@ pub const MAX_ORIGIN_CELLS: i64 = (1 << 24) - (1 << 20);
 /// An open-world game keeps a cheaper model of the water far from the camera (a swell, a
 /// sum of Gerstner waves, a coarse grid, or nothing): the window asks it for the state of
 /// each node as that node enters. Heights are in the water frame's units, added to the
-/// rest height 0; velocities per unit of model time. Every value must be finite, or the
+/// rest height 0; velocities in world units per second (as [`Surface::velocity_at`]
+/// answers them). Every value must be finite, or the
 /// shift is refused and nothing changes. Nodes the boundary pins stay at rest.
 ///
 /// A closure `FnMut(x, z) -> height` is a far field with zero vertical velocity.
@@ -126,7 +127,8 @@ pub trait FarField {
     /// Height of the water at `(x, z)` (water frame).
     fn height(&mut self, x: f32, z: f32) -> f32;
 
-    /// Vertical velocity of the water at `(x, z)`; 0 unless overridden.
+    /// Vertical velocity of the water at `(x, z)`, world units per second; 0 unless
+    /// overridden.
     fn vertical_velocity(&mut self, _x: f32, _z: f32) -> f32 {
         0.0
     }
@@ -354,7 +356,7 @@ impl Surface {
             return Ok(());
         }
         let grid = self.grid();
-        let h = self.params.spacing;
+        let (h, time_scale) = (self.params.spacing, self.params.time_scale);
         let mv = Move {
             grid,
             dc: dcols as isize,
@@ -380,6 +382,8 @@ impl Surface {
             }
             let (x, z) = rest(c, r);
             let (y, vy) = (far_field.height(x, z), far_field.vertical_velocity(x, z));
+            // Per second in, per unit of model time in the lattice.
+            let vy = vy / time_scale;
             if !(y.is_finite() && vy.is_finite()) && bad.is_none() {
                 bad = Some(if y.is_finite() { vy } else { y });
             }

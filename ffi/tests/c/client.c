@@ -221,7 +221,7 @@ static void floating_bodies(void) {
     CHECK(memcmp(&buoyancy, &defaults, sizeof buoyancy) == 0);
     printf("buoyancy %08" PRIx32 " %08" PRIx32 "\n", float_bits(buoyancy.gravity),
            float_bits(buoyancy.density));
-    buoyancy.gravity = 0.12f;
+    buoyancy.gravity = 69.12f; /* world units per second² */
     buoyancy.density = 1.1f;
     OK(sw_surface_set_buoyancy(open, &buoyancy));
 
@@ -229,8 +229,8 @@ static void floating_bodies(void) {
     CHECK(ball.shape == SW_SHAPE_SPHERE && ball.radius == 2.0f && ball.mass == 10.0f);
     CHECK(ball.position[1] == 1.0f && ball.velocity[0] == 0.0f && ball.push[2] == 0.0f);
     printf("floater_drag %08" PRIx32 "\n", float_bits(ball.drag));
-    ball.velocity[0] = 0.05f;
-    ball.velocity[2] = -0.02f;
+    ball.velocity[0] = 1.2f; /* world units per second */
+    ball.velocity[2] = -0.48f;
     SwFloaterId ball_id = 99, box_id = 99, spare_id = 99;
     OK(sw_surface_add_floater(open, &ball, &ball_id));
     SwFloater boxy = sw_floater_box(1.5f, 0.5f, 2.0f, 4.0f, 20.0f, 0.5f, 10.0f);
@@ -259,14 +259,14 @@ static void floating_bodies(void) {
     OK(sw_surface_drop_at(open, 16.0f, 14.0f, 0.5f, 2.0f));
     for (int frame = 0; frame < 40; frame++) {
         if (frame == 10) {
-            OK(sw_surface_push_floater(open, ball_id, 0.5f, 0.0f, 0.2f));
+            OK(sw_surface_push_floater(open, ball_id, 288.0f, 0.0f, 115.2f));
         }
         OK(sw_surface_advance(open, 1.0f / 60.0f, NULL));
     }
     OK(sw_surface_floater(open, box_id, &got));
     CHECK(got.water_force[1] > 0.0f);
-    got.velocity[0] = 0.1f;
-    got.drag = 1.0f;
+    got.velocity[0] = 2.4f;
+    got.drag = 24.0f; /* per second */
     OK(sw_surface_set_floater(open, box_id, &got));
     OK(sw_surface_step(open, 20));
     printf("floaters %016" PRIx64 "\n", floaters_fingerprint(open));
@@ -373,7 +373,7 @@ static void floating_bodies(void) {
         case 5: bad.mass = -1.0f; break;
         case 6: bad.drag = -1.0f; break;
         case 7: bad.position[0] = INFINITY; break;
-        case 8: bad.velocity[1] = 2e9f; break;
+        case 8: bad.velocity[1] = 2e11f; break;
         case 9: bad.push[2] = NAN; break;
         default: bad.drag = NAN; break;
         }
@@ -404,13 +404,13 @@ static void floating_bodies(void) {
     SwBuoyancy bad_buoyancy = sw_buoyancy_default();
     bad_buoyancy.gravity = -1.0f;
     FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_set_buoyancy(open, &bad_buoyancy));
-    bad_buoyancy.gravity = 0.1f;
+    bad_buoyancy.gravity = 57.6f;
     bad_buoyancy.density = NAN;
     FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_set_buoyancy(open, &bad_buoyancy));
     bad_buoyancy.density = 2e6f;
     FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_set_buoyancy(open, &bad_buoyancy));
     /* A waterline stiff enough to need a smaller timestep. */
-    bad_buoyancy.gravity = 100.0f;
+    bad_buoyancy.gravity = 57600.0f;
     bad_buoyancy.density = 100.0f;
     FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_set_buoyancy(open, &bad_buoyancy));
     CHECK(same_state(open, snapshot, size));
