@@ -143,9 +143,9 @@ typedef int32_t SwShape;
 // `sw_surface_floater`.
 typedef struct SwFloater {
   // `sizeof(SwFloater)`, set by `sw_floater_sphere()`, `sw_floater_box()` and
-  // `sw_surface_floater()`: calls that read the struct refuse any
-  // other value (a struct not started from one of them, or built with a header of
-  // another version than the library's).
+  // `sw_surface_floater()`: calls that read or fill the struct refuse any other value (a
+  // struct not started from one of them, or built with a header of another version than
+  // the library's).
   uint32_t struct_size;
   // `SW_SHAPE_SPHERE` or `SW_SHAPE_BOX`.
   SwShape shape;
@@ -179,9 +179,9 @@ typedef struct SwFloater {
 
 // The world the bodies of a surface float in; `sw_buoyancy_default()` gives the defaults.
 typedef struct SwBuoyancy {
-  // `sizeof(SwBuoyancy)`, set by `sw_buoyancy_default()` and `sw_surface_buoyancy()`: calls that read the struct refuse any
-  // other value (a struct not started from one of them, or built with a header of
-  // another version than the library's).
+  // `sizeof(SwBuoyancy)`, set by `sw_buoyancy_default()` and `sw_surface_buoyancy()`:
+  // calls that read or fill the struct refuse any other value (a struct not started from
+  // one of them, or built with a header of another version than the library's).
   uint32_t struct_size;
   // Gravity pulling bodies down (−y), world units per second² (0 to 1e9; default 57.6,
   // which is 0.1 per unit of model time² at the default time scale of 24).
@@ -681,8 +681,9 @@ SwStatus sw_surface_add_floater(struct SwSurface *surface,
 // `SW_ERROR_NO_SUCH_FLOATER`.
 SwStatus sw_surface_remove_floater(struct SwSurface *surface, SwFloaterId id);
 
-// Writes a floating body's current state to `out`. An unknown id is
-// `SW_ERROR_NO_SUCH_FLOATER`.
+// Writes a floating body's current state to `out`, whose `struct_size` must be
+// `sizeof(SwFloater)` (or the call is `SW_ERROR_INVALID_ARGUMENT` and writes nothing). An
+// unknown id is `SW_ERROR_NO_SUCH_FLOATER`.
 //
 // # Safety
 //
@@ -740,7 +741,9 @@ SwStatus sw_surface_floater_ids(const struct SwSurface *surface,
                                 size_t len,
                                 size_t *count);
 
-// Writes the gravity and water density the surface's bodies float in to `out`.
+// Writes the gravity and water density the surface's bodies float in to `out`, whose
+// `struct_size` must be `sizeof(SwBuoyancy)` (or the call is `SW_ERROR_INVALID_ARGUMENT`
+// and writes nothing).
 //
 // # Safety
 //

@@ -5,7 +5,7 @@
 
 use crate::handle;
 use crate::status::{guard, Failure, Outcome, SwStatus};
-use crate::{input, out_ref, read_into, write_sized, Input, SwSurface};
+use crate::{input, out_ref, read_into, read_sized_into, write_sized, Input, SwSurface};
 use glam::Vec3;
 use springwater::{Buoyancy, Floater, FloaterId, Shape};
 
@@ -28,9 +28,9 @@ pub type SwFloaterId = u64;
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SwFloater {
     /// `sizeof(SwFloater)`, set by `sw_floater_sphere()`, `sw_floater_box()` and
-    /// `sw_surface_floater()`: calls that read the struct refuse any
-    /// other value (a struct not started from one of them, or built with a header of
-    /// another version than the library's).
+    /// `sw_surface_floater()`: calls that read or fill the struct refuse any other value (a
+    /// struct not started from one of them, or built with a header of another version than
+    /// the library's).
     pub struct_size: u32,
     /// `SW_SHAPE_SPHERE` or `SW_SHAPE_BOX`.
     pub shape: SwShape,
@@ -66,9 +66,9 @@ pub struct SwFloater {
 #[repr(C)]
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct SwBuoyancy {
-    /// `sizeof(SwBuoyancy)`, set by `sw_buoyancy_default()` and `sw_surface_buoyancy()`: calls that read the struct refuse any
-    /// other value (a struct not started from one of them, or built with a header of
-    /// another version than the library's).
+    /// `sizeof(SwBuoyancy)`, set by `sw_buoyancy_default()` and `sw_surface_buoyancy()`:
+    /// calls that read or fill the struct refuse any other value (a struct not started from
+    /// one of them, or built with a header of another version than the library's).
     pub struct_size: u32,
     /// Gravity pulling bodies down (−y), world units per second² (0 to 1e9; default 57.6,
     /// which is 0.1 per unit of model time² at the default time scale of 24).
@@ -156,8 +156,9 @@ pub extern "C" fn sw_surface_remove_floater(surface: *mut SwSurface, id: SwFloat
     })
 }
 
-/// Writes a floating body's current state to `out`. An unknown id is
-/// `SW_ERROR_NO_SUCH_FLOATER`.
+/// Writes a floating body's current state to `out`, whose `struct_size` must be
+/// `sizeof(SwFloater)` (or the call is `SW_ERROR_INVALID_ARGUMENT` and writes nothing). An
+/// unknown id is `SW_ERROR_NO_SUCH_FLOATER`.
 ///
 /// # Safety
 ///
@@ -168,9 +169,12 @@ pub unsafe extern "C" fn sw_surface_floater(
     id: SwFloaterId,
     out: *mut SwFloater,
 ) -> SwStatus {
-    read_into(surface, out, |w| {
-        Ok(c_floater(w.surface.floater(FloaterId::from_raw(id))?))
-    })
+    // SAFETY: `out` is NULL or a valid `SwFloater`.
+    unsafe {
+        read_sized_into(surface, out, |w| {
+            Ok(c_floater(w.surface.floater(FloaterId::from_raw(id))?))
+        })
+    }
 }
 
 /// Deprecated: the earlier name of `sw_surface_floater`, which it calls.
@@ -278,7 +282,9 @@ pub unsafe extern "C" fn sw_surface_floater_ids(
     })
 }
 
-/// Writes the gravity and water density the surface's bodies float in to `out`.
+/// Writes the gravity and water density the surface's bodies float in to `out`, whose
+/// `struct_size` must be `sizeof(SwBuoyancy)` (or the call is `SW_ERROR_INVALID_ARGUMENT`
+/// and writes nothing).
 ///
 /// # Safety
 ///
@@ -288,7 +294,8 @@ pub unsafe extern "C" fn sw_surface_buoyancy(
     surface: *const SwSurface,
     out: *mut SwBuoyancy,
 ) -> SwStatus {
-    read_into(surface, out, |w| Ok(c_buoyancy(w.surface.buoyancy())))
+    // SAFETY: `out` is NULL or a valid `SwBuoyancy`.
+    unsafe { read_sized_into(surface, out, |w| Ok(c_buoyancy(w.surface.buoyancy()))) }
 }
 
 /// Deprecated: the earlier name of `sw_surface_buoyancy`, which it calls.

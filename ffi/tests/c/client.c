@@ -163,7 +163,7 @@ static uint64_t floaters_fingerprint(SwSurface *surface) {
     OK(sw_surface_floater_ids(surface, ids, 8, &count));
     float floats[8 * 18];
     for (size_t k = 0; k < count && k < 8; k++) {
-        SwFloater f;
+        SwFloater f = {.struct_size = sizeof f};
         OK(sw_surface_floater(surface, ids[k], &f));
         floater_floats(&f, &floats[18 * k]);
     }
@@ -211,10 +211,10 @@ static void floating_bodies(void) {
     CHECK(memcmp(&read_back, &params, sizeof params) == 0);
     sw_surface_destroy(again);
 
-    SwBuoyancy buoyancy = {0};
+    SwBuoyancy buoyancy = {.struct_size = sizeof buoyancy};
     OK(sw_surface_buoyancy(open, &buoyancy));
     CHECK(buoyancy.struct_size == sizeof buoyancy);
-    SwBuoyancy old_name = {0};
+    SwBuoyancy old_name = {.struct_size = sizeof old_name};
     OK(sw_surface_get_buoyancy(open, &old_name)); /* the deprecated name, the same call */
     CHECK(memcmp(&old_name, &buoyancy, sizeof buoyancy) == 0);
     SwBuoyancy defaults = sw_buoyancy_default();
@@ -251,7 +251,10 @@ static void floating_bodies(void) {
     OK(sw_surface_floater_ids(open, ids, 4, &count));
     CHECK(count == 2 && ids[0] == ball_id && ids[1] == box_id && ids[2] == 7);
     /* Read back as added, with a zero water force. */
-    SwFloater got;
+    SwFloater got = {0};
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_surface_floater(open, ball_id, &got)); /* no size */
+    CHECK(got.mass == 0.0f);
+    got.struct_size = sizeof got;
     OK(sw_surface_floater(open, ball_id, &got));
     CHECK(memcmp(&got, &ball, sizeof got) == 0);
 
@@ -288,7 +291,7 @@ static void floating_bodies(void) {
     CHECK(memcmp(&read_back, &params, sizeof params) == 0);
     OK(sw_surface_floater_ids(copy, ids, 4, &count));
     CHECK(count == 2 && ids[0] == ball_id && ids[1] == box_id);
-    SwFloater mine, theirs;
+    SwFloater mine = {.struct_size = sizeof mine}, theirs = {.struct_size = sizeof theirs};
     OK(sw_surface_floater(open, box_id, &mine));
     OK(sw_surface_floater(copy, box_id, &theirs));
     CHECK(memcmp(&mine, &theirs, sizeof mine) == 0);
@@ -331,7 +334,7 @@ static void floating_bodies(void) {
     OK(sw_surface_remove_floater(open, spare_id));
 
     /* set_floater: water_force and the other shape's size fields are ignored. */
-    SwFloater before_set;
+    SwFloater before_set = {.struct_size = sizeof before_set};
     OK(sw_surface_floater(open, ball_id, &before_set));
     got = before_set;
     got.water_force[1] = NAN;
@@ -548,7 +551,7 @@ static void struct_sizes(void) {
     OK(sw_surface_drop(twin, 12.0f, 10.0f, 1.0f, 3.0f));
     OK(sw_surface_step(surface, 5));
     OK(sw_surface_step(twin, 5));
-    SwFloater a = {0}, b = {0};
+    SwFloater a = {.struct_size = sizeof a}, b = {.struct_size = sizeof b};
     OK(sw_surface_floater(surface, id, &a));
     OK(sw_surface_get_floater(twin, id, &b));
     CHECK(a.struct_size == sizeof a && memcmp(&a, &b, sizeof a) == 0);
