@@ -1,19 +1,32 @@
 //! The structure-of-arrays node state.
 //!
-//! Every per-node quantity is its own lane-aligned `f32` buffer ([`Floats`]): x, y, z, vx, vy, vz, external forces,
-//! mass, viscosity. (Spring forces live with the step that computes them: per family and
-//! row in the engine, per family and node in the scalar reference.) Node `i` lives at index `i` of each buffer. Buffers are padded past the
-//! last node by more than a lane so that a SIMD chunk starting at any node, or one node
-//! further, stays in bounds; the padding is zero and never moves.
+//! What is stored per node, always: x, y, z, vx, vy, vz (twice, see below) and the
+//! external forces, each its own lane-aligned `f32` buffer ([`Floats`]), and the pinned
+//! flags (one byte). Node `i` lives at index `i` of each buffer. Buffers are padded past
+//! the last node by more than a lane so that a SIMD chunk starting at any node, or one
+//! node further, stays in bounds; the padding is zero and never moves. (Spring forces live
+//! with the step that computes them: per family and row in the engine, per family and
+//! node in the scalar reference.)
+//!
+//! What is stored per node only when a caller makes it so: mass, `1/m` and viscosity are
+//! [`NodeTable`]s. While every node holds its place's default (the parameters' mass and
+//! viscosity, the absorbing frame's ramp, `1/m` zero on a pinned ring) a table keeps a few
+//! rows by distance from the edge, not an array; a per-node setter, a moved pin or a
+//! snapshot whose arrays differ from the defaults gives it one. See [`table`] for how the
+//! step reads either.
 //!
 //! Positions and velocities are double-buffered: a step reads the front buffers and writes
 //! the back ones, and only swaps them when every new value is finite. That is what makes a
 //! step transactional (see [`Surface::step`](crate::Surface::step)).
 
+pub(crate) mod table;
+
 use crate::absorb::Frame;
 use crate::grid::Grid;
 use crate::params::{Boundary, Params};
 use crate::simd::{round_up, Floats, MAX_LANES};
+pub(crate) use table::NodeTable;
+pub use table::{NodeValues, NodeValuesIter};
 
 /// Three coordinate buffers, `[x, y, z]`.
 pub(crate) type Xyz = [Floats; 3];
@@ -50,11 +63,12 @@ pub(crate) struct State {
     /// [`State::mark_ext_rows`]).
     pub ext_rows: Vec<bool>,
     /// Nodal mass `m`.
-    pub mass: Floats,
+    pub mass: NodeTable,
     /// `1/m` for free nodes, `0` for pinned nodes: the integrator's only use of mass.
-    pub inv_mass: Floats,
-    /// Viscosity `γ`.
-    pub viscosity: Floats,
+    /// Kept equal to what `mass` and `pinned` give ([`State::refresh_inv_mass`]).
+    pub inv_mass: NodeTable,
+    /// Viscosity `γ` (with the absorbing frame's ramp).
+    pub viscosity: NodeTable,
     /// Pinned nodes never move (but for the calm rule of [`crate::forces`]: a pinned
     /// height below 1e-18 becomes +0).
     pub pinned: Vec<bool>,
@@ -73,19 +87,35 @@ impl State {
             *x = c as f32 * params.spacing;
             *z = r as f32 * params.spacing;
         }
-        let mut mass = Floats::zeros(len);
-        mass[..n].fill(params.mass);
-        let mut viscosity = Floats::zeros(len);
-        viscosity[..n].fill(params.viscosity);
-        if let Boundary::Absorbing { width } = params.boundary {
-            let frame = Frame::new(params, width);
-            for (i, g) in viscosity[..n].iter_mut().enumerate() {
-                *g += frame.viscosity(grid.edge_distance(i));
+        let pins_border = params.boundary.pins_border();
+        let pinned: Vec<bool> = (0..n).map(|i| pins_border && grid.is_border(i)).collect();
+        let (m, last) = (params.mass, grid.cols - 1);
+        let mass = NodeTable::uniform(grid, m);
+        // Row k from the top or bottom edge: the ring's row, then the rows inside it.
+        let inv_mass = if pins_border {
+            NodeTable::by_edge_distance(grid, 2, |k, c| {
+                if k == 0 || c == 0 || c == last {
+                    0.0
+                } else {
+                    1.0 / m
+                }
+            })
+        } else {
+            NodeTable::uniform(grid, 1.0 / m)
+        };
+        let viscosity = match params.boundary {
+            Boundary::Absorbing { width } => {
+                // The same sum as a node's `γ + frame(edge distance)` (the ramp is 0 from
+                // `frame.width` rings in), one profile per row distance below the width.
+                let frame = Frame::new(params, width);
+                NodeTable::by_edge_distance(grid, frame.width + 1, |k, c| {
+                    let mut g = params.viscosity;
+                    g += frame.viscosity(k.min(c).min(last - c));
+                    g
+                })
             }
-        }
-        let pinned: Vec<bool> = (0..n)
-            .map(|i| params.boundary.pins_border() && grid.is_border(i))
-            .collect();
+            _ => NodeTable::uniform(grid, params.viscosity),
+        };
         let mut state = Self {
             grid,
             next_pos: pos.clone(),
@@ -97,7 +127,7 @@ impl State {
             ext_nodes: Some(Vec::new()),
             ext_rows: Vec::new(),
             mass,
-            inv_mass: Floats::zeros(len),
+            inv_mass,
             viscosity,
             pinned,
         };
@@ -110,15 +140,12 @@ impl State {
         self.grid.node_count()
     }
 
-    /// Recomputes `inv_mass` from `mass` and `pinned`.
+    /// Recomputes `inv_mass` from `mass` and `pinned` (profile rows again when every
+    /// node's `1/m` is its default).
     pub fn refresh_inv_mass(&mut self) {
-        for i in 0..self.len() {
-            self.inv_mass[i] = if self.pinned[i] {
-                0.0
-            } else {
-                1.0 / self.mass[i]
-            };
-        }
+        let (mass, pinned) = (&self.mass, &self.pinned);
+        self.inv_mass
+            .assign(|i| if pinned[i] { 0.0 } else { 1.0 / mass.get(i) });
     }
 
     /// Makes the back buffers the front ones.

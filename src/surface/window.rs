@@ -79,12 +79,12 @@
 //! price of every kernel's addressing.
 
 use super::Surface;
-use crate::absorb::Frame;
 use crate::error::{Error, Result};
 use crate::grid::{Family, Grid};
 use crate::jobs::Runner;
-use crate::params::{self, Boundary};
+use crate::params;
 use crate::simd::Floats;
+use crate::state::NodeTable;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 
@@ -471,13 +471,8 @@ impl Surface {
     fn move_parameters(&mut self, mv: Move, defaults: &Defaults) -> bool {
         let n = mv.grid.node_count();
         let state = &mut self.state;
-        let mass_moved = move_param(&mut state.mass[..n], mv, |_| defaults.mass, same_f32);
-        let visc_moved = move_param(
-            &mut state.viscosity[..n],
-            mv,
-            |i| defaults.viscosity(mv.grid, i),
-            same_f32,
-        );
+        let mass_moved = move_table(&mut state.mass, mv);
+        let visc_moved = move_table(&mut state.viscosity, mv);
         let pins_moved = move_param(
             &mut state.pinned[..n],
             mv,
@@ -571,6 +566,19 @@ fn same_f32(a: f32, b: f32) -> bool {
     a.to_bits() == b.to_bits()
 }
 
+/// [`move_param`] for a table that keeps its defaults beside its values: a table without
+/// per-node values holds its defaults, which stay with their places, so it needs no work.
+/// A table whose set values all left the window drops its per-node array. Returns whether
+/// a node still differs from its default.
+fn move_table(table: &mut NodeTable, mv: Move) -> bool {
+    let Some((values, default)) = table.nodes_and_defaults() else {
+        return false;
+    };
+    move_param(values, mv, default, same_f32);
+    table.compact();
+    table.is_per_node()
+}
+
 /// Moves the nodes of `buf` that differ from their place's default with the water; every
 /// other node takes its new place's default. Returns false (and changes nothing) when every
 /// node holds its default, which is the common case: uniform parameters cost no copy.
@@ -594,11 +602,9 @@ fn move_param<T: Copy + Default>(
     true
 }
 
-/// The values a new surface gives each place of the window.
+/// The values a new surface gives each place of the window (mass and viscosity tables
+/// keep their own, see [`NodeTable::default_at`]).
 struct Defaults {
-    mass: f32,
-    viscosity: f32,
-    frame: Option<Frame>,
     pins_border: bool,
     /// `(rest, coef)` per family.
     springs: [(f32, f32); 4],
@@ -608,25 +614,10 @@ impl Defaults {
     fn of(surface: &Surface) -> Self {
         let p = &surface.params;
         Self {
-            mass: p.mass,
-            viscosity: p.viscosity,
-            frame: match p.boundary {
-                Boundary::Absorbing { width } => Some(Frame::new(p, width)),
-                _ => None,
-            },
             pins_border: p.boundary.pins_border(),
             springs: Family::ALL
                 .map(|f| (p.rest_ratio * f.initial_length() * p.spacing, p.stiffness)),
         }
-    }
-
-    /// Viscosity of node `i` of a new surface (the same sum as `State::new`).
-    fn viscosity(&self, grid: Grid, i: usize) -> f32 {
-        let mut g = self.viscosity;
-        if let Some(frame) = &self.frame {
-            g += frame.viscosity(grid.edge_distance(i));
-        }
-        g
     }
 
     fn spring(&self, family: Family) -> (f32, f32) {
