@@ -223,3 +223,86 @@ impl State {
         self.ext_nodes = None;
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use crate::{Boundary, Params, Surface};
+
+    fn per_node(s: &Surface) -> [bool; 3] {
+        let t = &s.state;
+        [&t.mass, &t.inv_mass, &t.viscosity].map(|t| t.is_per_node())
+    }
+
+    #[test]
+    fn tables_are_per_node_only_once_a_caller_sets_a_value_of_its_own() {
+        for boundary in [Boundary::Pinned, Boundary::Free, Boundary::absorbing()] {
+            let p = Params::with_size(40, 30).with_boundary(boundary);
+            let mut s = Surface::new(p).unwrap();
+            assert_eq!(per_node(&s), [false; 3], "{boundary:?}");
+            // Stored as rows, read as nodes: the same values a new surface always had.
+            let grid = s.grid();
+            let frame = match boundary {
+                Boundary::Absorbing { width } => Some(crate::absorb::Frame::new(&p, width)),
+                _ => None,
+            };
+            for i in 0..grid.node_count() {
+                let pinned = boundary.pins_border() && grid.is_border(i);
+                let mut g = p.viscosity;
+                if let Some(frame) = frame {
+                    g += frame.viscosity(grid.edge_distance(i));
+                }
+                let inv = if pinned { 0.0 } else { 1.0 / p.mass };
+                assert_eq!(s.state.viscosity.get(i).to_bits(), g.to_bits());
+                assert_eq!(s.state.inv_mass.get(i).to_bits(), inv.to_bits());
+                assert_eq!(s.state.mass.get(i), p.mass);
+            }
+            // A snapshot of the defaults loads without per-node arrays.
+            let back = Surface::from_bytes(&s.to_bytes()).unwrap();
+            assert_eq!(per_node(&back), [false; 3]);
+            // Setting a node to its own value changes nothing.
+            s.set_mass(100, p.mass).unwrap();
+            s.set_viscosity(100, s.viscosities()[100]).unwrap();
+            assert_eq!(per_node(&s), [false; 3]);
+            s.set_viscosity(100, 0.3).unwrap();
+            assert_eq!(per_node(&s), [false, false, true]);
+            s.set_mass(101, 5.0).unwrap();
+            assert_eq!(per_node(&s), [true; 3]);
+            let back = Surface::from_bytes(&s.to_bytes()).unwrap();
+            assert_eq!(per_node(&back), [true; 3]);
+            assert_eq!(back.masses().to_vec(), s.masses().to_vec());
+            assert_eq!(back.viscosities()[100], 0.3);
+        }
+    }
+
+    #[test]
+    fn a_pin_makes_only_the_inverse_mass_per_node() {
+        let mut s = Surface::new(Params::with_size(20, 20)).unwrap();
+        s.set_pinned(50, true).unwrap();
+        assert_eq!(per_node(&s), [false, true, false]);
+        assert_eq!(s.state.inv_mass.get(50), 0.0);
+        s.set_pinned(50, false).unwrap();
+        s.state.refresh_inv_mass();
+        assert_eq!(
+            per_node(&s),
+            [false; 3],
+            "back to the defaults, back to rows"
+        );
+    }
+
+    #[test]
+    fn set_values_that_leave_the_window_leave_no_array_behind() {
+        let mut s = Surface::new(Params::with_size(24, 24)).unwrap();
+        s.set_viscosity(24 * 12 + 2, 0.4).unwrap();
+        s.shift(-1, 0).unwrap();
+        assert!(
+            s.state.viscosity.is_per_node(),
+            "the value moved with the water"
+        );
+        s.shift(8, 0).unwrap();
+        assert!(
+            !s.state.viscosity.is_per_node(),
+            "the value left the window"
+        );
+        assert!(s.viscosities().iter().all(|&g| g == 0.05));
+    }
+}
