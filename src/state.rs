@@ -304,5 +304,18 @@ mod tests {
             "the value left the window"
         );
         assert!(s.viscosities().iter().all(|&g| g == 0.05));
+        // A mass that leaves takes its `1/m` along.
+        s.set_mass(24 * 12 + 2, 6.0).unwrap();
+        assert_eq!(per_node(&s), [true, true, false]);
+        s.shift(4, 0).unwrap();
+        assert_eq!(per_node(&s), [false; 3]);
+        let fresh = Surface::new(Params::with_size(24, 24)).unwrap();
+        for i in 0..24 * 24 {
+            assert_eq!(
+                s.state.inv_mass.get(i),
+                fresh.state.inv_mass.get(i),
+                "node {i}"
+            );
+        }
     }
 }

@@ -569,14 +569,14 @@ fn same_f32(a: f32, b: f32) -> bool {
 /// [`move_param`] for a table that keeps its defaults beside its values: a table without
 /// per-node values holds its defaults, which stay with their places, so it needs no work.
 /// A table whose set values all left the window drops its per-node array. Returns whether
-/// a node still differs from its default.
+/// any value changed (as `move_param` does).
 fn move_table(table: &mut NodeTable, mv: Move) -> bool {
     let Some((values, default)) = table.nodes_and_defaults() else {
         return false;
     };
-    move_param(values, mv, default, same_f32);
+    let moved = move_param(values, mv, default, same_f32);
     table.compact();
-    table.is_per_node()
+    moved
 }
 
 /// Moves the nodes of `buf` that differ from their place's default with the water; every
