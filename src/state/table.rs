@@ -156,6 +156,7 @@ impl NodeTable {
     }
 
     /// Whether the table holds a per-node array (some node may differ from its default).
+    #[cfg(test)]
     pub fn is_per_node(&self) -> bool {
         self.nodes.is_some()
     }
@@ -327,7 +328,7 @@ impl std::fmt::Debug for NodeValues<'_> {
 }
 
 /// The iterator of [`NodeValues::iter`]: every node's value, row-major.
-#[derive(Debug, Clone)]
+#[derive(Clone)]
 pub struct NodeValuesIter<'a> {
     table: &'a NodeTable,
     /// The next row to start.
@@ -363,6 +364,14 @@ impl<'a> Iterator for NodeValuesIter<'a> {
 }
 
 impl ExactSizeIterator for NodeValuesIter<'_> {}
+
+impl std::fmt::Debug for NodeValuesIter<'_> {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("NodeValuesIter")
+            .field("left", &self.left)
+            .finish_non_exhaustive()
+    }
+}
 
 impl std::iter::FusedIterator for NodeValuesIter<'_> {}
 

@@ -72,7 +72,8 @@
 //! and every kernel, query and view would pay for the indirection on every step and
 //! frame. Moving rows costs one pass over the six position and velocity arrays (48 bytes
 //! read and written per node, against a step's 104) in the common case (no pending forces,
-//! uniform parameters), the arrays as tasks on the host's threads. Measured with
+//! uniform parameters: mass and viscosity tables that hold only their defaults keep them
+//! as rows by place, which stay where they are), the arrays as tasks on the host's threads. Measured with
 //! `benches/window.rs` (AMD EPYC Zen 4, 2 threads): 0.57–0.75 of one step at 512², about
 //! one step at 1024² (`docs/performance.md`). Folding the shift into the next step's reads
 //! (the step writes a second buffer anyway) would make it free without a seam, at the
