@@ -18,7 +18,9 @@
 //! undamped water is the `(cols − 2W) × (rows − 2W)` middle. Seen from above, waves fade out
 //! as they approach the edge, which is how a patch of open water ends. A grid that wants a
 //! given area of undamped water asks for `2W` more nodes per side; the frame costs no
-//! extra work per node (every node already carries its own viscosity).
+//! extra work per node and no memory per node (the step reads every node's viscosity
+//! from a row of its table, and the frame's ramp is a few profile rows of that table, see
+//! `state::table`).
 //!
 //! # Chosen by measurement
 //!

@@ -133,6 +133,7 @@ pub use grid::{Family, Grid, SpringId};
 pub use jobs::JobSystem;
 pub use params::{Boundary, Params, MAX_NODES};
 pub use simd::SimdLevel;
+pub use state::{NodeValues, NodeValuesIter};
 pub use surface::snapshot::Snapshot;
 pub use surface::window;
 pub use surface::{Energy, FarField, Overflow, Spring, Surface, WaterSample, MAX_ORIGIN_CELLS};

@@ -126,7 +126,8 @@ pub(crate) fn step(
     let mut first_bad = None;
     for i in 0..n {
         let (c, r) = grid.coords(i);
-        let free = state.inv_mass[i] > 0.0;
+        let (inv_mass, viscosity) = (state.inv_mass.get(i), state.viscosity.get(i));
+        let free = inv_mass > 0.0;
         let mut finite = true;
         for k in 0..3 {
             let own = [Family::E, Family::S, Family::SE].map(|f| at(f, k, c, r));
@@ -151,8 +152,8 @@ pub(crate) fn step(
                 state.pos[k][i],
                 state.vel[k][i],
                 force,
-                state.inv_mass[i],
-                state.viscosity[i],
+                inv_mass,
+                viscosity,
                 accel,
                 cfg.dt,
             );

@@ -22,7 +22,7 @@ use crate::jobs::{Host, JobSystem, Runner};
 use crate::params::{self, Params};
 use crate::simd::SimdLevel;
 use crate::springs::Springs;
-use crate::state::State;
+use crate::state::{NodeValues, State};
 use crate::view::MeshView;
 use std::sync::Arc;
 
@@ -146,7 +146,8 @@ impl Surface {
 
     fn build(params: Params) -> Self {
         let (state, springs) = (State::new(&params), Springs::new(&params));
-        let max_viscosity = state.viscosity[..state.len()]
+        let max_viscosity = state
+            .viscosity
             .iter()
             .fold(params.viscosity, |a, &b| a.max(b));
         let bounds = [params.mass, params.stiffness, max_viscosity];
@@ -823,11 +824,12 @@ impl Surface {
                 v[node] = 0.0;
             }
         }
-        self.state.inv_mass[node] = if pinned {
+        let inv_mass = if pinned {
             0.0
         } else {
-            1.0 / self.state.mass[node]
+            1.0 / self.state.mass.get(node)
         };
+        self.state.inv_mass.set(node, inv_mass);
         Ok(())
     }
 
@@ -855,10 +857,10 @@ impl Surface {
             self.limit(min_mass, self.max_stiffness, self.max_viscosity),
         )?;
         self.min_mass = min_mass;
-        self.state.mass[node] = mass;
+        self.state.mass.set(node, mass);
         self.window_custom = true;
         if !self.state.pinned[node] {
-            self.state.inv_mass[node] = 1.0 / mass;
+            self.state.inv_mass.set(node, 1.0 / mass);
         }
         Ok(())
     }
@@ -875,19 +877,21 @@ impl Surface {
             self.limit(self.min_mass, self.max_stiffness, max_viscosity),
         )?;
         self.max_viscosity = max_viscosity;
-        self.state.viscosity[node] = viscosity;
+        self.state.viscosity.set(node, viscosity);
         self.window_custom = true;
         Ok(())
     }
 
-    /// Node masses.
-    pub fn masses(&self) -> &[f32] {
-        &self.state.mass[..self.node_count()]
+    /// Node masses, row-major. Uniform masses are not stored per node: the view reads
+    /// them where they are (see [`NodeValues`]).
+    pub fn masses(&self) -> NodeValues<'_> {
+        NodeValues::new(&self.state.mass)
     }
 
-    /// Node viscosities.
-    pub fn viscosities(&self) -> &[f32] {
-        &self.state.viscosity[..self.node_count()]
+    /// Node viscosities `γ`, row-major, the absorbing frame's ramp included. Stored per
+    /// node only once a node differs from its default (see [`NodeValues`]).
+    pub fn viscosities(&self) -> NodeValues<'_> {
+        NodeValues::new(&self.state.viscosity)
     }
 
     /// Pinned flags.
@@ -963,7 +967,7 @@ impl Surface {
         let mut kinetic = 0.0;
         for i in (0..n).filter(|&i| !s.pinned[i]) {
             let v2: f64 = (0..3).map(|k| (s.vel[k][i] as f64).powi(2)).sum();
-            kinetic += 0.5 * s.mass[i] as f64 * v2;
+            kinetic += 0.5 * s.mass.get(i) as f64 * v2;
         }
         let mut potential = 0.0;
         for (id, j) in self.grid().springs() {

@@ -260,7 +260,7 @@ impl Surface {
         let cols = view.cols();
         let room = sample
             .corners(cols)
-            .map(|i| self.state.mass[i] * rate - self.state.viscosity[i])
+            .map(|i| self.state.mass.get(i) * rate - self.state.viscosity.get(i))
             .into_iter()
             .fold(f32::INFINITY, f32::min);
         Some((

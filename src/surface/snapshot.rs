@@ -864,8 +864,8 @@ impl Surface {
             positions: cut3(&s.pos),
             velocities: cut3(&s.vel),
             forces: cut3(&s.ext),
-            mass: s.mass[..n].to_vec(),
-            viscosity: s.viscosity[..n].to_vec(),
+            mass: s.mass.to_vec(),
+            viscosity: s.viscosity.to_vec(),
             pinned: s.pinned.clone(),
             rest: table(|(_, rest)| rest),
             stiffness: table(|(coef, _)| coef),
@@ -911,8 +911,9 @@ impl Surface {
         if snap.forces_pending {
             state.touch_all_ext();
         }
-        state.mass[..n].copy_from_slice(&snap.mass);
-        state.viscosity[..n].copy_from_slice(&snap.viscosity);
+        // Arrays that hold the defaults load as the defaults' few rows (see `NodeTable`).
+        state.mass.assign(|i| snap.mass[i]);
+        state.viscosity.assign(|i| snap.viscosity[i]);
         state.pinned.copy_from_slice(&snap.pinned);
         state.refresh_inv_mass();
         // The engine reads a family's shared (c, L0) while all its springs agree: derived

@@ -72,8 +72,9 @@
 //!
 //! A shift copies the overlap into place on every per-node array that holds more than its
 //! positional default (positions and velocities; forces only while some are pending;
-//! mass, viscosity, pins and spring tables only when a caller made them non-uniform), one
-//! `copy_within` per row (one for all rows when only rows move), then fills the incoming
+//! mass, viscosity, pins and spring tables only when a caller made them non-uniform: mass
+//! and viscosity tables that hold only their defaults keep them as rows by place, which
+//! stay where they are), one `copy_within` per row (one for all rows when only rows move), then fills the incoming
 //! strip. The arrays move as tasks on the host's threads.
 //!
 //! Three ways were weighed, by what they cost per node and what they cost everything else:
@@ -99,12 +100,12 @@
 //!
 
 use super::Surface;
-use crate::absorb::Frame;
 use crate::error::{Error, Result};
 use crate::grid::{Family, Grid};
 use crate::jobs::Runner;
-use crate::params::{self, Boundary};
+use crate::params;
 use crate::simd::Floats;
+use crate::state::NodeTable;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::Mutex;
 
@@ -488,13 +489,8 @@ impl Surface {
     fn move_parameters(&mut self, mv: Move, defaults: &Defaults) -> bool {
         let n = mv.grid.node_count();
         let state = &mut self.state;
-        let mass_moved = move_param(&mut state.mass[..n], mv, |_| defaults.mass, same_f32);
-        let visc_moved = move_param(
-            &mut state.viscosity[..n],
-            mv,
-            |i| defaults.viscosity(mv.grid, i),
-            same_f32,
-        );
+        let mass_moved = move_table(&mut state.mass, mv);
+        let visc_moved = move_table(&mut state.viscosity, mv);
         let pins_moved = move_param(
             &mut state.pinned[..n],
             mv,
@@ -658,6 +654,19 @@ fn same_f32(a: f32, b: f32) -> bool {
     a.to_bits() == b.to_bits()
 }
 
+/// [`move_param`] for a table that keeps its defaults beside its values: a table without
+/// per-node values holds its defaults, which stay with their places, so it needs no work.
+/// A table whose set values all left the window drops its per-node array. Returns whether
+/// any value changed (as `move_param` does).
+fn move_table(table: &mut NodeTable, mv: Move) -> bool {
+    let Some((values, default)) = table.nodes_and_defaults() else {
+        return false;
+    };
+    let moved = move_param(values, mv, default, same_f32);
+    table.compact();
+    moved
+}
+
 /// Moves the nodes of `buf` that differ from their place's default with the water; every
 /// other node takes its new place's default. Returns false (and changes nothing) when every
 /// node holds its default, which is the common case: uniform parameters cost no copy.
@@ -681,11 +690,9 @@ fn move_param<T: Copy + Default>(
     true
 }
 
-/// The values a new surface gives each place of the window.
+/// The values a new surface gives each place of the window (mass and viscosity tables
+/// keep their own, see [`NodeTable::default_at`]).
 struct Defaults {
-    mass: f32,
-    viscosity: f32,
-    frame: Option<Frame>,
     pins_border: bool,
     /// `(rest, coef)` per family.
     springs: [(f32, f32); 4],
@@ -695,25 +702,10 @@ impl Defaults {
     fn of(surface: &Surface) -> Self {
         let p = &surface.params;
         Self {
-            mass: p.mass,
-            viscosity: p.viscosity,
-            frame: match p.boundary {
-                Boundary::Absorbing { width } => Some(Frame::new(p, width)),
-                _ => None,
-            },
             pins_border: p.boundary.pins_border(),
             springs: Family::ALL
                 .map(|f| (p.rest_ratio * f.initial_length() * p.spacing, p.stiffness)),
         }
-    }
-
-    /// Viscosity of node `i` of a new surface (the same sum as `State::new`).
-    fn viscosity(&self, grid: Grid, i: usize) -> f32 {
-        let mut g = self.viscosity;
-        if let Some(frame) = &self.frame {
-            g += frame.viscosity(grid.edge_distance(i));
-        }
-        g
     }
 
     fn spring(&self, family: Family) -> (f32, f32) {

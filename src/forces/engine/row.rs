@@ -34,6 +34,7 @@ use super::StepConfig;
 use crate::grid::Family;
 use crate::simd::{Chunks, ChunksMut, Task, Vector};
 use crate::springs::{Springs, Tables as SpringTables};
+use crate::state::NodeTable;
 
 /// The cache line the non-temporal stores fill, in bytes (x86-64).
 const CACHE_LINE: usize = 64;
@@ -44,8 +45,9 @@ pub(super) struct Inputs<'a, V: Vector> {
     pub rows: usize,
     pub pos: [&'a [f32]; 3],
     pub vel: [&'a [f32]; 3],
-    pub inv_mass: &'a [f32],
-    pub viscosity: &'a [f32],
+    /// Read a row at a time ([`NodeTable::row`]).
+    pub inv_mass: &'a NodeTable,
+    pub viscosity: &'a NodeTable,
     /// External forces, applied in the first step of the pass only.
     pub ext: Option<[&'a [f32]; 3]>,
     /// The rows whose nodes may hold an external force (`None`: every row). The others
@@ -71,8 +73,8 @@ impl<'a, V: Vector> Inputs<'a, V> {
         rows: usize,
         pos: [&'a [f32]; 3],
         vel: [&'a [f32]; 3],
-        inv_mass: &'a [f32],
-        viscosity: &'a [f32],
+        inv_mass: &'a NodeTable,
+        viscosity: &'a NodeTable,
         ext: Option<[&'a [f32]; 3]>,
         ext_rows: Option<&'a [bool]>,
         springs: &'a Springs,
@@ -692,8 +694,10 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             h,
             d,
             base,
-            inv_mass: node(inp.inv_mass),
-            viscosity: node(inp.viscosity),
+            // A table's row slice starts at the row's first node, whichever way the table
+            // stores it; lanes past the row read its padding, and are discarded.
+            inv_mass: Chunks::new(inp.inv_mass.row(r), 0, chunks),
+            viscosity: Chunks::new(inp.viscosity.row(r), 0, chunks),
             #[allow(clippy::manual_map)] // `Option::map` would take a closure: see `front`
             ext: match ext {
                 Some([x, y, z]) => Some([node(x), node(y), node(z)]),
