@@ -136,7 +136,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let format = Format::of(&out)?;
     if !(rain.is_finite() && rain >= 0.0) {
         return Err(format!(
-            "--rain: {rain} is not a rate >= 0 (drops per unit of model time)"
+            "--rain: {rain} is not a rate >= 0 (drops per second)"
         ));
     }
     optics
@@ -173,7 +173,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let h = surface.params().spacing;
     let time_scale = surface.params().time_scale;
     let mut rain = (rain > 0.0).then(|| {
-        let mut r = Rain::new(rain * time_scale, seed);
+        let mut r = Rain::new(rain, seed);
         r.radius = 1.5 * h..3.0 * h;
         r
     });

@@ -79,7 +79,7 @@ render flags (defaults in brackets):
   --ior N              index of refraction of the water (1.333)
   --caustics S         caustic strength, 0 for none (1.3)
   --lod-pixels P       on-screen size of a cell where the LOD starts to coarsen (1.5)
-  --rain RATE          raindrops per unit of model time, 0 for none (0.3)
+  --rain RATE          raindrops per second, 0 for none (7.2)
   --seed S             random seed of the rain (1); same seed, same file
   --wake               a ball circling the pool, leaving a wake
   --follow             a ball crossing open water in a straight line, the window and

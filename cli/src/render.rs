@@ -13,6 +13,10 @@ use springwater::Surface;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
+/// Raindrops per second by default: 0.3 per unit of model time at the default time scale of
+/// 24 (the product, so the default picture is the one it always was).
+const DEFAULT_RAIN: f32 = 0.3 * 24.0;
+
 /// The render command's options beyond the model flags.
 #[derive(Debug, Clone)]
 struct Options {
@@ -56,7 +60,7 @@ impl Default for Options {
             ior: 1.333,
             caustics: 1.3,
             lod_pixels: 1.5,
-            rain: 0.3,
+            rain: DEFAULT_RAIN,
             seed: 1,
             wake: false,
             follow: false,
@@ -122,7 +126,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     }
     if !(o.rain.is_finite() && o.rain >= 0.0) {
         return Err(format!(
-            "--rain: {} is not a rate >= 0 (drops per unit of model time)",
+            "--rain: {} is not a rate >= 0 (drops per second)",
             o.rain
         ));
     }
@@ -368,8 +372,7 @@ fn animate(
     // Rain and wake sized in cells, as they look on any spacing (the library takes world
     // units).
     let h = surface.params().spacing;
-    // `--rain` counts drops per unit of model time; the library's rate is per second.
-    let mut rain = Rain::new(o.rain * surface.params().time_scale, o.seed);
+    let mut rain = Rain::new(o.rain, o.seed);
     rain.radius = 1.5 * h..3.0 * h;
     let cells = surface.params().cols.min(surface.params().rows) as f32;
     let mut wake = (o.wake || o.follow).then(|| {

@@ -633,7 +633,7 @@ fn rain_a_wake_open_water_and_threads_bake_the_same_bits_on_one_thread_and_two()
             "--boundary",
             "absorbing",
             "--rain",
-            "30",
+            "720",
             "--seed",
             "5",
             "--wake",

@@ -25,7 +25,7 @@ fn animation<'a>(seed: &'a str, out: &'a std::path::Path, extra: &[&'a str]) -> 
         "--height",
         "72",
         "--rain",
-        "2",
+        "48",
         "--seed",
         seed,
         "--wake",
@@ -236,5 +236,50 @@ fn bad_flags_and_files_get_one_line_errors() {
         !broken.exists(),
         "a failed render left {}",
         broken.display()
+    );
+}
+
+#[test]
+fn rain_falls_per_second() {
+    // 60 warm-up steps and 40 frames of 3 steps: 180 steps of 1/60 s, 3 seconds. At 60
+    // drops a second about 180 fall (a Poisson count: 5 standard deviations either side);
+    // a rate per unit of model time would make it 24 times as many.
+    let dir = scratch("rain-per-second");
+    let gif = dir.join("rain.gif");
+    let out = springwater(&[
+        "render",
+        "--size",
+        "48x48",
+        "--frames",
+        "40",
+        "--width",
+        "64",
+        "--height",
+        "48",
+        "--rain",
+        "60",
+        "--out",
+        gif.to_str().unwrap(),
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let report = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        report.contains("3 steps per frame after 60 warm-up steps"),
+        "{report}"
+    );
+    let drops: f64 = report
+        .split("disturbances: ")
+        .nth(1)
+        .and_then(|rest| rest.split(' ').next())
+        .and_then(|n| n.parse().ok())
+        .unwrap_or_else(|| panic!("no raindrop count in {report}"));
+    let (mean, sd) = (180.0, 180f64.sqrt());
+    assert!(
+        (drops - mean).abs() < 5.0 * sd,
+        "{drops} raindrops in 3 s at 60 a second"
     );
 }
