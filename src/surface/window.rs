@@ -83,8 +83,9 @@
 //!   step's own floor (it reads and writes positions and velocities), so a shift costs a
 //!   fraction of a step and nothing at all between shifts. Measured with
 //!   `benches/window.rs` (AMD EPYC Zen 5, 2 threads, `docs/performance.md`): a shift of 1,
-//!   8 or 64 cells along both axes takes 0.33–0.43 of one step at 512² and 0.40–0.47 at
-//!   1024², within 1.2–2× of six plain `copy_within`s of the same arrays (`floor`).
+//!   8 or 64 cells along both axes takes 0.38–0.68 of one step at 512² (once 0.94 in
+//!   seven runs) and 0.41–0.55 at 1024², 1.8–2× six plain `copy_within`s of the same
+//!   arrays (`floor`) where the arrays leave the cache.
 //! - **A ring buffer** (wrap-around addressing, as clipmaps do) makes the shift free, but
 //!   the engine streams whole rows through SIMD lanes with neighbours one lane over: a
 //!   seam inside a row would cut every row the window crosses, and every kernel, query,
@@ -94,7 +95,7 @@
 //!   anyway) would save the copy without a seam, but the nodes next to the incoming strip
 //!   need the strip's values as neighbours before the step, and the strip has no slots of
 //!   its own in the front buffer: every kernel would need a second source for its edge
-//!   lanes. For a cost that is already under half a step, and paid once per shift (a
+//!   lanes. For a cost of about half a step, paid once per shift (a
 //!   window following a ship at 10 cells per second shifts a few times a second), that
 //!   complexity is not worth it.
 //!
