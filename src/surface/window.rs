@@ -84,7 +84,7 @@
 //!   fraction of a step and nothing at all between shifts. Measured with
 //!   `benches/window.rs` (AMD EPYC Zen 5, 2 threads, `docs/performance.md`): a shift of 1,
 //!   8 or 64 cells along both axes takes 0.38–0.68 of one step at 512² (once 0.94 in
-//!   seven runs) and 0.41–0.55 at 1024², 1.8–2× six plain `copy_within`s of the same
+//!   five runs) and 0.41–0.55 at 1024², 1.8–2× six plain `copy_within`s of the same
 //!   arrays (`floor`) where the arrays leave the cache.
 //! - **A ring buffer** (wrap-around addressing, as clipmaps do) makes the shift free, but
 //!   the engine streams whole rows through SIMD lanes with neighbours one lane over: a
