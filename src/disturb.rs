@@ -227,6 +227,21 @@ impl Wake {
         })
     }
 
+    /// Moves the whole path by `(dx, dz)` world units, keeping the object's progress along
+    /// it: for a host that rebases its world ([`Surface::rebase`] by `(dcols, drows)` cells
+    /// moves the water frame by `(dcols·h, drows·h)`, so a wake follows with
+    /// `translate(−dcols·h, −drows·h)`). Refused, with nothing changed, if a corner would not
+    /// be finite.
+    pub fn translate(&mut self, dx: f32, dz: f32) -> Result<()> {
+        let moved: Vec<[f32; 2]> = self.path.iter().map(|p| [p[0] + dx, p[1] + dz]).collect();
+        for p in &moved {
+            params::finite("wake path", p[0])?;
+            params::finite("wake path", p[1])?;
+        }
+        self.path = moved;
+        Ok(())
+    }
+
     /// Where the object is now, world `[x, z]`.
     pub fn position(&self) -> [f32; 2] {
         let total = *self.lengths.last().expect("at least one corner");

@@ -376,6 +376,11 @@ fn serde_round_trip_is_bitwise() {
         Surface::from_snapshot(back).unwrap().to_bytes(),
         s.to_bytes()
     );
+    // Documents of the versions that kept bodies and accelerations in model time (their
+    // clock field was `time`) are refused instead of read in the wrong units.
+    let model_units = json.replacen("\"model_time\":", "\"time\":", 1);
+    assert!(model_units != json);
+    assert!(serde_json::from_str::<Snapshot>(&model_units).is_err());
     // And the same validation applies to what comes in.
     let bad = json.replacen("\"min_mass\":", "\"min_mass\":-", 1);
     let snap: Snapshot = serde_json::from_str(&bad).unwrap();

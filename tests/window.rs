@@ -542,3 +542,16 @@ fn a_rebase_out_of_range_changes_nothing() {
     s.rebase(0, 0).unwrap();
     assert_eq!(s.positions(), before.positions());
 }
+
+#[test]
+fn a_wake_follows_a_rebase() {
+    let mut wake = springwater::disturb::Wake::new(vec![[100.0, 10.0], [140.0, 10.0]]).unwrap();
+    let mut s = open_water();
+    s.advance_with(0.25, &mut wake).unwrap(); // part way along its path
+    let before = wake.position();
+    s.rebase(40, -20).unwrap();
+    wake.translate(-40.0, 20.0).unwrap();
+    assert_eq!(wake.position(), [before[0] - 40.0, before[1] + 20.0]);
+    assert!(wake.translate(f32::INFINITY, 0.0).is_err());
+    assert_eq!(wake.position(), [before[0] - 40.0, before[1] + 20.0]);
+}

@@ -162,7 +162,9 @@ pub struct WaterDrop {
 
 /// A force on the water at a world point for the next step, spread onto the four nodes
 /// around it ([`springwater::Surface::add_force_at`]). `force` is a world vector,
-/// turned into the water's local space.
+/// turned into the water's local space, in the lattice's force units (mass units × world
+/// units per unit of model time²: a force of `F` per second² is `F / time_scale²`; see the
+/// library's `docs/units.md`).
 #[derive(Message, Debug, Clone, Copy, PartialEq)]
 pub struct WaterForce {
     /// Target water entity, or `None` for every water under the point.

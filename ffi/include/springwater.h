@@ -363,7 +363,8 @@ void sw_surface_destroy(struct SwSurface *surface);
 //
 // # Safety
 //
-// `out` is NULL or a valid pointer.
+// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+// initialised.
 SwStatus sw_surface_params(const struct SwSurface *surface, struct SwParams *out);
 
 // Writes the number of nodes (`cols × rows`) to `out`: the length, in elements, of every
@@ -687,14 +688,17 @@ SwStatus sw_surface_remove_floater(struct SwSurface *surface, SwFloaterId id);
 //
 // # Safety
 //
-// `out` is NULL or a valid pointer.
+// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+// initialised.
 SwStatus sw_surface_floater(const struct SwSurface *surface, SwFloaterId id, struct SwFloater *out);
 
-// Deprecated: the earlier name of `sw_surface_floater`, which it calls.
+// Deprecated: the earlier name of `sw_surface_floater`, which it calls (so `out` must say
+// its size, as there).
 //
 // # Safety
 //
-// `out` is NULL or a valid pointer.
+// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+// initialised.
 SwStatus sw_surface_get_floater(const struct SwSurface *surface,
                                 SwFloaterId id,
                                 struct SwFloater *out);
@@ -712,7 +716,8 @@ SwStatus sw_surface_set_floater(struct SwSurface *surface,
                                 const struct SwFloater *floater);
 
 // Adds the force `(fx, fy, fz)` to a floating body for the next step only (an engine, the
-// wind, a player's push); pushes add up until that step. Refused (nothing changes) when a
+// wind, a player's push), in mass units × world units per second²; pushes add up until
+// that step. Refused (nothing changes) when a
 // component, or the sum with what was pushed before, is not finite. An unknown id is
 // `SW_ERROR_NO_SUCH_FLOATER`.
 SwStatus sw_surface_push_floater(struct SwSurface *surface,
@@ -747,14 +752,17 @@ SwStatus sw_surface_floater_ids(const struct SwSurface *surface,
 //
 // # Safety
 //
-// `out` is NULL or a valid pointer.
+// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+// initialised.
 SwStatus sw_surface_buoyancy(const struct SwSurface *surface, struct SwBuoyancy *out);
 
-// Deprecated: the earlier name of `sw_surface_buoyancy`, which it calls.
+// Deprecated: the earlier name of `sw_surface_buoyancy`, which it calls (so `out` must
+// say its size, as there).
 //
 // # Safety
 //
-// `out` is NULL or a valid pointer.
+// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+// initialised.
 SwStatus sw_surface_get_buoyancy(const struct SwSurface *surface, struct SwBuoyancy *out);
 
 // Sets the gravity and water density for every body of the surface. Refused (nothing

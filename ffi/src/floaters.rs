@@ -25,7 +25,7 @@ pub type SwFloaterId = u64;
 /// default drag. Plain data: hand it to `sw_surface_add_floater`, read it back with
 /// `sw_surface_floater`.
 #[repr(C)]
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SwFloater {
     /// `sizeof(SwFloater)`, set by `sw_floater_sphere()`, `sw_floater_box()` and
     /// `sw_surface_floater()`: calls that read or fill the struct refuse any other value (a
@@ -64,7 +64,7 @@ pub struct SwFloater {
 
 /// The world the bodies of a surface float in; `sw_buoyancy_default()` gives the defaults.
 #[repr(C)]
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
+#[derive(Debug, Clone, Copy, PartialEq)]
 pub struct SwBuoyancy {
     /// `sizeof(SwBuoyancy)`, set by `sw_buoyancy_default()` and `sw_surface_buoyancy()`:
     /// calls that read or fill the struct refuse any other value (a struct not started from
@@ -76,6 +76,37 @@ pub struct SwBuoyancy {
     /// Density of the water, mass units per cubic world unit (0 to 1e6; default 1: the
     /// seed's node mass 4 per cell is a layer 4 cells deep).
     pub density: f32,
+}
+
+/// All zeros but `struct_size`, which is this version's: a struct ready for
+/// `sw_surface_floater` to fill (from Rust; C starts one with `{.struct_size = sizeof f}`).
+impl Default for SwFloater {
+    fn default() -> Self {
+        Self {
+            struct_size: size_of::<Self>() as u32,
+            shape: 0,
+            radius: 0.0,
+            half_extents: [0.0; 3],
+            mass: 0.0,
+            drag: 0.0,
+            position: [0.0; 3],
+            velocity: [0.0; 3],
+            push: [0.0; 3],
+            water_force: [0.0; 3],
+        }
+    }
+}
+
+/// All zeros but `struct_size`, which is this version's: a struct ready for
+/// `sw_surface_buoyancy` to fill.
+impl Default for SwBuoyancy {
+    fn default() -> Self {
+        Self {
+            struct_size: size_of::<Self>() as u32,
+            gravity: 0.0,
+            density: 0.0,
+        }
+    }
 }
 
 impl Input for SwFloater {
@@ -162,14 +193,16 @@ pub extern "C" fn sw_surface_remove_floater(surface: *mut SwSurface, id: SwFloat
 ///
 /// # Safety
 ///
-/// `out` is NULL or a valid pointer.
+/// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+/// initialised.
 #[no_mangle]
 pub unsafe extern "C" fn sw_surface_floater(
     surface: *const SwSurface,
     id: SwFloaterId,
     out: *mut SwFloater,
 ) -> SwStatus {
-    // SAFETY: `out` is NULL or a valid `SwFloater`.
+    // SAFETY: `out` is NULL or a writable `SwFloater` with its size initialised (the
+    // caller's promise), as `read_sized_into` asks.
     unsafe {
         read_sized_into(surface, out, |w| {
             Ok(c_floater(w.surface.floater(FloaterId::from_raw(id))?))
@@ -177,11 +210,13 @@ pub unsafe extern "C" fn sw_surface_floater(
     }
 }
 
-/// Deprecated: the earlier name of `sw_surface_floater`, which it calls.
+/// Deprecated: the earlier name of `sw_surface_floater`, which it calls (so `out` must say
+/// its size, as there).
 ///
 /// # Safety
 ///
-/// `out` is NULL or a valid pointer.
+/// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+/// initialised.
 #[no_mangle]
 pub unsafe extern "C" fn sw_surface_get_floater(
     surface: *const SwSurface,
@@ -219,7 +254,8 @@ pub unsafe extern "C" fn sw_surface_set_floater(
 }
 
 /// Adds the force `(fx, fy, fz)` to a floating body for the next step only (an engine, the
-/// wind, a player's push); pushes add up until that step. Refused (nothing changes) when a
+/// wind, a player's push), in mass units × world units per second²; pushes add up until
+/// that step. Refused (nothing changes) when a
 /// component, or the sum with what was pushed before, is not finite. An unknown id is
 /// `SW_ERROR_NO_SUCH_FLOATER`.
 #[no_mangle]
@@ -288,21 +324,25 @@ pub unsafe extern "C" fn sw_surface_floater_ids(
 ///
 /// # Safety
 ///
-/// `out` is NULL or a valid pointer.
+/// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+/// initialised.
 #[no_mangle]
 pub unsafe extern "C" fn sw_surface_buoyancy(
     surface: *const SwSurface,
     out: *mut SwBuoyancy,
 ) -> SwStatus {
-    // SAFETY: `out` is NULL or a valid `SwBuoyancy`.
+    // SAFETY: `out` is NULL or a writable `SwBuoyancy` with its size initialised (the
+    // caller's promise), as `read_sized_into` asks.
     unsafe { read_sized_into(surface, out, |w| Ok(c_buoyancy(w.surface.buoyancy()))) }
 }
 
-/// Deprecated: the earlier name of `sw_surface_buoyancy`, which it calls.
+/// Deprecated: the earlier name of `sw_surface_buoyancy`, which it calls (so `out` must
+/// say its size, as there).
 ///
 /// # Safety
 ///
-/// `out` is NULL or a valid pointer.
+/// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+/// initialised.
 #[no_mangle]
 pub unsafe extern "C" fn sw_surface_get_buoyancy(
     surface: *const SwSurface,

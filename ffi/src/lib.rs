@@ -316,13 +316,15 @@ pub extern "C" fn sw_surface_destroy(surface: *mut SwSurface) {
 ///
 /// # Safety
 ///
-/// `out` is NULL or a valid pointer.
+/// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+/// initialised.
 #[no_mangle]
 pub unsafe extern "C" fn sw_surface_params(
     surface: *const SwSurface,
     out: *mut SwParams,
 ) -> SwStatus {
-    // SAFETY: `out` is NULL or a valid `SwParams`.
+    // SAFETY: `out` is NULL or a writable `SwParams` with its size initialised (the
+    // caller's promise), as `read_sized_into` asks.
     unsafe { read_sized_into(surface, out, |w| Ok(c_params(w.surface.params()))) }
 }
 
@@ -1235,7 +1237,7 @@ unsafe fn sized<T: Input>(ptr: *const T, what: &str) -> Outcome {
 ///
 /// # Safety
 ///
-/// `out` is NULL or points to a writable struct that starts with a `u32` size.
+/// `out` is NULL or points to a writable struct that starts with an initialised `u32` size.
 pub(crate) unsafe fn read_sized_into<T: Input>(
     surface: *const SwSurface,
     out: *mut T,

@@ -85,8 +85,9 @@ const FLAG_FORCES_PENDING: u32 = 1;
 /// acceleration, gravity and bodies in model time (velocities per unit of model time,
 /// drag per unit, accelerations and forces per unit²): loading converts them to seconds
 /// with the stored `time_scale` (the acceleration to the per-second² value that converts
-/// back to the stored bits, where one exists, so water without bodies continues bit for
-/// bit; bodies continue to rounding). Version 3 has no origin and no clock either (read as
+/// back to the stored bits where one exists, as for zero and about 9 in 10 other values,
+/// else one rounding off; water without bodies then continues bit for bit, bodies to
+/// rounding). Version 3 has no origin and no clock either (read as
 /// `[0, 0]`, a window that never moved, and a fresh clock). Versions 1 and 2 end the header at offset 112
 /// (no bodies, no absorbing boundary; version 1 has no `time_scale` either: such
 /// snapshots get the default). Loading refuses, with [`Error::Snapshot`] and a message
@@ -111,7 +112,8 @@ pub struct Snapshot {
     /// Steps taken.
     pub steps: u64,
     /// Model time simulated ([`Surface::model_time`]; [`Surface::time`] is it in seconds).
-    #[cfg_attr(feature = "serde", serde(alias = "time"))]
+    /// (Serialised data of earlier versions, whose bodies, gravity and acceleration were in
+    /// model time, has `time` instead and is refused rather than read in the wrong units.)
     pub model_time: f64,
     // Derived state the surface keeps beside the arrays, private so that it cannot be set
     // against them (the binary format and serde carry it; loading checks it).

@@ -6,12 +6,13 @@
 //! A surface speaks one frame, the **water frame**: positions ([`Surface::positions`],
 //! [`Surface::mesh_view`] and every buffer written from it), [`Surface::height_at`],
 //! [`Surface::add_force_at`], [`Surface::drop_at`] and the floaters all use it. It is the
-//! frame the surface was created in, and it does not move when the window does: node
-//! `(col, row)` rests at `(origin.x + col·h, 0, origin.z + row·h)`, where
-//! [`Surface::origin`] is `h` times the whole cells the window has travelled
-//! ([`Surface::origin_cells`]). A host that places the water at the world's origin (no
-//! transform) reads world positions directly; one that places it elsewhere adds that one
-//! fixed translation, which never changes as the window moves.
+//! frame the surface was created in, and it does not move when the window does (only a
+//! [`Surface::rebase`] moves it): node `(col, row)` rests at
+//! `(origin.x + col·h, 0, origin.z + row·h)`, where [`Surface::origin`] is `h` times the
+//! whole cells the window has travelled in this frame ([`Surface::origin_cells`]). A host
+//! that places the water at the world's origin (no transform) reads world positions
+//! directly; one that places it elsewhere adds that one fixed translation, which never
+//! changes as the window moves.
 //!
 //! The view carries the origin ([`MeshView::origin`](crate::MeshView::origin)): the LOD
 //! takes the eye in the water frame and measures it against the patches' rest footprints
@@ -42,12 +43,16 @@
 //! floater and query in the new frame, so the mesh's coordinates are small again and keep
 //! their full resolution. A rebase changes no height or velocity. Positions change by at
 //! most the rounding of their old magnitude, and a node at rest lands exactly on its new
-//! rest place. A window rebased to the origin after travelling steps as a fresh one near
-//! the origin would, bit for bit (`tests/window.rs`); without the rebase the same run drifts.
+//! rest place, so a calm window rebased to the origin after travelling steps bit for bit as
+//! a fresh one near the origin would (`tests/window.rs`; without the rebase the same run
+//! drifts). Water that moves when it is rebased keeps its displacements exactly and goes
+//! on with the finer rounding of the new frame, so it is close to, not bit for bit, what
+//! a run that never went far would give.
 //! Shifts never round anything: the window may travel up to [`MAX_ORIGIN_CELLS`] cells
 //! from the frame's origin, the range in which every cell index is an exact `f32`. Things
-//! the host holds in the water frame (a [`Wake`](crate::disturb::Wake)'s path, a point it follows,
-//! its camera for the LOD and refraction) are the host's to move by the same offset.
+//! the host holds in the water frame (a [`Wake`](crate::disturb::Wake)'s path, with
+//! [`Wake::translate`](crate::disturb::Wake::translate); a point it follows; its camera for
+//! the LOD and refraction) are the host's to move by the same offset.
 //!
 //! # What moves and what stays
 //!
