@@ -20,7 +20,7 @@
 //!   node.
 //! * **Per-node values** appear when a node is set to anything but its default (a
 //!   per-node mass, viscosity or pin, a snapshot whose arrays differ from the defaults):
-//!   the table then holds today's padded array, and row `r` is the slice from node
+//!   the table then holds a padded per-node array, and row `r` is the slice from node
 //!   `r · cols`. The kernel cannot tell the two apart.
 //!
 //! The profiles stay when the per-node array comes, so the table always knows every
