@@ -32,6 +32,7 @@
 use crate::error::{Error, Result};
 use crate::params;
 use crate::rng::Rng;
+use crate::surface::window::rest_coordinate;
 use crate::surface::Surface;
 
 pub use crate::surface::Disturbance;
@@ -277,7 +278,7 @@ impl Disturbance for Wake {
         let peak = -self.strength * h * h;
         // Rest positions are in the water frame: node (col, row) at origin + (col, row)·h.
         let [ocol, orow] = surface.origin_cells();
-        let rest = |k: usize, o: i64| (k as i64 + o) as f32 * h;
+        let rest = |k: usize, o: i64| rest_coordinate(k, o, h);
         // The nodes whose rest position lies within `reach` of `p` along one axis.
         let span = |p: f32, n: usize, o: i64| {
             let p = p - o as f32 * h;

@@ -109,9 +109,7 @@ impl State {
                 // `frame.width` rings in), one profile per row distance below the width.
                 let frame = Frame::new(params, width);
                 NodeTable::by_edge_distance(grid, frame.width + 1, |k, c| {
-                    let mut g = params.viscosity;
-                    g += frame.viscosity(k.min(c).min(last - c));
-                    g
+                    params.viscosity + frame.viscosity(k.min(c).min(last - c))
                 })
             }
             _ => NodeTable::uniform(grid, params.viscosity),

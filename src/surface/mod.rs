@@ -12,6 +12,7 @@ pub mod window;
 
 pub use clock::Overflow;
 pub use disturbance::Disturbance;
+use window::rest_coordinate;
 pub use window::{FarField, MAX_ORIGIN_CELLS};
 
 use crate::error::{same_length, Error, Result};
@@ -673,9 +674,9 @@ impl Surface {
         // there is 1 by definition.
         let lift = |y: &[f32], i: usize| {
             let (c, r) = grid.coords(i);
-            // Rest place in the water frame (see `window`).
-            let (c, r) = ((c as i64 + oc) as f32, (r as i64 + or) as f32);
-            let d2 = (c * h - x).powi(2) + (r * h - z).powi(2);
+            // Rest place in the water frame.
+            let (rx, rz) = (rest_coordinate(c, oc, h), rest_coordinate(r, or, h));
+            let d2 = (rx - x).powi(2) + (rz - z).powi(2);
             let w = if d2 == 0.0 { 1.0 } else { (-d2 * inv_r2).exp() };
             y[i] + height * w
         };

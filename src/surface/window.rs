@@ -79,8 +79,8 @@
 //! positional default (positions and velocities; forces only while some are pending;
 //! mass, viscosity, pins and spring tables only when a caller made them non-uniform: mass
 //! and viscosity tables that hold only their defaults keep them as rows by place, which
-//! stay where they are), one `copy_within` per row (one for all rows when only rows move), then fills the incoming
-//! strip. The arrays move as tasks on the host's threads.
+//! stay where they are), one `copy_within` per row (one for all rows when only rows
+//! move), then fills the incoming strip. The arrays move as tasks on the host's threads.
 //!
 //! Three ways were weighed, by what they cost per node and what they cost everything else:
 //!
@@ -100,10 +100,9 @@
 //!   anyway) would save the copy without a seam, but the nodes next to the incoming strip
 //!   need the strip's values as neighbours before the step, and the strip has no slots of
 //!   its own in the front buffer: every kernel would need a second source for its edge
-//!   lanes. For a cost of about half a step, paid once per shift (a
-//!   window following a ship at 10 cells per second shifts a few times a second), that
-//!   complexity is not worth it.
-//!
+//!   lanes. For a cost of about half a step, paid once per shift (a window following a
+//!   ship at 10 cells per second shifts a few times a second), that complexity is not
+//!   worth it.
 
 use super::Surface;
 use crate::error::{Error, Result};
@@ -269,23 +268,48 @@ impl Move {
     }
 }
 
+/// The water-frame coordinate of the rest place of column (or row) `index` of a window
+/// whose node 0 is `origin` cells from the frame's origin. Every rest place is this one
+/// expression, so a node at rest sits exactly on it wherever the window has been.
+pub(crate) fn rest_coordinate(index: usize, origin: i64, h: f32) -> f32 {
+    (index as i64 + origin) as f32 * h
+}
+
+/// An origin, one axis at a time (`None`: it overflowed), checked to be within
+/// [`MAX_ORIGIN_CELLS`] of the frame's origin; `name` and `moved` describe the request.
+fn origin_in_range(
+    origin: Option<i64>,
+    name: &'static str,
+    moved: i64,
+    expected: &'static str,
+) -> Result<i64> {
+    origin
+        .filter(|v| v.abs() <= MAX_ORIGIN_CELLS)
+        .ok_or(Error::InvalidParam {
+            name,
+            value: moved as f64,
+            expected,
+        })
+}
+
 /// Checks a shift and returns the origin it leads to.
 fn shifted_origin(origin: [i64; 2], dcols: i32, drows: i32) -> Result<[i64; 2]> {
-    let new = [origin[0] + dcols as i64, origin[1] + drows as i64];
-    for (v, name, d) in [
-        (new[0], "shift columns", dcols),
-        (new[1], "shift rows", drows),
-    ] {
-        if v.abs() > MAX_ORIGIN_CELLS {
-            return Err(Error::InvalidParam {
-                name,
-                value: d as f64,
-                expected: "a shift that keeps the window within 15,728,640 cells \
-                           (2^24 - 2^20) of the water frame's origin, where every cell index is an exact f32",
-            });
-        }
-    }
-    Ok(new)
+    let expected = "a shift that keeps the window within 15,728,640 cells (2^24 - 2^20) of \
+                    the water frame's origin, where every cell index is an exact f32";
+    Ok([
+        origin_in_range(
+            origin[0].checked_add(dcols as i64),
+            "shift columns",
+            dcols as i64,
+            expected,
+        )?,
+        origin_in_range(
+            origin[1].checked_add(drows as i64),
+            "shift rows",
+            drows as i64,
+            expected,
+        )?,
+    ])
 }
 
 impl Surface {
@@ -372,8 +396,8 @@ impl Surface {
         let pins_border = self.params.boundary.pins_border();
         let rest = |c: usize, r: usize| {
             (
-                (c as i64 + origin[0]) as f32 * h,
-                (r as i64 + origin[1]) as f32 * h,
+                rest_coordinate(c, origin[0], h),
+                rest_coordinate(r, origin[1], h),
             )
         };
         // Ask the far field first: a value it refuses leaves the surface unchanged.
@@ -589,29 +613,19 @@ impl Surface {
     /// ```
     pub fn rebase(&mut self, dcols: i64, drows: i64) -> Result<()> {
         let old = self.window_origin;
-        let mut new = [0i64; 2];
-        for (k, (d, name)) in [(dcols, "rebase columns"), (drows, "rebase rows")]
-            .into_iter()
-            .enumerate()
-        {
-            new[k] = old[k]
-                .checked_sub(d)
-                .filter(|v| v.abs() <= MAX_ORIGIN_CELLS)
-                .ok_or(Error::InvalidParam {
-                    name,
-                    value: d as f64,
-                    expected: "a rebase that leaves the window within 15,728,640 cells \
-                               (2^24 - 2^20) of the new origin",
-                })?;
-        }
+        let expected =
+            "a rebase that leaves the window within 15,728,640 cells (2^24 - 2^20) of the new origin";
+        let new = [
+            origin_in_range(old[0].checked_sub(dcols), "rebase columns", dcols, expected)?,
+            origin_in_range(old[1].checked_sub(drows), "rebase rows", drows, expected)?,
+        ];
         if new == old {
             return Ok(());
         }
         let grid = self.grid();
         let h = self.params.spacing;
-        // Rest coordinate of column or row `c` of a window at origin `o` (the same
-        // expression as everywhere else, so a calm node lands on it exactly).
-        let rest = |c: usize, o: i64| (c as i64 + o) as f32 * h;
+        // A calm node lands exactly on its new rest place ([`rest_coordinate`]).
+        let rest = |c: usize, o: i64| rest_coordinate(c, o, h);
         let [x, _, z] = &mut self.state.pos;
         for r in 0..grid.rows {
             let (z_old, z_new) = (rest(r, old[1]), rest(r, new[1]));
