@@ -103,7 +103,7 @@
 #![warn(clippy::undocumented_unsafe_blocks)]
 
 mod absorb;
-#[cfg_attr(not(feature = "internals"), allow(dead_code))]
+#[cfg(feature = "internals")]
 mod baselines;
 pub mod buffers;
 pub mod disturb;
@@ -156,6 +156,7 @@ pub mod internals {
     pub use crate::baselines::{MemoryFloor, NaiveSurface};
     pub use crate::forces::engine::MAX_PASS_STEPS;
     pub use crate::springs::{band_rows, bands, Band, Tiling, MAX_BAND_ROWS, MIN_BAND_ROWS};
+    pub use crate::surface::tuning::Tuning;
 }
 
 /// The README's examples, compiled and run as doc tests.

@@ -222,7 +222,10 @@ pub fn starting_surface(
 pub fn load_snapshot(path: &Path) -> CliResult<Surface> {
     let file =
         std::fs::File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    Surface::load(std::io::BufReader::new(file)).map_err(|e| format!("{}: {e}", path.display()))
+    let mut s = Surface::load(std::io::BufReader::new(file))
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    crate::args::forced_level(&mut s)?;
+    Ok(s)
 }
 
 /// Steps `steps` times, naming the failing step.
