@@ -80,8 +80,9 @@
 //! * [`SimdLevel`]: the instruction set the engine and the render-side stages run. The
 //!   default build detects the CPU once and runs the widest it has: SSE2, AVX2 or
 //!   AVX-512 on x86-64, NEON on AArch64, SIMD128 on wasm32 builds made with
-//!   `+simd128`, portable lanes elsewhere; `SPRINGWATER_SIMD` (`scalar`, `sse2`, `avx2`,
-//!   `avx512`, `neon`, `simd128`, `portable`) or [`Surface::set_simd_level`] force one.
+//!   `+simd128`, portable lanes elsewhere; [`Surface::set_simd_level`] forces one (the
+//!   command line reads `SPRINGWATER_SIMD` for it: `scalar`, `sse2`, `avx2`, `avx512`,
+//!   `neon`, `simd128`, `portable`; the library never reads the environment).
 //!   Every level, on every target, gives the same bits.
 //!
 //! ## Features

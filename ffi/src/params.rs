@@ -168,8 +168,8 @@ pub extern "C" fn sw_refraction_default() -> SwRefraction {
     }
 }
 
-/// The widest SIMD level this CPU has (what a new surface runs, unless the environment
-/// variable `SPRINGWATER_SIMD` says otherwise).
+/// The widest SIMD level this CPU has: what a new surface runs until
+/// `sw_surface_set_simd_level` chooses another (the library never reads the environment).
 #[no_mangle]
 pub extern "C" fn sw_simd_level_detect() -> SwSimdLevel {
     simd_code(SimdLevel::detect())
