@@ -14,7 +14,10 @@
 //! Needs `mcs` and `mono` (Debian's `mono-mcs` and `mono-runtime`) and `cc`: without them
 //! the tests say so and pass, unless `SPRINGWATER_REQUIRE_TOOLS` is set, where they fail.
 
-use springwater::{Boundary, Floater, FloaterId, Params, Shape, Surface};
+mod common;
+
+use common::{assert_ok, build_release, floater_floats, fnv};
+use springwater::{Boundary, Floater, FloaterId, Params, Surface};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -57,36 +60,10 @@ fn scratch(test: &str) -> PathBuf {
     dir
 }
 
-/// Builds the release C ABI and command line into `target/ffi-c/` (the C client's directory:
-/// cargo holds the test's own target directory while the tests run) and returns its
-/// `release` directory.
+/// The release C ABI and command line, built into `target/ffi-c/`.
 fn release_dir() -> &'static Path {
     static BUILT: OnceLock<PathBuf> = OnceLock::new();
-    BUILT.get_or_init(|| {
-        let root = crate_dir().parent().unwrap();
-        let dir = root.join("target").join("ffi-c");
-        let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-        let out = Command::new(cargo)
-            .current_dir(root)
-            .args(["build", "--release", "--quiet"])
-            .args(["-p", "springwater-ffi", "-p", "springwater-cli"])
-            .arg("--target-dir")
-            .arg(&dir)
-            .output()
-            .expect("cargo runs");
-        assert_ok(&out, "building springwater-ffi and springwater-cli");
-        dir.join("release")
-    })
-}
-
-fn assert_ok(out: &Output, what: &str) {
-    assert!(
-        out.status.success(),
-        "{what} failed ({}):\n{}\n{}",
-        out.status,
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
+    BUILT.get_or_init(|| build_release(&["springwater-ffi", "springwater-cli"], None))
 }
 
 /// The package's runtime sources: `Springwater/*.cs`, as a client compiles them.
@@ -108,15 +85,19 @@ fn test_source(name: &str) -> PathBuf {
 
 /// Compiles the runtime sources and `files` with `flags` into `out`; warnings are errors.
 fn mcs(out: &Path, flags: &[&str], files: &[PathBuf]) {
+    mcs_only(out, flags, &[runtime_sources(), files.to_vec()].concat());
+}
+
+/// Compiles `files` alone with `flags` into `out`; warnings are errors.
+fn mcs_only(out: &Path, flags: &[&str], files: &[PathBuf]) {
     let out = Command::new("mcs")
         .args(["-unsafe", "-warn:4", "-warnaserror+", "-nologo"])
         .arg(format!("-out:{}", out.display()))
         .args(flags)
-        .args(runtime_sources())
         .args(files)
         .output()
         .expect("mcs runs");
-    assert_ok(&out, "compiling the C# package");
+    assert_ok(&out, "compiling C#");
 }
 
 /// Runs a compiled program under Mono with the release library on its search path.
@@ -128,15 +109,6 @@ fn mono(exe: &Path, args: &[&Path]) -> Output {
         .env("LD_LIBRARY_PATH", release_dir())
         .output()
         .expect("mono runs")
-}
-
-fn fnv(values: impl Iterator<Item = f32>) -> u64 {
-    values.fold(0xcbf2_9ce4_8422_2325u64, |h, v| {
-        v.to_bits()
-            .to_le_bytes()
-            .iter()
-            .fold(h, |h, &b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3))
-    })
 }
 
 fn positions_fnv(s: &Surface) -> String {
@@ -176,23 +148,9 @@ fn floaters() -> Vec<(&'static str, String)> {
     moved.drag = 12.0;
     s.set_floater(boxy, moved).unwrap();
     s.step_n(30).unwrap();
-    // Runner.cs's FloaterFloats: radius, half extents, mass, drag, position, velocity,
-    // water force.
-    let floats = [a, boxy].into_iter().flat_map(|id| {
-        let f = *s.floater(id).unwrap();
-        let (radius, half) = match f.shape {
-            Shape::Sphere { radius } => (radius, [0.0; 3]),
-            Shape::Box { half_extents } => (0.0, half_extents.to_array()),
-            other => panic!("Runner.cs makes no {other:?}"),
-        };
-        let mut v = vec![radius];
-        v.extend(half);
-        v.extend([f.mass, f.drag]);
-        for w in [f.position, f.velocity, f.water_force] {
-            v.extend(w.to_array());
-        }
-        v
-    });
+    let floats = [a, boxy]
+        .into_iter()
+        .flat_map(|id| floater_floats(s.floater(id).unwrap()));
     vec![
         ("floaters", format!("{:016x}", fnv(floats))),
         ("floaters_water", positions_fnv(&s)),
@@ -706,10 +664,16 @@ fn the_package_and_its_sample_compile_against_unity_stubs() {
         ("unity2020", "UNITY_5_3_OR_NEWER"),
         ("ios", "UNITY_5_3_OR_NEWER;UNITY_2021_2_OR_NEWER;UNITY_IOS"),
     ] {
-        let out = dir.join(format!("{label}.dll"));
-        mcs(
+        // As Unity builds them: the runtime's assembly (Springwater.asmdef), then the
+        // sample's, which sees only what the runtime makes public.
+        let define = format!("-define:{defines}");
+        let runtime = dir.join(format!("Springwater-{label}.dll"));
+        mcs(&runtime, &["-target:library", &define], &[]);
+        let out = dir.join(format!("Samples-{label}.dll"));
+        let reference = format!("-r:{}", runtime.display());
+        mcs_only(
             &out,
-            &["-target:library", &format!("-define:{defines}")],
+            &["-target:library", &define, &reference],
             &[sample.clone(), test_source("UnityStubs.cs")],
         );
         assert!(out.exists(), "{label}");

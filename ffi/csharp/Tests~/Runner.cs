@@ -370,10 +370,11 @@ static unsafe class Runner
         return new[] {
             f.radius, f.HalfExtents.x, f.HalfExtents.y, f.HalfExtents.z, f.mass, f.drag,
             f.Position.x, f.Position.y, f.Position.z, f.Velocity.x, f.Velocity.y, f.Velocity.z,
-            f.WaterForce.x, f.WaterForce.y, f.WaterForce.z };
+            f.Push.x, f.Push.y, f.Push.z, f.WaterForce.x, f.WaterForce.y, f.WaterForce.z };
     }
 
-    /// Kept in step with `floaters()` in ffi/tests/csharp.rs, which runs it through Rust.
+    /// Kept in step with `floaters()` in ffi/tests/csharp.rs, which runs it through Rust;
+    /// a body's floats in the order of `floater_floats` in ffi/tests/common/mod.rs.
     static void Floaters()
     {
         var p = SwParams.Default();
