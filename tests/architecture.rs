@@ -13,11 +13,11 @@ const CRATES: [&str; 4] = ["src", "cli/src", "ffi/src", "bevy/src"];
 /// `unsafe extern "C" fn` wherever they are (a C caller's pointers are the reason); that
 /// declaration is the only `unsafe` allowed outside these places.
 const UNSAFE_PLACES: [&str; 5] = [
-    "src/simd/",                  // the lane layer: intrinsics, one file per instruction set
-    "src/jobs.rs",                // disjoint parts of one buffer for tasks running at once
+    "src/simd/",                   // the lane layer: intrinsics, one file per instruction set
+    "src/jobs.rs",                 // disjoint parts of one buffer for tasks running at once
     "src/forces/engine/access.rs", // the engine's unchecked row access
-    "ffi/src/ptr.rs",             // the C ABI's pointer and length checks
-    "ffi/src/jobs.rs",            // a C host's job-system callbacks
+    "ffi/src/ptr.rs",              // the C ABI's pointer and length checks
+    "ffi/src/jobs.rs",             // a C host's job-system callbacks
 ];
 
 const MAX_LINES: usize = 800;
@@ -89,7 +89,8 @@ fn unsafe_lives_only_in_its_places() {
         }
         let text = code(&std::fs::read_to_string(root().join(file)).unwrap());
         for (n, line) in text.lines().enumerate() {
-            let declaration = name.starts_with("ffi/src/") && line.contains("unsafe extern \"C\" fn");
+            let declaration =
+                name.starts_with("ffi/src/") && line.contains("unsafe extern \"C\" fn");
             let words: Vec<&str> = line
                 .split(|c: char| !(c.is_alphanumeric() || c == '_'))
                 .collect();
@@ -114,11 +115,18 @@ fn no_source_file_is_over_800_lines() {
     let long: Vec<String> = files
         .iter()
         .filter_map(|f| {
-            let lines = std::fs::read_to_string(root().join(f)).unwrap().lines().count();
+            let lines = std::fs::read_to_string(root().join(f))
+                .unwrap()
+                .lines()
+                .count();
             (lines > MAX_LINES).then(|| format!("{}: {lines} lines", slash(f)))
         })
         .collect();
-    assert!(long.is_empty(), "over {MAX_LINES} lines:\n{}", long.join("\n"));
+    assert!(
+        long.is_empty(),
+        "over {MAX_LINES} lines:\n{}",
+        long.join("\n")
+    );
 }
 
 /// A module path inside one crate, `[]` for the crate root.
@@ -170,10 +178,10 @@ fn references(here: &Module, text: &str, modules: &BTreeSet<Module>) -> BTreeSet
                 .chars()
                 .take_while(|c| c.is_alphanumeric() || *c == '_' || *c == ':' || *c == '{')
                 .collect();
-            if let Some(group) = tail.strip_suffix('{').or_else(|| {
-                tail.ends_with("::{")
-                    .then(|| tail.trim_end_matches('{'))
-            }) {
+            if let Some(group) = tail
+                .strip_suffix('{')
+                .or_else(|| tail.ends_with("::{").then(|| tail.trim_end_matches('{')))
+            {
                 // `crate::a::{b, c::d}`: the group's first segments.
                 let prefix: Module = group
                     .split("::")
@@ -195,7 +203,11 @@ fn references(here: &Module, text: &str, modules: &BTreeSet<Module>) -> BTreeSet
                 }
             } else {
                 let mut p = base.clone();
-                p.extend(tail.split("::").filter(|s| !s.is_empty()).map(str::to_owned));
+                p.extend(
+                    tail.split("::")
+                        .filter(|s| !s.is_empty())
+                        .map(str::to_owned),
+                );
                 paths.push(p);
             }
         }
@@ -215,8 +227,7 @@ fn references(here: &Module, text: &str, modules: &BTreeSet<Module>) -> BTreeSet
 /// them, or `None` when one contains the other (a module and its own parts).
 fn siblings(a: &Module, b: &Module) -> Option<(Module, Module)> {
     let common = a.iter().zip(b).take_while(|(x, y)| x == y).count();
-    (common < a.len() && common < b.len())
-        .then(|| (a[..=common].to_vec(), b[..=common].to_vec()))
+    (common < a.len() && common < b.len()).then(|| (a[..=common].to_vec(), b[..=common].to_vec()))
 }
 
 #[test]

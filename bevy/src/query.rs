@@ -74,26 +74,53 @@ fn sample_one(
 /// One of springwater's batched queries.
 type BatchQuery<T> = fn(&springwater::Surface, &[[f32; 2]], &mut Vec<T>) -> springwater::Result<()>;
 
-/// Shared batched queries: world points → local `[x, z]` → springwater's batch → world.
-fn batch<T>(
+/// A batched query at world points: world points → local `[x, z]` → springwater's batch
+/// → `to_world` of each local point and answer, into `out`.
+fn batch<T, U>(
     ws: &WaterSurface,
     space: &Space,
     points: &[Vec3],
-    scratch: &mut Vec<[f32; 2]>,
-    local: &mut Vec<T>,
+    out: &mut Vec<U>,
     query: BatchQuery<T>,
+    to_world: impl Fn(&Space, [f32; 2], T) -> U,
 ) -> Result<(), WaterQueryError> {
-    scratch.clear();
-    scratch.extend(points.iter().map(|&p| {
-        let l = space.local_point(p);
-        [l.x, l.z]
-    }));
-    query(&ws.surface, scratch, local)?;
+    let local: Vec<[f32; 2]> = points
+        .iter()
+        .map(|&p| {
+            let l = space.local_point(p);
+            [l.x, l.z]
+        })
+        .collect();
+    let mut answers = Vec::with_capacity(points.len());
+    query(&ws.surface, &local, &mut answers)?;
+    out.clear();
+    out.extend(
+        local
+            .into_iter()
+            .zip(answers)
+            .map(|(at, answer)| to_world(space, at, answer)),
+    );
     Ok(())
 }
 
 macro_rules! read_api {
     () => {
+        /// [`batch`] on the water entity `water`.
+        fn batch<T, U>(
+            &self,
+            water: Entity,
+            points: &[Vec3],
+            out: &mut Vec<U>,
+            query: BatchQuery<T>,
+            to_world: impl Fn(&Space, [f32; 2], T) -> U,
+        ) -> Result<(), WaterQueryError> {
+            let (_, ws, g) = self
+                .waters
+                .get(water)
+                .map_err(|_| WaterQueryError::NoSurface(water))?;
+            batch(&ws, &Space::new(g), points, out, query, to_world)
+        }
+
         /// The water under (or over) a world point: the first water whose footprint holds
         /// the point's projection onto its plane. `None` when no water does.
         pub fn sample(&self, point: Vec3) -> Option<WaterSample> {
@@ -132,24 +159,13 @@ macro_rules! read_api {
             points: &[Vec3],
             out: &mut Vec<f32>,
         ) -> Result<(), WaterQueryError> {
-            let (_, ws, g) = self
-                .waters
-                .get(water)
-                .map_err(|_| WaterQueryError::NoSurface(water))?;
-            let space = Space::new(g);
-            let mut scratch = Vec::with_capacity(points.len());
-            batch(
-                &ws,
-                &space,
+            self.batch(
+                water,
                 points,
-                &mut scratch,
                 out,
                 springwater::Surface::heights_at,
-            )?;
-            for (h, [x, z]) in out.iter_mut().zip(&scratch) {
-                *h = space.world_point(Vec3::new(*x, *h, *z)).y;
-            }
-            Ok(())
+                |space, [x, z], h| space.world_point(Vec3::new(x, h, z)).y,
+            )
         }
 
         /// World unit normals of `water` at many world points, into `out`.
@@ -159,28 +175,13 @@ macro_rules! read_api {
             points: &[Vec3],
             out: &mut Vec<Vec3>,
         ) -> Result<(), WaterQueryError> {
-            let (_, ws, g) = self
-                .waters
-                .get(water)
-                .map_err(|_| WaterQueryError::NoSurface(water))?;
-            let space = Space::new(g);
-            let mut scratch = Vec::with_capacity(points.len());
-            let mut local = Vec::with_capacity(points.len());
-            batch(
-                &ws,
-                &space,
+            self.batch(
+                water,
                 points,
-                &mut scratch,
-                &mut local,
+                out,
                 springwater::Surface::normals_at,
-            )?;
-            out.clear();
-            out.extend(
-                local
-                    .iter()
-                    .map(|&n| space.world_normal(Vec3::from_array(n.to_array()))),
-            );
-            Ok(())
+                |space, _, n| space.world_normal(Vec3::from_array(n.to_array())),
+            )
         }
 
         /// World velocities of `water` at many world points, into `out`, in world units per
@@ -191,28 +192,13 @@ macro_rules! read_api {
             points: &[Vec3],
             out: &mut Vec<Vec3>,
         ) -> Result<(), WaterQueryError> {
-            let (_, ws, g) = self
-                .waters
-                .get(water)
-                .map_err(|_| WaterQueryError::NoSurface(water))?;
-            let space = Space::new(g);
-            let mut scratch = Vec::with_capacity(points.len());
-            let mut local = Vec::with_capacity(points.len());
-            batch(
-                &ws,
-                &space,
+            self.batch(
+                water,
                 points,
-                &mut scratch,
-                &mut local,
+                out,
                 springwater::Surface::velocities_at,
-            )?;
-            out.clear();
-            out.extend(
-                local
-                    .iter()
-                    .map(|&v| space.world_vector(Vec3::from_array(v.to_array()))),
-            );
-            Ok(())
+                |space, _, v| space.world_vector(Vec3::from_array(v.to_array())),
+            )
         }
     };
 }
