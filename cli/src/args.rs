@@ -136,8 +136,8 @@ impl ModelArgs {
                 )
             }
             ("absorbing width", _) if across >= 4 => format!(
-                "--boundary absorbing:{value}: the frame is too wide for a {}x{} grid; use a \
-                 width from 1 to {}",
+                "--boundary absorbing:{value}: a {}x{} grid takes an absorbing frame 1 to {} \
+                 cells wide",
                 p.cols,
                 p.rows,
                 (across - 2) / 2

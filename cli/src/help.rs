@@ -131,7 +131,7 @@ flags:
   --png DIR            also (or instead) every frame as DIR/frame_0000.png …
   --frames N           frames to draw, 1 to 100000 (72)
   --substeps N         simulation steps between frames, 0 to 10000 (3)
-  --fps F              GIF frame rate, 0.0015259 to 50 frames per second (20)
+  --fps F              GIF frame rate, 0.0016 to 50 frames per second (20)
   --steps N            steps before the first frame, rain falling (60)
   --width W            image width in pixels, 16 to 4096 (400)
   --height H           image height in pixels, 16 to 4096 (300)

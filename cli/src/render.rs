@@ -144,11 +144,12 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                 .into(),
         );
     }
-    // A GIF counts frame times in hundredths of a second, from 2 (what viewers show) up.
-    let (lo, hi) = (100.0 / 65535.0, 50.0);
+    // A GIF counts frame times in hundredths of a second, from 2 (what viewers show) to
+    // 65535 (0.0016 fps is 62500).
+    let (lo, hi) = (0.0016, 50.0);
     if !(o.fps >= lo && o.fps <= hi) {
         return Err(format!(
-            "--fps must be between {} and {} (a GIF frame lasts 2 to 65535 hundredths of a \
+            "--fps must be between {} and {} (a GIF frame lasts 2 to 62500 hundredths of a \
              second), got {}",
             Short(lo),
             Short(hi),

@@ -667,7 +667,7 @@ fn a_long_frame_takes_all_its_steps() {
         "--out",
         refused.to_str().unwrap(),
     ]);
-    assert!(err.contains("--dt 4.1670834e-6 or more"), "{err}");
+    assert!(err.contains("--dt 1.0001e-4 or more"), "{err}");
     assert!(!refused.exists());
 }
 
