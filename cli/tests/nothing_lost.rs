@@ -13,6 +13,27 @@ fn springwater(args: &[&str]) -> Output {
         .unwrap()
 }
 
+/// Runs `springwater args` and returns its output; a run still going after `seconds` is
+/// killed and the test fails (a refusal that comes only after the work would hang).
+fn within(args: &[&str], seconds: u64) -> Output {
+    let mut child = Command::new(env!("CARGO_BIN_EXE_springwater"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(seconds);
+    while child.try_wait().unwrap().is_none() {
+        if std::time::Instant::now() > deadline {
+            child.kill().unwrap();
+            let _ = child.wait();
+            panic!("{args:?} still ran after {seconds} s");
+        }
+        std::thread::sleep(std::time::Duration::from_millis(20));
+    }
+    child.wait_with_output().unwrap()
+}
+
 fn ok(args: &[&str]) -> String {
     let out = springwater(args);
     assert!(
@@ -25,7 +46,7 @@ fn ok(args: &[&str]) -> String {
 
 /// Runs a command that must fail: exit 2 and one line on stderr, which is returned.
 fn fails(args: &[&str]) -> String {
-    let out = springwater(args);
+    let out = within(args, 20);
     let err = String::from_utf8_lossy(&out.stderr).into_owned();
     assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
     assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
