@@ -113,7 +113,7 @@ pub struct Output {
     /// Where the complete file goes (symbolic links followed).
     dest: PathBuf,
     /// The temporary file beside `dest`, or `None` for a stream.
-    temp: Option<tempfile::NamedTempFile>,
+    temp: Option<Temp>,
     /// The stream, for a device or FIFO.
     stream: Option<File>,
 }
@@ -177,12 +177,24 @@ impl Output {
 
     /// A handle on the file being written (the temporary file, or the stream).
     pub fn file(&self) -> io::Result<File> {
-        let file = match (&self.temp, &self.stream) {
-            (Some(t), _) => t.as_file(),
-            (None, Some(s)) => s,
+        let (file, path) = match (&self.temp, &self.stream) {
+            (Some(t), _) => (&t.file, t.path.as_path()),
+            (None, Some(s)) => (s, self.dest.as_path()),
             (None, None) => unreachable!("an output is a temporary file or a stream"),
         };
-        file.try_clone().map_err(|e| named(&self.shown, e))
+        let reopen = || {
+            // WASI cannot duplicate a handle: the same file opened again by its name.
+            let write = std::fs::OpenOptions::new().write(true).open(path);
+            let both = std::fs::OpenOptions::new()
+                .read(true)
+                .write(true)
+                .open(path);
+            both.or_else(|_| write)
+        };
+        match file.try_clone() {
+            Err(e) if e.kind() == io::ErrorKind::Unsupported => reopen(),
+            other => other,
+        }
     }
 
     /// Moves the complete file into place (a stream: nothing to do).
@@ -195,21 +207,10 @@ impl Output {
         let Some(temp) = self.temp.take() else {
             return Ok(());
         };
-        let path = temp.path().to_path_buf();
-        let shown = self.shown.clone();
-        temp.as_file().sync_all().map_err(|e| named(&shown, e))?;
-        match temp.persist(&self.dest) {
-            Ok(_) => {
-                forget(list, &path);
-                Ok(())
-            }
-            Err(e) => {
-                let error = named(&shown, e.error);
-                drop(e.file); // removes the temporary file
-                forget(list, &path);
-                Err(error)
-            }
-        }
+        let path = temp.path.clone();
+        let result = temp.file.sync_all().and_then(|()| temp.persist(&self.dest));
+        forget(list, &path);
+        result.map_err(|e| named(&self.shown, e))
     }
 }
 
@@ -217,43 +218,145 @@ impl Drop for Output {
     fn drop(&mut self) {
         if let Some(temp) = self.temp.take() {
             let mut list = pending();
-            let path = temp.path().to_path_buf();
+            let path = temp.path.clone();
             drop(temp); // removes the temporary file
             forget(&mut list, &path);
         }
     }
 }
 
+/// A temporary file of this run, removed when dropped unless moved into place.
+struct Temp {
+    path: PathBuf,
+    file: File,
+}
+
+impl Temp {
+    /// Renames the file over `dest`.
+    fn persist(mut self, dest: &Path) -> io::Result<()> {
+        std::fs::rename(&self.path, dest)?;
+        self.path = PathBuf::new();
+        Ok(())
+    }
+}
+
+impl Drop for Temp {
+    fn drop(&mut self) {
+        if !self.path.as_os_str().is_empty() {
+            let _ = std::fs::remove_file(&self.path);
+        }
+    }
+}
+
+/// The directory a file of `dest` goes in.
+fn directory_of(dest: &Path) -> &Path {
+    match dest.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p,
+        _ => Path::new("."),
+    }
+}
+
 /// A temporary file beside `dest`, listed in [`PENDING`]; with `permissions` (those of the
 /// file it will replace) or, for a new file, the mode a created file gets (0666 less the
 /// umask, on Unix).
-fn temporary_beside(
-    dest: &Path,
-    permissions: Option<std::fs::Permissions>,
-) -> io::Result<tempfile::NamedTempFile> {
-    let dir = match dest.parent() {
-        Some(p) if !p.as_os_str().is_empty() => p,
-        _ => Path::new("."),
-    };
+fn temporary_beside(dest: &Path, permissions: Option<std::fs::Permissions>) -> io::Result<Temp> {
     let name = dest.file_name().unwrap_or_default().to_string_lossy();
     let prefix = format!(".{name}.");
-    let mut builder = tempfile::Builder::new();
-    builder.prefix(&prefix).suffix(".springwater-tmp");
-    #[cfg(unix)]
-    let fresh = {
-        use std::os::unix::fs::PermissionsExt;
-        std::fs::Permissions::from_mode(0o666)
-    };
-    #[cfg(unix)]
-    builder.permissions(fresh);
     let mut list = pending();
-    let temp = builder.tempfile_in(dir)?;
+    let (file, path) = unique_in(directory_of(dest), &prefix, ".springwater-tmp", |path| {
+        std::fs::OpenOptions::new()
+            .read(true)
+            .write(true)
+            .create_new(true)
+            .open(path)
+    })?;
+    let temp = Temp { path, file };
+    // A replaced file keeps its mode (WASI has no modes).
+    #[cfg(unix)]
     if let Some(p) = permissions {
-        // A replaced file keeps its mode.
-        temp.as_file().set_permissions(p)?;
+        temp.file.set_permissions(p)?;
     }
-    list.push(temp.path().to_path_buf());
+    #[cfg(not(unix))]
+    drop(permissions);
+    list.push(temp.path.clone());
     Ok(temp)
+}
+
+/// A new file or directory in `dir` named `PREFIX` + random characters + `SUFFIX`, made by
+/// `tempfile` (0666 or 0777 less the umask on Unix).
+#[cfg(not(target_family = "wasm"))]
+fn unique_in<T>(
+    dir: &Path,
+    prefix: &str,
+    suffix: &str,
+    _create: impl Fn(&Path) -> io::Result<T>,
+) -> io::Result<(T, PathBuf)>
+where
+    T: FromTemp,
+{
+    T::make(dir, prefix, suffix)
+}
+
+/// What [`unique_in`] makes with `tempfile`: a file or a directory.
+#[cfg(not(target_family = "wasm"))]
+trait FromTemp: Sized {
+    fn make(dir: &Path, prefix: &str, suffix: &str) -> io::Result<(Self, PathBuf)>;
+}
+
+#[cfg(not(target_family = "wasm"))]
+fn builder<'a>(prefix: &'a str, suffix: &'a str, mode: u32) -> tempfile::Builder<'a, 'a> {
+    let mut b = tempfile::Builder::new();
+    b.prefix(prefix).suffix(suffix);
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        b.permissions(std::fs::Permissions::from_mode(mode));
+    }
+    #[cfg(not(unix))]
+    let _ = mode;
+    b
+}
+
+#[cfg(not(target_family = "wasm"))]
+impl FromTemp for File {
+    fn make(dir: &Path, prefix: &str, suffix: &str) -> io::Result<(Self, PathBuf)> {
+        let temp = builder(prefix, suffix, 0o666).tempfile_in(dir)?;
+        // Removed or renamed by this module, not by `NamedTempFile`.
+        temp.keep().map_err(|e| e.error)
+    }
+}
+
+#[cfg(not(target_family = "wasm"))]
+impl FromTemp for () {
+    fn make(dir: &Path, prefix: &str, suffix: &str) -> io::Result<(Self, PathBuf)> {
+        Ok(((), builder(prefix, suffix, 0o777).tempdir_in(dir)?.keep()))
+    }
+}
+
+/// WASI: `tempfile` makes a relative directory absolute with the emulated current
+/// directory, which is not the one the host maps `.` to; names are tried here instead.
+#[cfg(target_family = "wasm")]
+fn unique_in<T>(
+    dir: &Path,
+    prefix: &str,
+    suffix: &str,
+    create: impl Fn(&Path) -> io::Result<T>,
+) -> io::Result<(T, PathBuf)> {
+    use std::hash::{BuildHasher, Hasher};
+    let mut hasher = std::collections::hash_map::RandomState::new().build_hasher();
+    for attempt in 0u32..1000 {
+        hasher.write_u32(attempt);
+        let path = dir.join(format!("{prefix}{:08x}{suffix}", hasher.finish() as u32));
+        match create(&path) {
+            Ok(made) => return Ok((made, path)),
+            Err(e) if e.kind() == io::ErrorKind::AlreadyExists => continue,
+            Err(e) => return Err(e),
+        }
+    }
+    Err(io::Error::new(
+        io::ErrorKind::AlreadyExists,
+        "no free temporary name",
+    ))
 }
 
 /// A sequence of numbered frames (`PREFIX0001.EXT` …) being written into a directory.
@@ -294,21 +397,19 @@ impl Sequence {
             .last()
             .map(Path::to_path_buf);
         std::fs::create_dir_all(dir).map_err(fail)?;
-        let dest = std::fs::canonicalize(dir).map_err(fail)?;
+        // Absolute where the system can say (WASI cannot: the path as given serves).
+        let absolute = |p: &Path| std::fs::canonicalize(p).unwrap_or_else(|_| p.to_path_buf());
+        let dest = absolute(dir);
+        let created = created.map(|c| absolute(&c));
         if let Some(c) = &created {
-            list.push(std::fs::canonicalize(c).map_err(fail)?);
+            list.push(c.clone());
         }
-        let mut k = 0u32;
-        let temp = loop {
-            let temp = dest.join(format!(".springwater-tmp-{}-{k}", std::process::id()));
-            match std::fs::create_dir(&temp) {
-                Ok(()) => break temp,
-                Err(e) if e.kind() == io::ErrorKind::AlreadyExists && k < 1000 => k += 1,
-                Err(e) => {
-                    drop(list);
-                    remove_created(&created);
-                    return Err(fail(e));
-                }
+        let temp = match unique_in(&dest, ".springwater-tmp-", "", |p| std::fs::create_dir(p)) {
+            Ok(((), path)) => path,
+            Err(e) => {
+                drop(list);
+                remove_created(&created);
+                return Err(fail(e));
             }
         };
         list.push(temp.clone());
@@ -316,7 +417,7 @@ impl Sequence {
             shown: dir.to_path_buf(),
             dest,
             temp,
-            created: created.map(|c| std::fs::canonicalize(&c).unwrap_or(c)),
+            created,
             prefix,
             ext,
             digits: last.to_string().len().max(4),

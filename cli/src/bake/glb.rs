@@ -97,7 +97,7 @@ impl Glb {
         let path = out.path().to_path_buf();
         let scratch = Output::scratch(&path)?;
         let part_path = scratch.path().to_path_buf();
-        let part = BufWriter::new(scratch.file()?);
+        let part = BufWriter::new(scratch.file().map_err(|e| named(&path, e))?);
         let [x, y, z] = first.positions;
         let normals = first.normals;
         let mut glb = Self {

@@ -47,7 +47,7 @@ impl PointCache {
         let count = i32::try_from(frames).map_err(|_| too_many())?;
         let n = i32::try_from(points).map_err(|_| too_many())?;
         let path = out.path().to_path_buf();
-        let mut file = BufWriter::new(out.file()?);
+        let mut file = BufWriter::new(out.file().map_err(|e| named(&path, e))?);
         let title = format!(
             "{} {}, frame 0",
             obj::REST_TITLE,
@@ -55,7 +55,8 @@ impl PointCache {
         );
         // A full-detail mesh, whatever the eye: every node is used, so importers keep
         // every vertex, in order.
-        obj::write(rest_obj.file()?, rest_obj.path(), &title, rest, first)?;
+        let obj_file = rest_obj.file().map_err(|e| named(rest_obj.path(), e))?;
+        obj::write(obj_file, rest_obj.path(), &title, rest, first)?;
         let header = (|| {
             if mdd {
                 file.write_all(&count.to_be_bytes())?;
