@@ -189,7 +189,7 @@ impl Output {
                 .read(true)
                 .write(true)
                 .open(path);
-            both.or_else(|_| write)
+            both.or(write)
         };
         match file.try_clone() {
             Err(e) if e.kind() == io::ErrorKind::Unsupported => reopen(),

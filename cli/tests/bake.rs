@@ -2,24 +2,10 @@
 //! steps, the glTF checked by the Khronos validator, and the caches opened in Blender.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn springwater(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_springwater"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn ok(args: &[&str]) -> String {
-    let out = springwater(args);
-    assert!(
-        out.status.success(),
-        "springwater {args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
+mod common;
+use common::*;
 
 /// A real client's test that cannot run here says why; where CI installed the clients
 /// (`SPRINGWATER_REQUIRE_TOOLS` set), not running one is a failure.
@@ -29,15 +15,6 @@ fn skipped(why: &str) {
         "SPRINGWATER_REQUIRE_TOOLS is set but {why}"
     );
     println!("skipped: {why}");
-}
-
-/// Runs a command that must be refused: exit 2, one line on stderr, which is returned.
-fn refused_with(args: &[&str]) -> String {
-    let out = springwater(args);
-    let err = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-    assert_eq!(err.lines().count(), 1, "{err}");
-    err
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -286,7 +263,7 @@ fn a_full_disk_is_an_error_not_a_panic_and_the_device_stays() {
     let link = dir.join("full.pc2");
     let _ = std::fs::remove_file(&link);
     std::os::unix::fs::symlink("/dev/full", &link).unwrap();
-    let err = refused_with(&[
+    let err = refused(&[
         "bake",
         "--size",
         "9x9",
@@ -488,17 +465,10 @@ fn ctrl_c_stops_a_bake_and_leaves_the_earlier_cache_as_it_was() {
     let dir = scratch("interrupted");
     std::fs::create_dir_all(&dir).unwrap();
     let cache = dir.join("interrupted.pc2");
-    ok(&[
-        "bake",
-        "--size",
-        "5x5",
-        "--drop",
-        "2,2,1,1",
-        "--frames",
-        "2",
-        "--out",
-        cache.to_str().unwrap(),
-    ]);
+    ok(&line(
+        "bake --size 5x5 --drop 2,2,1,1 --frames 2 --out @",
+        &[&cache],
+    ));
     let before = (
         std::fs::read(&cache).unwrap(),
         std::fs::read(cache.with_extension("obj")).unwrap(),
@@ -638,37 +608,19 @@ fn a_long_frame_takes_all_its_steps() {
     assert_eq!(obj_positions(&dir.join("water_0002.obj")), want);
 
     // A frame longer than `advance` may ever step is refused before anything is written.
-    let refused = scratch("fps-tiny");
-    let out = springwater(&[
-        "bake",
-        "--size",
-        "9x9",
-        "--frames",
-        "2",
-        "--fps",
-        "0.0001",
-        "--out",
-        refused.to_str().unwrap(),
-    ]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert_eq!(err.lines().count(), 1, "{err}");
+    let tiny = scratch("fps-tiny");
+    let err = refused(&line(
+        "bake --size 9x9 --frames 2 --fps 0.0001 --out @",
+        &[&tiny],
+    ));
     assert!(err.contains("use --fps 0.0060006 or more"), "{err}");
     // The longer timestep that would fit is past the critical one: not offered.
     assert!(!err.contains("--dt"), "{err}");
-    assert!(!refused.exists());
+    assert!(!tiny.exists());
     // With a tiny timestep, a longer one is the remedy too.
-    let err = refused_with(&[
-        "bake",
-        "--size",
-        "9x9",
-        "--dt",
-        "1e-6",
-        "--out",
-        refused.to_str().unwrap(),
-    ]);
+    let err = refused(&line("bake --size 9x9 --dt 1e-6 --out @", &[&tiny]));
     assert!(err.contains("--dt 1.0001e-4 or more"), "{err}");
-    assert!(!refused.exists());
+    assert!(!tiny.exists());
 }
 
 #[test]

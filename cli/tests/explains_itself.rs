@@ -2,63 +2,8 @@
 //! (each answered at once, where running first would take hours), and messages that name
 //! the flag, the value in its shortest form and the valid range.
 
-use std::process::{Command, Output};
-use std::time::{Duration, Instant};
-
-fn springwater(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_springwater"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-/// Runs `springwater args` and returns its output; a run still going after `seconds` is
-/// killed and the test fails (a refusal that comes only after the work would hang).
-fn within(args: &[&str], seconds: u64) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_springwater"))
-        .args(args)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(seconds);
-    while child.try_wait().unwrap().is_none() {
-        if std::time::Instant::now() > deadline {
-            child.kill().unwrap();
-            let _ = child.wait();
-            panic!("{args:?} still ran after {seconds} s");
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
-    child.wait_with_output().unwrap()
-}
-
-fn ok(args: &[&str]) -> String {
-    let out = springwater(args);
-    assert!(
-        out.status.success(),
-        "springwater {args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
-
-/// Runs a command that must be refused at once: exit 2, one line on stderr (returned),
-/// within 10 s (each case here would run for hours if it did its work first).
-fn refused(args: &[&str]) -> String {
-    let started = Instant::now();
-    let out = within(args, 20);
-    let err = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert!(
-        started.elapsed() < Duration::from_secs(10),
-        "{args:?} took {:?}",
-        started.elapsed()
-    );
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-    assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
-    assert!(out.stdout.is_empty(), "{args:?}");
-    err
-}
+mod common;
+use common::*;
 
 fn scratch(name: &str) -> String {
     let dir = std::env::temp_dir().join(format!("springwater-explains-{}", std::process::id()));
@@ -179,13 +124,10 @@ fn rain_rates_are_bounded_before_any_step() {
 #[test]
 fn what_can_be_checked_before_the_first_step_is() {
     // A shift past the window's range, after four billion steps.
-    let err = refused(&[
-        "simulate",
-        "--steps",
-        "4000000000",
-        "--follow-shift",
-        "20000000,0",
-    ]);
+    let err = refused(&line(
+        "simulate --steps 4000000000 --follow-shift 20000000,0",
+        &[],
+    ));
     assert!(
         err.contains("DC 20000000 is out of range") && err.contains("-15728640 to 15728640"),
         "{err}"
@@ -196,17 +138,10 @@ fn what_can_be_checked_before_the_first_step_is() {
     assert!(!err.contains("not a valid"), "{err}");
     // A .glb past 4 GiB, after four billion warm-up steps.
     let glb = scratch("huge.glb");
-    let err = refused(&[
-        "bake",
-        "--size",
-        "1024x1024",
-        "--steps",
-        "4000000000",
-        "--frames",
-        "200",
-        "--out",
-        &glb,
-    ]);
+    let err = refused(&line(
+        "bake --size 1024x1024 --steps 4000000000 --frames 200 --out @",
+        &[&glb],
+    ));
     assert!(err.contains("at most 4 GiB"), "{err}");
     // The count it suggests: one more is refused too, and that many frames of position and
     // normal offsets (24 bytes a node) stay under 4 GiB.
@@ -221,17 +156,10 @@ fn what_can_be_checked_before_the_first_step_is() {
         .unwrap();
     assert!(most * 1024 * 1024 * 24 < 1 << 32, "{err}");
     let more = (most + 1).to_string();
-    let err = refused(&[
-        "bake",
-        "--size",
-        "1024x1024",
-        "--steps",
-        "4000000000",
-        "--frames",
-        &more,
-        "--out",
-        &glb,
-    ]);
+    let err = refused(&line(
+        "bake --size 1024x1024 --steps 4000000000 --frames @ --out @",
+        &[&more, &glb],
+    ));
     assert!(err.contains("at most 4 GiB"), "{err}");
     // Frames shorter than a step would all repeat the one before.
     let err = refused(&["bake", "--fps", "1e30", "--out", &scratch("fast.glb")]);
@@ -279,13 +207,13 @@ fn messages_name_the_flag_and_the_value_as_typed() {
         "{err}"
     );
     // The default absorbing frame on a tiny grid: no width the user never gave.
-    let err = refused(&["simulate", "--size", "3x3", "--boundary", "absorbing"]);
+    let err = refused(&line("simulate --size 3x3 --boundary absorbing", &[]));
     assert!(
         err.contains("too small for an absorbing frame") && !err.contains("32"),
         "{err}"
     );
     // A limit, not a formula.
-    let err = refused(&["simulate", "--size", "10x10", "--boundary", "absorbing:40"]);
+    let err = refused(&line("simulate --size 10x10 --boundary absorbing:40", &[]));
     assert!(
         err.contains("frame 1 to 4 cells wide") && !err.contains("min(cols"),
         "{err}"
@@ -325,9 +253,10 @@ fn reports_count_in_the_singular_and_plural_and_print_short_numbers() {
     ]);
     assert!(report.starts_with("baked 1 frame at 24 fps"), "{report}");
     let dir = scratch("one-dir");
-    let report = ok(&[
-        "bake", "--size", "9x9", "--frames", "1", "--fps", "60", "--drop", "4,4,1,1", "--out", &dir,
-    ]);
+    let report = ok(&line(
+        "bake --size 9x9 --frames 1 --fps 60 --drop 4,4,1,1 --out @",
+        &[&dir],
+    ));
     assert!(
         report.contains(": 1 step of 0.4") && report.contains("wrote 1 OBJ file to"),
         "{report}"
@@ -351,17 +280,10 @@ fn reports_count_in_the_singular_and_plural_and_print_short_numbers() {
 
 #[test]
 fn a_kernel_compared_twice_is_timed_once() {
-    let report = ok(&[
-        "bench",
-        "--size",
-        "16x16",
-        "--steps",
-        "2",
-        "--repeats",
-        "1",
-        "--compare",
-        "naive,naive",
-    ]);
+    let report = ok(&line(
+        "bench --size 16x16 --steps 2 --repeats 1 --compare naive,naive",
+        &[],
+    ));
     assert_eq!(
         report.lines().filter(|l| l.starts_with("naive")).count(),
         1,

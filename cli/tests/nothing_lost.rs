@@ -3,55 +3,11 @@
 //! (a device node, a user's file, its own `--load` input) and leaves no partial file.
 
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
+use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
-fn springwater(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_springwater"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-/// Runs `springwater args` and returns its output; a run still going after `seconds` is
-/// killed and the test fails (a refusal that comes only after the work would hang).
-fn within(args: &[&str], seconds: u64) -> Output {
-    let mut child = Command::new(env!("CARGO_BIN_EXE_springwater"))
-        .args(args)
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .unwrap();
-    let deadline = std::time::Instant::now() + std::time::Duration::from_secs(seconds);
-    while child.try_wait().unwrap().is_none() {
-        if std::time::Instant::now() > deadline {
-            child.kill().unwrap();
-            let _ = child.wait();
-            panic!("{args:?} still ran after {seconds} s");
-        }
-        std::thread::sleep(std::time::Duration::from_millis(20));
-    }
-    child.wait_with_output().unwrap()
-}
-
-fn ok(args: &[&str]) -> String {
-    let out = springwater(args);
-    assert!(
-        out.status.success(),
-        "springwater {args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
-
-/// Runs a command that must fail: exit 2 and one line on stderr, which is returned.
-fn fails(args: &[&str]) -> String {
-    let out = within(args, 20);
-    let err = String::from_utf8_lossy(&out.stderr).into_owned();
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
-    assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
-    err
-}
+mod common;
+use common::*;
 
 /// A fresh, empty directory for one test.
 fn fresh(name: &str) -> PathBuf {
@@ -97,7 +53,7 @@ fn a_failing_simulate_keeps_the_existing_csv_and_snapshot() {
         s(&snap),
     ];
     args.extend(BLOW_UP);
-    let err = fails(&args);
+    let err = refused(&args);
     assert!(err.contains("non-finite"), "{err}");
     assert_eq!(std::fs::read(&csv).unwrap(), b"the user's data\n");
     assert_eq!(std::fs::read(&snap).unwrap(), b"not a snapshot, the user's");
@@ -108,17 +64,10 @@ fn a_failing_simulate_keeps_the_existing_csv_and_snapshot() {
 fn load_and_save_to_one_file_keeps_it_until_the_new_one_is_complete() {
     let dir = fresh("load-save");
     let snap = dir.join("s.snap");
-    ok(&[
-        "simulate",
-        "--size",
-        "16x16",
-        "--steps",
-        "5",
-        "--drop",
-        "8,8,1,2",
-        "--save",
-        s(&snap),
-    ]);
+    ok(&line(
+        "simulate --size 16x16 --steps 5 --drop 8,8,1,2 --save @",
+        &[&snap],
+    ));
     let before = std::fs::read(&snap).unwrap();
     let mut args = vec![
         "simulate",
@@ -130,22 +79,17 @@ fn load_and_save_to_one_file_keeps_it_until_the_new_one_is_complete() {
         "10",
     ];
     args.extend(BLOW_UP);
-    fails(&args);
+    refused(&args);
     assert!(
         std::fs::read(&snap).unwrap() == before,
         "the snapshot changed"
     );
     assert_eq!(names(&dir), ["s.snap"]);
     // And succeeding, it is replaced by the continued state, with the file's mode.
-    ok(&[
-        "simulate",
-        "--load",
-        s(&snap),
-        "--save",
-        s(&snap),
-        "--steps",
-        "10",
-    ]);
+    ok(&line(
+        "simulate --load @ --save @ --steps 10",
+        &[&snap, &snap],
+    ));
     let after = std::fs::read(&snap).unwrap();
     assert_eq!(after.len(), before.len());
     assert!(after != before);
@@ -156,21 +100,10 @@ fn load_and_save_to_one_file_keeps_it_until_the_new_one_is_complete() {
 fn a_failing_render_keeps_the_existing_gif_and_png_frames() {
     let dir = fresh("render-fails");
     let (gif, pngs) = (dir.join("water.gif"), dir.join("frames"));
-    ok(&[
-        "render",
-        "--size",
-        "16x16",
-        "--frames",
-        "2",
-        "--width",
-        "32",
-        "--height",
-        "24",
-        "--out",
-        s(&gif),
-        "--png",
-        s(&pngs),
-    ]);
+    ok(&line(
+        "render --size 16x16 --frames 2 --width 32 --height 24 --out @ --png @",
+        &[&gif, &pngs],
+    ));
     let before = (std::fs::read(&gif).unwrap(), names(&pngs));
     let mut args = vec![
         "render",
@@ -184,7 +117,7 @@ fn a_failing_render_keeps_the_existing_gif_and_png_frames() {
         s(&pngs),
     ];
     args.extend(BLOW_UP);
-    fails(&args);
+    refused(&args);
     assert!((std::fs::read(&gif).unwrap(), names(&pngs)) == before);
     assert_eq!(names(&dir), ["frames", "water.gif"]);
 }
@@ -194,17 +127,10 @@ fn a_failing_rebake_keeps_the_earlier_caches() {
     let dir = fresh("rebake-fails");
     for out in ["water.glb", "water.pc2", "seq"] {
         let path = dir.join(out);
-        ok(&[
-            "bake",
-            "--size",
-            "16x16",
-            "--drop",
-            "8,8,1,2",
-            "--frames",
-            "3",
-            "--out",
-            s(&path),
-        ]);
+        ok(&line(
+            "bake --size 16x16 --drop 8,8,1,2 --frames 3 --out @",
+            &[&path],
+        ));
         let snapshot = |p: &Path| -> Vec<(String, Vec<u8>)> {
             let mut files: Vec<PathBuf> = if p.is_dir() {
                 names(p).iter().map(|n| p.join(n)).collect()
@@ -228,7 +154,7 @@ fn a_failing_rebake_keeps_the_earlier_caches() {
             s(&path),
         ];
         args.extend(BLOW_UP);
-        fails(&args);
+        refused(&args);
         assert!(snapshot(&path) == before, "{out} changed");
     }
     assert_eq!(names(&dir), ["seq", "water.glb", "water.obj", "water.pc2"]);
@@ -314,7 +240,7 @@ fn a_device_is_written_in_place_and_never_removed() {
             "not a directory",
         ),
     ] {
-        let err = fails(&args);
+        let err = refused(&args);
         assert!(err.contains(needle), "{args:?}: {err}");
         assert!(is_char_device(&full), "{args:?} removed the device");
     }
@@ -322,28 +248,14 @@ fn a_device_is_written_in_place_and_never_removed() {
     let Some(null) = device(&dir, "null", 1, 3) else {
         return;
     };
-    ok(&[
-        "render",
-        "--size",
-        "16x16",
-        "--frames",
-        "2",
-        "--width",
-        "32",
-        "--height",
-        "24",
-        "--out",
-        s(&null),
-    ]);
-    ok(&[
-        "simulate",
-        "--size",
-        "16x16",
-        "--csv",
-        s(&null),
-        "--save",
-        s(&null),
-    ]);
+    ok(&line(
+        "render --size 16x16 --frames 2 --width 32 --height 24 --out @",
+        &[&null],
+    ));
+    ok(&line(
+        "simulate --size 16x16 --csv @ --save @",
+        &[&null, &null],
+    ));
     assert!(is_char_device(&null));
     assert_eq!(names(&dir), ["full", "null"]);
 }
@@ -361,15 +273,7 @@ fn a_fifo_is_written_as_a_stream() {
         let fifo = fifo.clone();
         std::thread::spawn(move || std::fs::read_to_string(fifo).unwrap())
     };
-    ok(&[
-        "simulate",
-        "--size",
-        "3x3",
-        "--steps",
-        "1",
-        "--csv",
-        s(&fifo),
-    ]);
+    ok(&line("simulate --size 3x3 --steps 1 --csv @", &[&fifo]));
     let text = reader.join().unwrap();
     assert!(text.starts_with("col,row,x,y,z\n"), "{text}");
     assert_eq!(text.lines().count(), 10);
@@ -377,7 +281,7 @@ fn a_fifo_is_written_as_a_stream() {
 }
 
 /// Starts `springwater args` with its output piped.
-fn start(args: &[&str]) -> Child {
+fn start<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> Child {
     Command::new(env!("CARGO_BIN_EXE_springwater"))
         .args(args)
         .stdout(Stdio::piped())
@@ -417,30 +321,16 @@ fn sigterm_and_sighup_stop_a_bake_and_leave_the_earlier_cache_byte_for_byte() {
         let dir = fresh(&format!("bake{signal}"));
         let cache = dir.join("water.pc2");
         let obj = dir.join("water.obj");
-        ok(&[
-            "bake",
-            "--size",
-            "64x64",
-            "--drop",
-            "32,32,1,3",
-            "--frames",
-            "4",
-            "--out",
-            s(&cache),
-        ]);
+        ok(&line(
+            "bake --size 64x64 --drop 32,32,1,3 --frames 4 --out @",
+            &[&cache],
+        ));
         let before = (std::fs::read(&cache).unwrap(), std::fs::read(&obj).unwrap());
         // Some minutes of frames: stopped after a second.
-        let child = start(&[
-            "bake",
-            "--size",
-            "256x256",
-            "--drop",
-            "32,32,1,3",
-            "--frames",
-            "100000",
-            "--out",
-            s(&cache),
-        ]);
+        let child = start(&line(
+            "bake --size 256x256 --drop 32,32,1,3 --frames 100000 --out @",
+            &[&cache],
+        ));
         std::thread::sleep(Duration::from_millis(1000));
         let asked = Instant::now();
         kill(&child, signal);
@@ -521,29 +411,14 @@ fn ctrl_c_twice_never_leaves_an_empty_or_partial_snapshot() {
     let dir = fresh("ctrl-c-twice");
     let snap = dir.join("s.snap");
     let csv = dir.join("s.csv");
-    ok(&[
-        "simulate",
-        "--size",
-        "16x16",
-        "--steps",
-        "3",
-        "--save",
-        s(&snap),
-    ]);
+    ok(&line("simulate --size 16x16 --steps 3 --save @", &[&snap]));
     let before = std::fs::read(&snap).unwrap();
     // A large grid: writing its CSV and snapshot takes a while, so the second Ctrl-C may
     // come while they are written, or before (the steps), or after (then both are new).
-    let child = start(&[
-        "simulate",
-        "--size",
-        "1024x1024",
-        "--steps",
-        "1000000",
-        "--csv",
-        s(&csv),
-        "--save",
-        s(&snap),
-    ]);
+    let child = start(&line(
+        "simulate --size 1024x1024 --steps 1000000 --csv @ --save @",
+        &[&csv, &snap],
+    ));
     std::thread::sleep(Duration::from_millis(1000));
     kill(&child, "-INT");
     std::thread::sleep(Duration::from_millis(30));
@@ -553,7 +428,7 @@ fn ctrl_c_twice_never_leaves_an_empty_or_partial_snapshot() {
     let after = std::fs::read(&snap).unwrap();
     if after != before {
         // Then it is a whole snapshot of the new run, and the CSV is complete too.
-        ok(&["simulate", "--load", s(&snap), "--steps", "0"]);
+        ok(&line("simulate --load @ --steps 0", &[&snap]));
         let text = std::fs::read_to_string(&csv).unwrap();
         assert_eq!(text.lines().count(), 1 + 1024 * 1024);
     }
@@ -566,29 +441,15 @@ fn ctrl_c_twice_never_leaves_an_empty_or_partial_snapshot() {
 fn a_directory_bake_replaces_the_whole_sequence() {
     let dir = fresh("sequence");
     let seq = dir.join("frames");
-    ok(&[
-        "bake",
-        "--size",
-        "9x9",
-        "--drop",
-        "4,4,1,1",
-        "--frames",
-        "10",
-        "--out",
-        s(&seq),
-    ]);
+    ok(&line(
+        "bake --size 9x9 --drop 4,4,1,1 --frames 10 --out @",
+        &[&seq],
+    ));
     std::fs::write(seq.join("notes.txt"), "the user's").unwrap();
-    ok(&[
-        "bake",
-        "--size",
-        "9x9",
-        "--drop",
-        "4,4,1,1",
-        "--frames",
-        "3",
-        "--out",
-        s(&seq),
-    ]);
+    ok(&line(
+        "bake --size 9x9 --drop 4,4,1,1 --frames 3 --out @",
+        &[&seq],
+    ));
     assert_eq!(
         names(&seq),
         [
@@ -613,17 +474,10 @@ fn a_directory_bake_replaces_the_whole_sequence() {
 #[test]
 fn frame_names_past_9999_sort_in_frame_order() {
     let dir = fresh("long-sequence");
-    ok(&[
-        "bake",
-        "--size",
-        "2x2",
-        "--fps",
-        "60",
-        "--frames",
-        "10001",
-        "--out",
-        s(&dir),
-    ]);
+    ok(&line(
+        "bake --size 2x2 --fps 60 --frames 10001 --out @",
+        &[&dir],
+    ));
     let all = names(&dir);
     assert_eq!(all.len(), 10001);
     assert_eq!(all[0], "water_00001.obj");
@@ -637,7 +491,7 @@ fn a_point_cache_does_not_overwrite_an_unrelated_obj() {
     let dir = fresh("rest-obj");
     let (cache, obj) = (dir.join("model.pc2"), dir.join("model.obj"));
     std::fs::write(&obj, "# the user's model\nv 0 0 0\n").unwrap();
-    let err = fails(&["bake", "--size", "9x9", "--frames", "2", "--out", s(&cache)]);
+    let err = refused(&line("bake --size 9x9 --frames 2 --out @", &[&cache]));
     assert!(
         err.contains("model.obj") && err.contains("not written by bake"),
         "{err}"
@@ -649,8 +503,8 @@ fn a_point_cache_does_not_overwrite_an_unrelated_obj() {
     assert_eq!(names(&dir), ["model.obj"]);
     // Its own rest mesh it replaces.
     std::fs::remove_file(&obj).unwrap();
-    ok(&["bake", "--size", "9x9", "--frames", "2", "--out", s(&cache)]);
-    ok(&["bake", "--size", "9x9", "--frames", "3", "--out", s(&cache)]);
+    ok(&line("bake --size 9x9 --frames 2 --out @", &[&cache]));
+    ok(&line("bake --size 9x9 --frames 3 --out @", &[&cache]));
 }
 
 #[test]
@@ -667,7 +521,7 @@ fn an_empty_out_writes_nothing_anywhere() {
         assert!(err.contains("--out: the path is empty"), "{err}");
     }
     for flag in ["--csv", "--save"] {
-        let err = fails(&["simulate", flag, ""]);
+        let err = refused(&["simulate", flag, ""]);
         assert!(err.contains("the path is empty"), "{err}");
     }
     assert!(names(&dir).is_empty());
@@ -677,19 +531,11 @@ fn an_empty_out_writes_nothing_anywhere() {
 fn a_snapshot_with_trailing_data_is_refused() {
     let dir = fresh("trailing");
     let snap = dir.join("s.snap");
-    ok(&[
-        "simulate",
-        "--size",
-        "8x8",
-        "--steps",
-        "2",
-        "--save",
-        s(&snap),
-    ]);
+    ok(&line("simulate --size 8x8 --steps 2 --save @", &[&snap]));
     let mut bytes = std::fs::read(&snap).unwrap();
     bytes.extend_from_slice(b"junk");
     std::fs::write(&snap, &bytes).unwrap();
-    let err = fails(&["simulate", "--load", s(&snap), "--steps", "1"]);
+    let err = refused(&line("simulate --load @ --steps 1", &[&snap]));
     assert!(err.contains("trailing data"), "{err}");
 }
 
@@ -697,42 +543,24 @@ fn a_snapshot_with_trailing_data_is_refused() {
 fn outputs_that_collide_are_refused_before_any_step() {
     let dir = fresh("collide");
     let same = dir.join("same");
-    let err = fails(&[
-        "simulate",
-        "--steps",
-        "4000000000",
-        "--csv",
-        s(&same),
-        "--save",
-        s(&same),
-    ]);
+    let err = refused(&line(
+        "simulate --steps 4000000000 --csv @ --save @",
+        &[&same, &same],
+    ));
     assert!(
         err.contains("--csv") && err.contains("--save") && err.contains("same file"),
         "{err}"
     );
     // Through another spelling of the same path.
     let other = dir.join(".").join("same");
-    let err = fails(&[
-        "simulate",
-        "--steps",
-        "4000000000",
-        "--csv",
-        s(&same),
-        "--save",
-        s(&other),
-    ]);
+    let err = refused(&line(
+        "simulate --steps 4000000000 --csv @ --save @",
+        &[&same, &other],
+    ));
     assert!(err.contains("same file"), "{err}");
     // The CSV may not replace the snapshot it loads.
-    ok(&[
-        "simulate",
-        "--size",
-        "8x8",
-        "--steps",
-        "1",
-        "--save",
-        s(&same),
-    ]);
-    let err = fails(&["simulate", "--load", s(&same), "--csv", s(&same)]);
+    ok(&line("simulate --size 8x8 --steps 1 --save @", &[&same]));
+    let err = refused(&line("simulate --load @ --csv @", &[&same, &same]));
     assert!(err.contains("same file"), "{err}");
     assert_eq!(names(&dir), ["same"]);
 }
