@@ -564,3 +564,40 @@ fn outputs_that_collide_are_refused_before_any_step() {
     assert!(err.contains("same file"), "{err}");
     assert_eq!(names(&dir), ["same"]);
 }
+
+#[test]
+fn a_link_stays_a_link_and_a_replaced_file_keeps_its_mode() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = fresh("link");
+    let (real, link) = (dir.join("real.csv"), dir.join("link.csv"));
+    std::fs::write(&real, "old\n").unwrap();
+    std::fs::set_permissions(&real, std::fs::Permissions::from_mode(0o640)).unwrap();
+    std::os::unix::fs::symlink("real.csv", &link).unwrap();
+    ok(&line("simulate --size 3x3 --steps 1 --csv @", &[&link]));
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    let text = std::fs::read_to_string(&real).unwrap();
+    assert!(text.starts_with("col,row,x,y,z\n"), "{text}");
+    let mode = std::fs::metadata(&real).unwrap().permissions().mode() & 0o777;
+    assert_eq!(mode, 0o640);
+    assert_eq!(names(&dir), ["link.csv", "real.csv"]);
+}
+
+#[test]
+fn stdout_as_a_path_takes_the_csv() {
+    let out = springwater(&[
+        "simulate",
+        "--size",
+        "3x3",
+        "--steps",
+        "1",
+        "--csv",
+        "/dev/stdout",
+    ]);
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.starts_with("col,row,x,y,z\n0,0,0,0,0\n"), "{text}");
+    assert!(text.contains("wrote /dev/stdout"), "{text}");
+}
