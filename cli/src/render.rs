@@ -118,7 +118,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     if !(o.orbit.is_finite() && o.orbit.abs() <= 3600.0) {
         return Err(format!(
             "--orbit: {} is not an angle in degrees between -3600 and 3600",
-            o.orbit
+            Short(o.orbit)
         ));
     }
     if o.out.is_none() && o.png.is_none() {
