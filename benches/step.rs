@@ -10,7 +10,7 @@
 //! `RUSTFLAGS="-C target-cpu=native"` for the AVX-512 build).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use springwater::internals::{MemoryFloor, NaiveSurface};
+use springwater::internals::{MemoryFloor, NaiveSurface, Tuning};
 use springwater::{Boundary, Floater, Params, SimdLevel, Surface};
 use std::hint::black_box;
 use std::time::Duration;

@@ -44,7 +44,7 @@
 //! A frame of 32 rings needs a grid of at least 66 nodes across and leaves a middle of 2
 //! nodes there. The default width ([`Boundary::absorbing`](crate::Boundary::absorbing),
 //! a width equal to `ABSORBING_WIDTH`) therefore fits itself to the grid
-//! ([`default_width`]): 32 rings where that leaves an undamped middle of at least 32
+//! ([`crate::params::default_width`]): 32 rings where that leaves an undamped middle of at least 32
 //! nodes across (grids of 98 nodes and more), otherwise the widest frame that leaves a
 //! middle of 32 nodes or, on grids narrower than 66 nodes, half of what lies inside the
 //! pinned ring; at least one ring. A 64² grid gets 15 rings and a 32-node middle, a 16²
@@ -73,7 +73,7 @@
 //! to the critical timestep the frame has less damping to work with and reflects more.
 //! With `rest_ratio = 1` ripples do not travel and the frame does nothing.
 
-use crate::params::Params;
+use crate::params::{self, Params};
 
 /// An absorbing boundary's damping frame, computed from the parameters.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -82,31 +82,6 @@ pub(crate) struct Frame {
     pub width: usize,
     /// `γ_peak`: the extra viscosity the profile starts from at the edge.
     pub peak: f32,
-}
-
-/// Smallest undamped middle, in nodes across, that the default width leaves on grids of
-/// 66 nodes or more.
-const MIN_MIDDLE: usize = 32;
-
-/// The default frame's width on a grid whose narrower side is `across` nodes: 32 rings, or
-/// the widest frame that leaves a middle of `min(32, (across − 2) / 2)` nodes (at least 1
-/// ring). `None` when no frame fits (fewer than 4 nodes across).
-pub(crate) fn default_width(across: usize) -> Option<usize> {
-    let inside = across.checked_sub(2)?;
-    let middle = MIN_MIDDLE.min(inside / 2);
-    let width = ((inside - middle) / 2).clamp(1, crate::Boundary::ABSORBING_WIDTH);
-    (2 * width + 2 <= across).then_some(width)
-}
-
-/// The frame width an absorbing boundary asking for `width` rings gets on a `cols × rows`
-/// grid: [`default_width`] for the default width, `width` itself otherwise (validation
-/// refuses widths that do not fit).
-pub(crate) fn frame_width(width: usize, cols: usize, rows: usize) -> usize {
-    if width == crate::Boundary::ABSORBING_WIDTH {
-        default_width(cols.min(rows)).unwrap_or(width)
-    } else {
-        width
-    }
 }
 
 /// Peak damping rate `b = γ/m` of the seed's lattice, per unit of model time: the measured
@@ -118,9 +93,9 @@ const LIMIT_SHARE: f64 = 0.75;
 
 impl Frame {
     /// The frame of an absorbing boundary asking for `width` cells for `params` (the default
-    /// width fitted to the grid, see [`frame_width`]).
+    /// width fitted to the grid, see [`crate::params::frame_width`]).
     pub fn new(params: &Params, width: usize) -> Self {
-        let width = frame_width(width, params.cols, params.rows);
+        let width = params::frame_width(width, params.cols, params.rows);
         let (m, c, dt) = (
             params.mass as f64,
             params.stiffness as f64,

@@ -80,8 +80,9 @@
 //! * [`SimdLevel`]: the instruction set the engine and the render-side stages run. The
 //!   default build detects the CPU once and runs the widest it has: SSE2, AVX2 or
 //!   AVX-512 on x86-64, NEON on AArch64, SIMD128 on wasm32 builds made with
-//!   `+simd128`, portable lanes elsewhere; `SPRINGWATER_SIMD` (`scalar`, `sse2`, `avx2`,
-//!   `avx512`, `neon`, `simd128`, `portable`) or [`Surface::set_simd_level`] force one.
+//!   `+simd128`, portable lanes elsewhere; [`Surface::set_simd_level`] forces one (the
+//!   command line reads `SPRINGWATER_SIMD` for it: `scalar`, `sse2`, `avx2`, `avx512`,
+//!   `neon`, `simd128`, `portable`; the library never reads the environment).
 //!   Every level, on every target, gives the same bits.
 //!
 //! ## Features
@@ -103,7 +104,7 @@
 #![warn(clippy::undocumented_unsafe_blocks)]
 
 mod absorb;
-#[cfg_attr(not(feature = "internals"), allow(dead_code))]
+#[cfg(feature = "internals")]
 mod baselines;
 pub mod buffers;
 pub mod disturb;
@@ -156,6 +157,7 @@ pub mod internals {
     pub use crate::baselines::{MemoryFloor, NaiveSurface};
     pub use crate::forces::engine::MAX_PASS_STEPS;
     pub use crate::springs::{band_rows, bands, Band, Tiling, MAX_BAND_ROWS, MIN_BAND_ROWS};
+    pub use crate::surface::tuning::Tuning;
 }
 
 /// The README's examples, compiled and run as doc tests.

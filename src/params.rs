@@ -52,6 +52,31 @@ impl Boundary {
     }
 }
 
+/// Smallest undamped middle, in nodes across, that the default width leaves on grids of
+/// 66 nodes or more.
+const MIN_MIDDLE: usize = 32;
+
+/// The default frame's width on a grid whose narrower side is `across` nodes: 32 rings, or
+/// the widest frame that leaves a middle of `min(32, (across − 2) / 2)` nodes (at least 1
+/// ring). `None` when no frame fits (fewer than 4 nodes across).
+pub(crate) fn default_width(across: usize) -> Option<usize> {
+    let inside = across.checked_sub(2)?;
+    let middle = MIN_MIDDLE.min(inside / 2);
+    let width = ((inside - middle) / 2).clamp(1, Boundary::ABSORBING_WIDTH);
+    (2 * width + 2 <= across).then_some(width)
+}
+
+/// The frame width an absorbing boundary asking for `width` rings gets on a `cols × rows`
+/// grid: [`default_width`] for the default width, `width` itself otherwise (validation
+/// refuses widths that do not fit).
+pub(crate) fn frame_width(width: usize, cols: usize, rows: usize) -> usize {
+    if width == Boundary::ABSORBING_WIDTH {
+        default_width(cols.min(rows)).unwrap_or(width)
+    } else {
+        width
+    }
+}
+
 /// Model parameters. Plain data with the seed's defaults; [`Params::validate`] checks it.
 ///
 /// Lengths are world units (the unit of `spacing`, the water's local space); mass is in
@@ -380,7 +405,7 @@ impl Params {
         check_time_scale(self.time_scale)?;
         if let Boundary::Absorbing { width } = self.boundary {
             let across = self.cols.min(self.rows);
-            let fitted = crate::absorb::frame_width(width, self.cols, self.rows);
+            let fitted = frame_width(width, self.cols, self.rows);
             if fitted == 0 || across < fitted.saturating_mul(2).saturating_add(2) {
                 return Err(Error::InvalidParam {
                     name: "absorbing width",

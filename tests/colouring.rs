@@ -2,7 +2,7 @@
 //! touch the same node.
 
 use proptest::prelude::*;
-use springwater::internals::{bands, Tiling};
+use springwater::internals::{bands, Tiling, Tuning};
 use springwater::{Grid, Params, Surface};
 use std::collections::{HashMap, HashSet};
 

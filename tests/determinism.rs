@@ -13,7 +13,7 @@ use springwater::{Params, Surface};
 fn run() -> Surface {
     let mut params = Params::with_size(150, 131);
     params.viscosity = 0.01;
-    let mut s = Surface::new(params).unwrap();
+    let mut s = common::new_surface(params).unwrap();
     s.drop_at(40.0, 50.0, 2.0, 3.0).unwrap();
     s.drop_at(110.0, 90.0, -1.5, 2.5).unwrap();
     s.add_force(75 * 150 + 60, [0.5, 2.0, -0.25]).unwrap();

@@ -10,6 +10,7 @@
 mod common;
 
 use common::state_bits;
+use springwater::internals::Tuning;
 use springwater::{Family, Params, SimdLevel, SpringId, Surface};
 
 #[test]

@@ -24,7 +24,7 @@ struct SetUp {
 
 fn pool() -> Surface {
     // Pinned walls (the default), drops, a force, default schedule.
-    let mut s = Surface::new(Params::with_size(67, 45)).unwrap();
+    let mut s = common::new_surface(Params::with_size(67, 45)).unwrap();
     s.drop_at(20.0, 15.0, 1.5, 3.0).unwrap();
     s.drop_at(50.5, 30.25, -1.0, 2.0).unwrap();
     s.add_force(22 * 67 + 40, [0.3, -0.7, 0.2]).unwrap();
@@ -37,7 +37,7 @@ fn free_sheet() -> Surface {
     p.boundary = Boundary::Free;
     p.rest_ratio = 0.3;
     p.spacing = 1.0;
-    let mut s = Surface::new(p).unwrap();
+    let mut s = common::new_surface(p).unwrap();
     // Per second²: 0.01 and 0.002 per unit of model time², which the step gets back exactly.
     s.set_acceleration([0.0, -0.01 * 576.0, 0.002 * 576.0])
         .unwrap();
@@ -48,7 +48,7 @@ fn free_sheet() -> Surface {
 fn edited_springs() -> Surface {
     // Non-uniform tables (the engine reads them instead of registers), heavier nodes,
     // more viscosity, a width that leaves a partial chunk at every level.
-    let mut s = Surface::new(Params::with_size(37, 29)).unwrap();
+    let mut s = common::new_surface(Params::with_size(37, 29)).unwrap();
     for (k, family) in Family::ALL.into_iter().enumerate() {
         let origin = 10 * 37 + 5 + 3 * k;
         let spring = Spring {

@@ -2,7 +2,7 @@
 
 use lexopt::{Arg, Parser, ValueExt};
 
-use springwater::{Boundary, Params, Surface};
+use springwater::{Boundary, Params, SimdLevel, Surface};
 use std::ffi::OsString;
 use std::str::FromStr;
 
@@ -112,6 +112,7 @@ impl ModelArgs {
     /// A validated surface with the drops applied.
     pub fn surface(&self) -> CliResult<Surface> {
         let mut s = Surface::new(self.params).map_err(|e| self.params_error(e))?;
+        forced_level(&mut s)?;
         self.apply_drops(&mut s)?;
         Ok(s)
     }
@@ -353,4 +354,11 @@ pub fn positive(v: f32, flag: &str) -> CliResult<f32> {
             Short(v)
         ))
     }
+}
+
+/// Runs `s` at the level `SPRINGWATER_SIMD` names, if it is set (clamped to what the CPU
+/// has): the command line's way to force a level, which the library itself never reads.
+pub fn forced_level(s: &mut Surface) -> CliResult<()> {
+    s.set_simd_level(SimdLevel::from_env().map_err(lib_error)?);
+    Ok(())
 }

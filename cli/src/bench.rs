@@ -3,7 +3,7 @@
 
 use crate::args::{next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
 use lexopt::Parser;
-use springwater::internals::{MemoryFloor, NaiveSurface, MAX_PASS_STEPS};
+use springwater::internals::{MemoryFloor, NaiveSurface, Tuning, MAX_PASS_STEPS};
 use springwater::{SimdLevel, Surface};
 use std::time::Instant;
 

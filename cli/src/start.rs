@@ -95,7 +95,8 @@ impl Start {
 pub fn load_snapshot(path: &Path) -> CliResult<Surface> {
     let fail = |e: std::io::Error| format!("cannot read {}: {e}", path.display());
     let mut file = std::io::BufReader::new(std::fs::File::open(path).map_err(fail)?);
-    let surface = Surface::load(&mut file).map_err(|e| format!("{}: {e}", path.display()))?;
+    let mut surface = Surface::load(&mut file).map_err(|e| format!("{}: {e}", path.display()))?;
+    crate::args::forced_level(&mut surface)?;
     // One byte is enough to know there is more (and reads nothing more from a device).
     if file.read(&mut [0u8]).map_err(fail)? != 0 {
         return Err(format!(

@@ -337,8 +337,8 @@ struct SwLodParams sw_lod_params_default(void);
 // The default bottom depth and index of refraction, with the eye at the origin.
 struct SwRefraction sw_refraction_default(void);
 
-// The widest SIMD level this CPU has (what a new surface runs, unless the environment
-// variable `SPRINGWATER_SIMD` says otherwise).
+// The widest SIMD level this CPU has: what a new surface runs until
+// `sw_surface_set_simd_level` chooses another (the library never reads the environment).
 SwSimdLevel sw_simd_level_detect(void);
 
 // A static NUL-terminated name for a SIMD level (`"scalar"`, `"sse2"`, `"avx2"`,

@@ -3,9 +3,9 @@
 //! units for lengths, the lattice's mass units, seconds for time (velocities per second,
 //! gravity and forces per second², the drag rate per second), as in the Rust API.
 
-use crate::handle;
+use crate::handle::{self, SwSurface};
+use crate::ptr::{copy_list_into, input, out_ref, read_into, read_sized_into, Input};
 use crate::status::{guard, Failure, Outcome, SwStatus};
-use crate::{input, out_ref, read_into, read_sized_into, write_sized, Input, SwSurface};
 use glam::Vec3;
 use springwater::{Buoyancy, Floater, FloaterId, Shape};
 
@@ -167,8 +167,7 @@ pub unsafe extern "C" fn sw_surface_add_floater(
     id: *mut SwFloaterId,
 ) -> SwStatus {
     guard(|| {
-        // SAFETY: the caller gives NULL or a valid pointer.
-        let body = rust_floater(unsafe { input(floater, "floater") }?)?;
+        let body = rust_floater(input(floater, "floater")?)?;
         let id = out_ref(id, "id")?;
         *id = handle::with(surface, |w| Ok(w.surface.add_floater(body)?.to_raw()))?;
         Ok(())
@@ -179,11 +178,9 @@ pub unsafe extern "C" fn sw_surface_add_floater(
 /// `SW_ERROR_NO_SUCH_FLOATER`.
 #[no_mangle]
 pub extern "C" fn sw_surface_remove_floater(surface: *mut SwSurface, id: SwFloaterId) -> SwStatus {
-    guard(|| {
-        handle::with(surface, |w| {
-            w.surface.remove_floater(FloaterId::from_raw(id))?;
-            Ok(())
-        })
+    handle::call(surface, |w| {
+        w.surface.remove_floater(FloaterId::from_raw(id))?;
+        Ok(())
     })
 }
 
@@ -201,13 +198,7 @@ pub unsafe extern "C" fn sw_surface_floater(
     id: SwFloaterId,
     out: *mut SwFloater,
 ) -> SwStatus {
-    // SAFETY: `out` is NULL or a writable `SwFloater` with its size initialised (the
-    // caller's promise), as `read_sized_into` asks.
-    unsafe {
-        read_sized_into(surface, out, |w| {
-            Ok(c_floater(w.surface.floater(FloaterId::from_raw(id))?))
-        })
-    }
+    read_floater(surface, id, out)
 }
 
 /// Deprecated: the earlier name of `sw_surface_floater`, which it calls (so `out` must say
@@ -223,8 +214,7 @@ pub unsafe extern "C" fn sw_surface_get_floater(
     id: SwFloaterId,
     out: *mut SwFloater,
 ) -> SwStatus {
-    // SAFETY: the caller's promise, passed on.
-    unsafe { sw_surface_floater(surface, id, out) }
+    read_floater(surface, id, out)
 }
 
 /// Replaces a floating body's state (teleport it, change its velocity, mass, drag or
@@ -242,8 +232,7 @@ pub unsafe extern "C" fn sw_surface_set_floater(
     floater: *const SwFloater,
 ) -> SwStatus {
     guard(|| {
-        // SAFETY: the caller gives NULL or a valid pointer.
-        let body = rust_floater(unsafe { input(floater, "floater") }?)?;
+        let body = rust_floater(input(floater, "floater")?)?;
         handle::with(surface, |w| {
             let id = FloaterId::from_raw(id);
             let mut body = body;
@@ -266,11 +255,9 @@ pub extern "C" fn sw_surface_push_floater(
     fy: f32,
     fz: f32,
 ) -> SwStatus {
-    guard(|| {
-        handle::with(surface, |w| {
-            Ok(w.surface
-                .push_floater(FloaterId::from_raw(id), [fx, fy, fz])?)
-        })
+    handle::call(surface, |w| {
+        Ok(w.surface
+            .push_floater(FloaterId::from_raw(id), [fx, fy, fz])?)
     })
 }
 
@@ -302,19 +289,8 @@ pub unsafe extern "C" fn sw_surface_floater_ids(
     len: usize,
     count: *mut usize,
 ) -> SwStatus {
-    guard(|| {
-        let count = out_ref(count, "count")?;
-        handle::with(surface, |w| {
-            let bodies = w.surface.floaters();
-            // SAFETY: `ids` is NULL or holds `len` ids.
-            unsafe {
-                write_sized(ids, len, count, bodies.len(), "ids", |out| {
-                    for (o, (id, _)) in out.iter_mut().zip(bodies) {
-                        *o = id.to_raw();
-                    }
-                })
-            }
-        })
+    copy_list_into(surface, (ids, len, "ids"), (count, "count"), |w| {
+        w.surface.floaters().map(|(id, _)| id.to_raw()).collect()
     })
 }
 
@@ -331,9 +307,7 @@ pub unsafe extern "C" fn sw_surface_buoyancy(
     surface: *const SwSurface,
     out: *mut SwBuoyancy,
 ) -> SwStatus {
-    // SAFETY: `out` is NULL or a writable `SwBuoyancy` with its size initialised (the
-    // caller's promise), as `read_sized_into` asks.
-    unsafe { read_sized_into(surface, out, |w| Ok(c_buoyancy(w.surface.buoyancy()))) }
+    read_buoyancy(surface, out)
 }
 
 /// Deprecated: the earlier name of `sw_surface_buoyancy`, which it calls (so `out` must
@@ -348,8 +322,7 @@ pub unsafe extern "C" fn sw_surface_get_buoyancy(
     surface: *const SwSurface,
     out: *mut SwBuoyancy,
 ) -> SwStatus {
-    // SAFETY: the caller's promise, passed on.
-    unsafe { sw_surface_buoyancy(surface, out) }
+    read_buoyancy(surface, out)
 }
 
 /// Sets the gravity and water density for every body of the surface. Refused (nothing
@@ -365,14 +338,25 @@ pub unsafe extern "C" fn sw_surface_set_buoyancy(
     buoyancy: *const SwBuoyancy,
 ) -> SwStatus {
     guard(|| {
-        // SAFETY: the caller gives NULL or a valid pointer.
-        let b = unsafe { input(buoyancy, "buoyancy") }?;
+        let b = input(buoyancy, "buoyancy")?;
         let b = Buoyancy {
             gravity: b.gravity,
             density: b.density,
         };
         handle::with(surface, |w| Ok(w.surface.set_buoyancy(b)?))
     })
+}
+
+/// The body of `sw_surface_floater` and its earlier name.
+fn read_floater(surface: *const SwSurface, id: SwFloaterId, out: *mut SwFloater) -> SwStatus {
+    read_sized_into(surface, out, |w| {
+        Ok(c_floater(w.surface.floater(FloaterId::from_raw(id))?))
+    })
+}
+
+/// The body of `sw_surface_buoyancy` and its earlier name.
+fn read_buoyancy(surface: *const SwSurface, out: *mut SwBuoyancy) -> SwStatus {
+    read_sized_into(surface, out, |w| Ok(c_buoyancy(w.surface.buoyancy())))
 }
 
 /// The one conversion of `Floater` to `SwFloater`; [`rust_floater`] is its inverse except

@@ -3,8 +3,10 @@
 //! crash. Each surface sits behind its own lock, so overlapping calls on one surface
 //! (from two threads, or from a job system's task) get `SW_ERROR_BUSY` instead of racing.
 
-use crate::status::{Failure, Outcome, SW_ERROR_BUSY, SW_ERROR_INTERNAL, SW_ERROR_INVALID_HANDLE};
-use springwater::mesh::{LodMesh, Normals};
+use crate::status::{
+    guard, Failure, Outcome, SwStatus, SW_ERROR_BUSY, SW_ERROR_INTERNAL, SW_ERROR_INVALID_HANDLE,
+};
+use springwater::mesh::{LodMesh, LodParams, Normals};
 use springwater::Surface;
 use std::collections::HashMap;
 use std::sync::atomic::{AtomicUsize, Ordering};
@@ -34,6 +36,18 @@ pub(crate) struct Queries {
     pub each: Vec<Option<springwater::WaterSample>>,
 }
 
+impl Water {
+    /// A new surface's handle contents: the default LOD parameters, empty buffers.
+    pub(crate) fn new(surface: Surface) -> Self {
+        Self {
+            surface,
+            lod: LodMesh::new(LodParams::default()).expect("the default LOD parameters are valid"),
+            normals: Normals::new(),
+            queries: Default::default(),
+        }
+    }
+}
+
 type Entry = Arc<Mutex<Water>>;
 
 static REGISTRY: RwLock<Option<HashMap<usize, Entry>>> = RwLock::new(None);
@@ -55,6 +69,11 @@ pub(crate) fn remove(handle: *const SwSurface) -> bool {
     map.as_mut()
         .and_then(|m| m.remove(&(handle as usize)))
         .is_some()
+}
+
+/// The body of a call that only needs the surface: `f` on it, in the guard.
+pub(crate) fn call(handle: *const SwSurface, f: impl FnOnce(&mut Water) -> Outcome) -> SwStatus {
+    guard(|| with(handle, f))
 }
 
 /// Runs `f` on the surface behind `handle`, holding its lock.
@@ -100,17 +119,11 @@ pub(crate) fn with<T>(
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::status::{guard, SW_OK};
+    use crate::status::SW_OK;
     use springwater::Params;
 
     fn water() -> Water {
-        let surface = Surface::new(Params::with_size(8, 8)).unwrap();
-        Water {
-            surface,
-            lod: LodMesh::new(Default::default()).unwrap(),
-            normals: Normals::new(),
-            queries: Queries::default(),
-        }
+        Water::new(Surface::new(Params::with_size(8, 8)).unwrap())
     }
 
     #[test]

@@ -1,9 +1,9 @@
 //! The host's job system from C: Box2D-style `enqueue_task` / `finish_task` callbacks
 //! adapted to [`springwater::JobSystem`].
 
-use crate::handle;
+use crate::handle::{self, SwSurface};
+use crate::ptr::{input, Input};
 use crate::status::{guard, Failure, SwStatus};
-use crate::SwSurface;
 use std::ffi::c_void;
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -61,7 +61,7 @@ pub struct SwJobSystem {
     pub user_context: *mut c_void,
 }
 
-impl crate::Input for SwJobSystem {
+impl Input for SwJobSystem {
     const MAKER: &'static str = "sw_job_system_default()";
 }
 
@@ -162,8 +162,7 @@ pub unsafe extern "C" fn sw_surface_set_job_system(
         let host = if jobs.is_null() {
             None
         } else {
-            // SAFETY: non-NULL, and the caller gives a valid `SwJobSystem`.
-            let jobs = unsafe { crate::input(jobs, "jobs") }?;
+            let jobs = input(jobs, "jobs")?;
             let (Some(enqueue), Some(finish)) = (jobs.enqueue_task, jobs.finish_task) else {
                 return Err(Failure::null("enqueue_task or finish_task"));
             };

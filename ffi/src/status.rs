@@ -1,5 +1,6 @@
 //! Status codes, the thread's last error message, and the guard every exported function
-//! runs its body in: no panic crosses the boundary, every failure leaves a message.
+//! runs its body in: no panic crosses the boundary, every failure leaves a message (which
+//! `sw_last_error`, in `errors.rs`, hands to the caller).
 
 use springwater::Error;
 use std::cell::RefCell;
@@ -114,54 +115,9 @@ fn set_last_error(message: &str) {
     });
 }
 
-/// Copies this thread's last error message into `buf` (at most `len` bytes including the
-/// terminating NUL; a longer message is cut) and returns the size the whole message needs,
-/// NUL included: 1 if no call on this thread has failed yet. With `buf` NULL or `len` 0 it
-/// only returns the size. Messages are UTF-8 and stay until the next failing call on the
-/// same thread.
-///
-/// # Safety
-///
-/// `buf` is NULL or points to `len` writable bytes.
-#[no_mangle]
-pub unsafe extern "C" fn sw_last_error(buf: *mut std::ffi::c_char, len: usize) -> usize {
-    let copied = catch_unwind(|| {
-        LAST_ERROR.with(|e| {
-            let e = e.borrow();
-            if !buf.is_null() && len > 0 {
-                let n = e.len().min(len - 1);
-                // SAFETY: the caller gives `len` writable bytes at `buf`; `n < len`.
-                unsafe {
-                    std::ptr::copy_nonoverlapping(e.as_ptr(), buf.cast::<u8>(), n);
-                    *buf.add(n) = 0;
-                }
-            }
-            e.len() + 1
-        })
-    });
-    copied.unwrap_or(1)
-}
-
-/// A short, static, NUL-terminated name for a status code (`"SW_OK"`,
-/// `"SW_ERROR_NULL_POINTER"`, …; `"unknown status"` for any other value).
-#[no_mangle]
-pub extern "C" fn sw_status_name(status: SwStatus) -> *const std::ffi::c_char {
-    let name: &'static std::ffi::CStr = match status {
-        SW_OK => c"SW_OK",
-        SW_ERROR_NULL_POINTER => c"SW_ERROR_NULL_POINTER",
-        SW_ERROR_INVALID_HANDLE => c"SW_ERROR_INVALID_HANDLE",
-        SW_ERROR_INVALID_ARGUMENT => c"SW_ERROR_INVALID_ARGUMENT",
-        SW_ERROR_BUFFER_TOO_SMALL => c"SW_ERROR_BUFFER_TOO_SMALL",
-        SW_ERROR_OUTSIDE_GRID => c"SW_ERROR_OUTSIDE_GRID",
-        SW_ERROR_NON_FINITE => c"SW_ERROR_NON_FINITE",
-        SW_ERROR_SNAPSHOT => c"SW_ERROR_SNAPSHOT",
-        SW_ERROR_JOB_SYSTEM => c"SW_ERROR_JOB_SYSTEM",
-        SW_ERROR_BUSY => c"SW_ERROR_BUSY",
-        SW_ERROR_INTERNAL => c"SW_ERROR_INTERNAL",
-        SW_ERROR_NO_SUCH_FLOATER => c"SW_ERROR_NO_SUCH_FLOATER",
-        _ => c"unknown status",
-    };
-    name.as_ptr()
+/// Runs `f` on this thread's last error message ("" if no call on this thread has failed).
+pub(crate) fn with_last_error<R>(f: impl FnOnce(&str) -> R) -> R {
+    LAST_ERROR.with(|e| f(&e.borrow()))
 }
 
 #[cfg(test)]
@@ -169,13 +125,7 @@ mod tests {
     use super::*;
 
     fn last_error() -> String {
-        let mut buf = [0 as std::ffi::c_char; 256];
-        // SAFETY: a local buffer of the length passed.
-        unsafe { sw_last_error(buf.as_mut_ptr(), buf.len()) };
-        // SAFETY: sw_last_error NUL-terminates within the buffer.
-        unsafe { std::ffi::CStr::from_ptr(buf.as_ptr()) }
-            .to_string_lossy()
-            .into_owned()
+        with_last_error(str::to_owned)
     }
 
     #[test]
@@ -196,17 +146,5 @@ mod tests {
             SW_ERROR_INVALID_ARGUMENT
         );
         assert_eq!(last_error(), "a");
-    }
-
-    #[test]
-    fn every_status_has_a_name() {
-        for status in 0..=11 {
-            // SAFETY: sw_status_name returns a static C string.
-            let name = unsafe { std::ffi::CStr::from_ptr(sw_status_name(-status)) };
-            assert!(name.to_str().unwrap().starts_with("SW_"), "{status}");
-        }
-        // SAFETY: as above.
-        let unknown = unsafe { std::ffi::CStr::from_ptr(sw_status_name(5)) };
-        assert_eq!(unknown.to_str().unwrap(), "unknown status");
     }
 }

@@ -11,17 +11,17 @@
 //! Needs `cc` (and `c++`) on the PATH: the test fails without them, unless
 //! `SPRINGWATER_SKIP_C=1` says to skip.
 
+mod common;
+
+use common::{assert_ok, build_release, floater_floats, fnv};
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use springwater::refraction::{refract, Refraction, RefractionParams};
-use springwater::{Boundary, Buoyancy, Floater, FloaterId, Params, Shape, Surface};
+use springwater::{Boundary, Buoyancy, Floater, FloaterId, Params, Surface};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// The static and dynamic libraries, built by a nested `cargo build --release` into
-/// their own target directory (`target/ffi-c/`; cargo holds the test's own target
-/// directory while the tests run, and does not build a library's `staticlib` and
-/// `cdylib` for its tests). Cargo keeps them up to date with the sources.
+/// The static and dynamic libraries, built in release into `target/ffi-c/`.
 fn lib_dir() -> PathBuf {
     static BUILT: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
     BUILT.get_or_init(|| build_libraries(None)).clone()
@@ -29,24 +29,7 @@ fn lib_dir() -> PathBuf {
 
 /// Builds the libraries for `target` (the host without one) and returns their directory.
 fn build_libraries(target: Option<&str>) -> PathBuf {
-    let root = crate_dir().parent().unwrap();
-    let dir = root.join("target").join("ffi-c");
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    let mut build = Command::new(cargo);
-    build
-        .current_dir(root)
-        .args(["build", "--release", "--quiet", "-p", "springwater-ffi"])
-        .arg("--target-dir")
-        .arg(&dir);
-    if let Some(target) = target {
-        build.args(["--target", target]);
-    }
-    let out = build.output().expect("cargo runs");
-    assert_ok(&out, "building springwater-ffi");
-    match target {
-        Some(target) => dir.join(target).join("release"),
-        None => dir.join("release"),
-    }
+    build_release(&["springwater-ffi"], target)
 }
 
 fn crate_dir() -> &'static Path {
@@ -121,16 +104,6 @@ fn compile_static_with(cc: &str, lib_dir: &Path, source: &Path, exe: &Path, extr
     assert_ok(&out, "compiling");
 }
 
-fn assert_ok(out: &Output, what: &str) {
-    assert!(
-        out.status.success(),
-        "{what} failed ({}):\n{}\n{}",
-        out.status,
-        String::from_utf8_lossy(&out.stdout),
-        String::from_utf8_lossy(&out.stderr)
-    );
-}
-
 /// `key value` lines of the client's output.
 fn values(out: &Output) -> HashMap<String, String> {
     String::from_utf8_lossy(&out.stdout)
@@ -138,32 +111,6 @@ fn values(out: &Output) -> HashMap<String, String> {
         .filter_map(|l| l.split_once(' '))
         .map(|(k, v)| (k.to_string(), v.to_string()))
         .collect()
-}
-
-fn fnv(values: impl Iterator<Item = f32>) -> u64 {
-    values.fold(0xcbf2_9ce4_8422_2325u64, |h, v| {
-        v.to_bits()
-            .to_le_bytes()
-            .iter()
-            .fold(h, |h, &b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3))
-    })
-}
-
-/// A body's fields in the order the C client fingerprints them: radius, half extents
-/// (the other shape's read as 0), mass, drag, position, velocity, push, water force.
-fn floater_floats(f: &Floater) -> Vec<f32> {
-    let (radius, half_extents) = match f.shape {
-        Shape::Sphere { radius } => (radius, [0.0; 3]),
-        Shape::Box { half_extents } => (0.0, half_extents.to_array()),
-        other => panic!("the C client has no code for {other:?}"),
-    };
-    let mut floats = vec![radius];
-    floats.extend(half_extents);
-    floats.extend([f.mass, f.drag]);
-    for v in [f.position, f.velocity, f.push, f.water_force] {
-        floats.extend(v.to_array());
-    }
-    floats
 }
 
 fn floaters_fingerprint(s: &Surface) -> String {

@@ -12,6 +12,7 @@ mod args;
 
 use arbitrary::Arbitrary;
 use libfuzzer_sys::fuzz_target;
+use springwater::internals::Tuning;
 use springwater::{Boundary, Params, Surface};
 
 /// Largest surface the target builds (validation alone runs for any size).

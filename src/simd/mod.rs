@@ -240,9 +240,12 @@ impl SimdLevel {
         }
     }
 
-    /// The level a new [`Surface`](crate::Surface) runs: `SPRINGWATER_SIMD` if it is set
-    /// (clamped to what the CPU has), else [`SimdLevel::detect`]. An unknown value of the
-    /// variable is an error that names it.
+    /// The level `SPRINGWATER_SIMD` names if it is set (clamped to what the CPU has), else
+    /// [`SimdLevel::detect`]. An unknown value of the variable is an error that names it.
+    /// The library never calls this itself (a [`Surface`](crate::Surface) starts at
+    /// [`SimdLevel::detect`]): the command line and the tests do, and a host that wants the
+    /// variable honoured passes the result to
+    /// [`Surface::set_simd_level`](crate::Surface::set_simd_level).
     pub fn from_env() -> crate::Result<SimdLevel> {
         match std::env::var(ENV) {
             Ok(v) => v.parse::<SimdLevel>().map(SimdLevel::clamped),

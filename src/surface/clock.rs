@@ -23,7 +23,7 @@
 //! the accumulator is within [`TOLERANCE`] of a whole `dt`, so that the rounding of many
 //! `f32` frame lengths (1/60 s is not exactly representable) can never cost or add a step.
 
-use super::Surface;
+use super::{Disturbance, Surface};
 use crate::error::{Error, Result};
 use crate::params;
 
@@ -168,6 +168,150 @@ impl Surface {
         Ok(self
             .clock
             .tick(model, self.params.dt, self.params.time_scale) as usize)
+    }
+
+    /// Advances the water by one frame of a game's clock, `frame_seconds` seconds long, in
+    /// whole steps of `params().dt`: the frame's time (times `params().time_scale`) goes
+    /// into an accumulator of model time (kept in `f64`, part of the state and of
+    /// snapshots), and every whole step it holds is taken (a step is due 10⁻⁴ of a step
+    /// early, so that the rounding of `f32` frame lengths never costs one). Returns the number of steps taken: 0 when the frame was shorter than what
+    /// the accumulator lacked for the next step, 1 for a 60 Hz frame at the defaults.
+    ///
+    /// The state depends on the total time passed, not on how it was cut into frames:
+    /// 60 frames of 1/60 s, jittered frames or 59.94 Hz frames that add up to the same
+    /// second give the same bits. [`Surface::interpolation`] is the fraction of a step the
+    /// game's clock is past the water's. A frame that owes more than the cap
+    /// ([`Surface::set_step_cap`], [`Surface::DEFAULT_MAX_STEPS`]) takes the cap's steps and
+    /// drops the rest, or carries it into the next calls ([`Overflow`]);
+    /// [`Surface::dropped_seconds`] and [`Surface::owed_seconds`] say which.
+    ///
+    /// A negative or non-finite frame is refused with nothing changed. A failing step stops
+    /// the frame there and returns its error: the earlier steps stay applied, the failing
+    /// one is not, and the frame's time is spent (if no step was taken, nothing changed,
+    /// the accumulator included). See [`Surface::advance_with`]
+    /// to disturb the water before every step.
+    ///
+    /// ```
+    /// use springwater::{Params, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(32, 32))?;
+    /// let frames = [0.016, 0.0173, 0.0167, 0.0167];     // a jittery display
+    /// let steps: usize = frames.iter().map(|&f| water.advance(f)).sum::<Result<_, _>>()?;
+    /// assert_eq!(steps, 4);                               // 0.0667 s: four steps of 1/60 s
+    /// assert!((0.0..1.0).contains(&water.interpolation()));
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn advance(&mut self, frame_seconds: f32) -> Result<usize> {
+        let (clock, before) = (self.clock, self.steps);
+        let steps = self.tick(frame_seconds)?;
+        // Nothing reads the water between these steps: the engine takes several per pass.
+        let result = self.run(steps as u64, self.params.dt);
+        self.settle(clock, before, steps, result)
+    }
+
+    /// [`Surface::advance`] with `disturbance` applied before every step, with the step's
+    /// length in seconds, `params().dt / params().time_scale`: rain, wakes, buoyancy,
+    /// anything implementing
+    /// [`Disturbance`] (tuples, slices and `&mut` of disturbances are disturbances too).
+    /// A failing disturbance or step stops the frame there and returns its error.
+    ///
+    /// ```
+    /// use springwater::disturb::{Rain, Wake};
+    /// use springwater::{Params, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(64, 64))?;
+    /// let mut rain = Rain::new(48.0, 1);                  // 48 drops a second
+    /// let mut boat = Wake::circle(&water, 16.0);
+    /// for _frame in 0..60 {
+    ///     water.advance_with(1.0 / 60.0, &mut (&mut rain, &mut boat))?;
+    /// }
+    /// assert!(rain.fallen() > 20);                        // one second
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn advance_with<D: Disturbance + ?Sized>(
+        &mut self,
+        frame_seconds: f32,
+        disturbance: &mut D,
+    ) -> Result<usize> {
+        let (clock, before) = (self.clock, self.steps);
+        let steps = self.tick(frame_seconds)?;
+        let dt = self.params.dt;
+        let seconds = dt / self.params.time_scale;
+        let result = (0..steps).try_for_each(|_| {
+            disturbance.apply(self, seconds)?;
+            self.run(1, dt)
+        });
+        self.settle(clock, before, steps, result)
+    }
+
+    /// Ends a clocked frame of `steps` steps begun with `clock` at step count `before`. If
+    /// a step failed before any was taken the clock is put back, so the call changed
+    /// nothing; after some steps the frame's time is spent, the failed steps with it.
+    fn settle(
+        &mut self,
+        clock: Clock,
+        before: u64,
+        steps: usize,
+        result: Result<()>,
+    ) -> Result<usize> {
+        match result {
+            Ok(()) => Ok(steps),
+            Err(e) => {
+                if self.steps == before {
+                    self.clock = clock;
+                }
+                Err(e)
+            }
+        }
+    }
+
+    /// The frame split of earlier versions, for callers who ask for it by name: advances
+    /// by `frame_seconds` in [`Surface::split_frame`]'s equal substeps of *variable*
+    /// length (never longer than `dt`), so that every frame ends exactly on the game's
+    /// clock, at the price of results that depend on the frame times and of a second full
+    /// step whenever a frame is a hair longer than `dt`. It ignores and keeps the
+    /// accumulator of [`Surface::advance`]. Refuses frames of more than
+    /// [`Surface::MAX_SUBSTEPS`] steps.
+    pub fn advance_variable(&mut self, frame_seconds: f32) -> Result<usize> {
+        let (substeps, dt) = self.split_model_frame(frame_seconds)?;
+        self.run(substeps as u64, dt)?;
+        Ok(substeps)
+    }
+
+    /// How [`Surface::advance_variable`] cuts a frame of `frame_seconds`: the number of equal
+    /// substeps and their length in seconds, never longer than one step of `params().dt`.
+    ///
+    /// A frame whose model time is within a relative 10⁻⁵ of a whole number of timesteps
+    /// takes that number (the sliver left over is dropped), so that a 60 Hz frame at the
+    /// default time scale is one step of `dt`, not two steps of `dt / 2` because
+    /// `(1/60) × 24` rounds a little above 0.4 in `f32`.
+    pub fn split_frame(&self, frame_seconds: f32) -> Result<(usize, f32)> {
+        let (substeps, dt) = self.split_model_frame(frame_seconds)?;
+        Ok((substeps, dt / self.params.time_scale))
+    }
+
+    /// [`Surface::split_frame`] with the substep's length in model time, never longer than
+    /// `params().dt` (not even by a rounding error).
+    fn split_model_frame(&self, frame_seconds: f32) -> Result<(usize, f32)> {
+        params::non_negative("frame seconds", frame_seconds)?;
+        let dt = self.params.dt;
+        let model = frame_seconds as f64 * self.params.time_scale as f64;
+        let substeps = (model / dt as f64 * (1.0 - 1e-5)).ceil();
+        if substeps > Self::MAX_SUBSTEPS as f64 {
+            return Err(Error::InvalidParam {
+                name: "frame seconds",
+                value: frame_seconds as f64,
+                expected:
+                    "a frame of at most 10000 timesteps (frame seconds × time_scale ≤ 10000 dt)",
+            });
+        }
+        let substeps = substeps as usize;
+        let sub = if substeps == 0 {
+            0.0
+        } else {
+            ((model / substeps as f64) as f32).min(dt)
+        };
+        Ok((substeps, sub))
     }
 }
 

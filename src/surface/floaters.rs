@@ -1,7 +1,7 @@
 //! The floating bodies of a [`Surface`]: adding, reading and pushing them, and the coupled
 //! step that moves them with the water (the model is explained in [`crate::floater`]).
 
-use super::{Stepper, Surface};
+use super::Surface;
 use crate::error::{Error, Result};
 use crate::floater::{self, Buoyancy, Column, ColumnForce, Floater, FloaterId};
 use crate::params;
@@ -150,16 +150,16 @@ impl Surface {
     }
 
     /// One step of model time `dt` with the bodies: their reactions go into the external forces,
-    /// `stepper` steps the water, and the bodies move only if it succeeded. On any error
+    /// the water takes its step, and the bodies move only if it succeeded. On any error
     /// the surface is unchanged, bodies and pending forces included.
-    pub(crate) fn floating_step(&mut self, dt: f32, stepper: Stepper) -> Result<()> {
+    pub(crate) fn floating_step(&mut self, dt: f32) -> Result<()> {
         let pending = self.state.ext_pending;
         let listed = self.state.ext_nodes.as_ref().map(Vec::len);
         let mut scratch = std::mem::take(&mut self.floaters.scratch);
         scratch.log.clear();
         let coupled = self
             .couple(dt, &mut scratch)
-            .and_then(|()| self.water_step(dt, stepper));
+            .and_then(|()| self.water(1, dt));
         match coupled {
             Ok(()) => {
                 for ((_, body), &(position, velocity, force)) in

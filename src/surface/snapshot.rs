@@ -936,7 +936,7 @@ impl Surface {
         (surface.clock.max_steps, surface.clock.overflow) = snap.step_cap;
         surface.clock.dropped = snap.dropped_seconds;
         surface.window_custom = true;
-        surface.with_env_simd()
+        Ok(surface)
     }
 
     /// The snapshot in the binary format of the [`Snapshot`] docs.

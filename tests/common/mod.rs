@@ -124,3 +124,12 @@ pub fn crc32(data: &[u8]) -> u32 {
     }
     !crc
 }
+
+/// [`Surface::new`] at the level `SPRINGWATER_SIMD` names, if set: how CI runs the parity,
+/// determinism and golden-fingerprint tests at every level (the library itself never
+/// reads the environment).
+pub fn new_surface(params: Params) -> springwater::Result<Surface> {
+    let mut s = Surface::new(params)?;
+    s.set_simd_level(springwater::SimdLevel::from_env()?);
+    Ok(s)
+}

@@ -1,0 +1,273 @@
+// The C ABI's structs with the C layout: blittable, sequential, the C field names, C arrays
+// as fixed buffers. ffi/tests/csharp.rs compares every size, field, offset and type with the
+// header compiled by the C compiler. Start a struct from its maker (Default(), Sphere(),
+// Box()): it sets struct_size, which the library checks.
+using System;
+using System.Runtime.InteropServices;
+
+namespace Springwater
+{
+    /// <summary>Three floats: a point or a vector in the water's local space (y up).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Float3
+    {
+        public float x, y, z;
+
+        public Float3(float x, float y, float z)
+        {
+            this.x = x;
+            this.y = y;
+            this.z = z;
+        }
+
+        public override string ToString()
+        {
+            return "(" + x + ", " + y + ", " + z + ")";
+        }
+
+        internal static unsafe Float3 Read(float* p)
+        {
+            return new Float3(p[0], p[1], p[2]);
+        }
+
+        internal unsafe void Write(float* p)
+        {
+            p[0] = x;
+            p[1] = y;
+            p[2] = z;
+        }
+    }
+
+    /// <summary>The model's parameters (seed defaults from <see cref="Default"/>).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SwParams
+    {
+        /// <summary>sizeof(SwParams), set by <see cref="Default"/>: keep it.</summary>
+        public uint struct_size;
+        /// <summary>Nodes per row (at least 2).</summary>
+        public uint cols;
+        /// <summary>Rows of nodes (at least 2).</summary>
+        public uint rows;
+        /// <summary>Rest distance between neighbouring nodes, world units.</summary>
+        public float spacing;
+        /// <summary>Mass of each node.</summary>
+        public float mass;
+        /// <summary>Spring coefficient c.</summary>
+        public float stiffness;
+        /// <summary>Viscosity (damping per unit of velocity).</summary>
+        public float viscosity;
+        /// <summary>Timestep of one step, model time (below the critical timestep).</summary>
+        public float dt;
+        /// <summary>Rest length over initial length of every spring.</summary>
+        public float rest_ratio;
+        /// <summary>Model time per second of the caller's clock.</summary>
+        public float time_scale;
+        /// <summary>Uniform acceleration on free nodes, world units per second².</summary>
+        public float acceleration_x;
+        public float acceleration_y;
+        public float acceleration_z;
+        /// <summary>Native.SW_BOUNDARY_PINNED, _FREE or _ABSORBING.</summary>
+        public int boundary;
+        /// <summary>Rings of damping of an absorbing boundary (32 by default).</summary>
+        public uint absorbing_width;
+
+        /// <summary>The seed's defaults on a 128 × 128 grid.</summary>
+        public static SwParams Default()
+        {
+            return Native.sw_params_default();
+        }
+    }
+
+    /// <summary>The LOD index buffer's parameters (<see cref="Default"/>).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SwLodParams
+    {
+        public uint struct_size;
+        /// <summary>Patch size in cells, a power of two from 1 to 4096.</summary>
+        public uint patch_cells;
+        /// <summary>Number of levels, 1 to log2(patch_cells) + 1.</summary>
+        public uint levels;
+        /// <summary>Distance within which patches get full detail, world units.</summary>
+        public float first_range;
+        /// <summary>Relative distance past a range boundary before a patch changes level.</summary>
+        public float hysteresis;
+
+        public static SwLodParams Default()
+        {
+            return Native.sw_lod_params_default();
+        }
+    }
+
+    /// <summary>The eye and the bottom for the refraction coordinates (<see cref="Default"/>, then set the eye).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SwRefraction
+    {
+        public uint struct_size;
+        /// <summary>The eye in the water's local space.</summary>
+        public float eye_x;
+        public float eye_y;
+        public float eye_z;
+        /// <summary>Depth of the flat bottom below the rest surface (at least 0).</summary>
+        public float depth;
+        /// <summary>Index of refraction of the water (1 to 10; water 1.333).</summary>
+        public float ior;
+
+        public static SwRefraction Default()
+        {
+            return Native.sw_refraction_default();
+        }
+    }
+
+    /// <summary>The water at one point: height, unit normal, velocity (per second).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct SwSample
+    {
+        public float height;
+        public fixed float normal[3];
+        public fixed float velocity[3];
+
+        public Float3 Normal
+        {
+            get { fixed (float* p = normal) return Float3.Read(p); }
+        }
+
+        public Float3 Velocity
+        {
+            get { fixed (float* p = velocity) return Float3.Read(p); }
+        }
+    }
+
+    /// <summary>
+    /// One node's packed vertex, 32 bytes: position (Float32 × 3 at byte 0), normal
+    /// (Float32 × 3 at 12), refracted bottom texture coordinate (Float32 × 2 at 24).
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct SwVertex
+    {
+        public fixed float position[3];
+        public fixed float normal[3];
+        public fixed float uv[2];
+
+        public Float3 Position
+        {
+            get { fixed (float* p = position) return Float3.Read(p); }
+        }
+
+        public Float3 Normal
+        {
+            get { fixed (float* p = normal) return Float3.Read(p); }
+        }
+    }
+
+    /// <summary>Kinetic and spring potential energy (a diagnostic).</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SwEnergy
+    {
+        public double kinetic;
+        public double potential;
+        public double total;
+    }
+
+    /// <summary>
+    /// A floating body, plain data: make it with <see cref="Sphere"/> or <see cref="Box"/>,
+    /// add it with <see cref="WaterSurface.AddFloater"/>, read it back with
+    /// <see cref="WaterSurface.Floater"/>. Velocities and forces are per second.
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct SwFloater
+    {
+        public uint struct_size;
+        /// <summary>Native.SW_SHAPE_SPHERE or SW_SHAPE_BOX.</summary>
+        public int shape;
+        /// <summary>The sphere's radius (0 for a box).</summary>
+        public float radius;
+        /// <summary>The box's half size along x, y, z (0 for a sphere).</summary>
+        public fixed float half_extents[3];
+        public float mass;
+        /// <summary>Drag rate, per second.</summary>
+        public float drag;
+        public fixed float position[3];
+        public fixed float velocity[3];
+        /// <summary>External force for the next step only.</summary>
+        public fixed float push[3];
+        /// <summary>Read only: the water's force on the body during its last step.</summary>
+        public fixed float water_force[3];
+
+        /// <summary>A sphere at rest centred at (x, y, z) with the default drag.</summary>
+        public static SwFloater Sphere(float radius, float mass, float x, float y, float z)
+        {
+            return Native.sw_floater_sphere(radius, mass, x, y, z);
+        }
+
+        /// <summary>A box of half extents (hx, hy, hz) at rest centred at (x, y, z).</summary>
+        public static SwFloater Box(float hx, float hy, float hz, float mass, float x, float y, float z)
+        {
+            return Native.sw_floater_box(hx, hy, hz, mass, x, y, z);
+        }
+
+        public Float3 HalfExtents
+        {
+            get { fixed (float* p = half_extents) return Float3.Read(p); }
+            set { fixed (float* p = half_extents) value.Write(p); }
+        }
+
+        public Float3 Position
+        {
+            get { fixed (float* p = position) return Float3.Read(p); }
+            set { fixed (float* p = position) value.Write(p); }
+        }
+
+        public Float3 Velocity
+        {
+            get { fixed (float* p = velocity) return Float3.Read(p); }
+            set { fixed (float* p = velocity) value.Write(p); }
+        }
+
+        public Float3 Push
+        {
+            get { fixed (float* p = push) return Float3.Read(p); }
+            set { fixed (float* p = push) value.Write(p); }
+        }
+
+        public Float3 WaterForce
+        {
+            get { fixed (float* p = water_force) return Float3.Read(p); }
+        }
+    }
+
+    /// <summary>Gravity (per second²) and water density for the floating bodies.</summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SwBuoyancy
+    {
+        public uint struct_size;
+        public float gravity;
+        public float density;
+
+        public static SwBuoyancy Default()
+        {
+            return Native.sw_buoyancy_default();
+        }
+    }
+
+    /// <summary>
+    /// A host's job system (Box2D's enqueueTask / finishTask): function pointers made with
+    /// Marshal.GetFunctionPointerForDelegate (kept alive by the caller; under IL2CPP, static
+    /// methods marked MonoPInvokeCallback), set with Native.sw_surface_set_job_system.
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SwJobSystem
+    {
+        public uint struct_size;
+        public uint worker_count;
+        /// <summary>SwEnqueueTaskFn.</summary>
+        public IntPtr enqueue_task;
+        /// <summary>SwFinishTaskFn.</summary>
+        public IntPtr finish_task;
+        public IntPtr user_context;
+
+        public static SwJobSystem Default()
+        {
+            return Native.sw_job_system_default();
+        }
+    }
+}

@@ -1,0 +1,161 @@
+//! A surface's life: create it from parameters, destroy it, read its parameters and size,
+//! and move it on (the fixed-step clock, whole steps, drops).
+
+use crate::handle::{self, SwSurface, Water};
+use crate::params::{c_params, rust_params, SwParams};
+use crate::ptr::{input, optional, out_ref, read_into, read_sized_into};
+use crate::status::{guard, Failure, SwStatus};
+use springwater::{Overflow, Surface};
+
+/// Creates a flat surface at rest from `params` (validated: the message names the field
+/// that is wrong) and writes its handle to `out`.
+///
+/// # Safety
+///
+/// `params` and `out` are NULL or valid pointers.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_create(
+    params: *const SwParams,
+    out: *mut *mut SwSurface,
+) -> SwStatus {
+    guard(|| {
+        let params = input(params, "params")?;
+        let out = out_ref(out, "out")?;
+        let surface = Surface::new(rust_params(&params)?)?;
+        *out = handle::insert(Water::new(surface));
+        Ok(())
+    })
+}
+
+/// Destroys a surface and frees everything it owns. NULL, and a handle already
+/// destroyed, are no-ops.
+#[no_mangle]
+pub extern "C" fn sw_surface_destroy(surface: *mut SwSurface) {
+    let _ = std::panic::catch_unwind(|| handle::remove(surface));
+}
+
+/// Writes the surface's parameters to `out`, whose `struct_size` must be
+/// `sizeof(SwParams)` (start it from `sw_params_default()`, or set the field), or the call
+/// is `SW_ERROR_INVALID_ARGUMENT` and writes nothing.
+///
+/// # Safety
+///
+/// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+/// initialised.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_params(
+    surface: *const SwSurface,
+    out: *mut SwParams,
+) -> SwStatus {
+    read_sized_into(surface, out, |w| Ok(c_params(w.surface.params())))
+}
+
+/// Writes the number of nodes (`cols × rows`) to `out`: the length, in elements, of every
+/// per-node buffer.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_node_count(
+    surface: *const SwSurface,
+    out: *mut usize,
+) -> SwStatus {
+    read_into(surface, out, |w| Ok(w.surface.node_count()))
+}
+
+/// Advances the water by one frame of the caller's clock: `frame_time` seconds (finite,
+/// at least 0) go into the surface's accumulator, and every whole timestep it holds is
+/// taken (a fixed-step clock: the same total time gives the same state, however it is cut
+/// into frames). Writes the number of steps taken to `substeps` (optional, may be NULL):
+/// 0 when the frame did not complete a step, at most the cap (`sw_surface_set_step_cap`).
+/// A failing step stops the frame there, earlier steps stay applied.
+///
+/// # Safety
+///
+/// `substeps` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_advance(
+    surface: *mut SwSurface,
+    frame_time: f32,
+    substeps: *mut u32,
+) -> SwStatus {
+    guard(|| {
+        let substeps = optional(substeps, "substeps")?;
+        handle::with(surface, |w| {
+            let taken = w.surface.advance(frame_time)?;
+            if let Some(out) = substeps {
+                *out = taken as u32;
+            }
+            Ok(())
+        })
+    })
+}
+
+/// Sets the most steps one `sw_surface_advance` call takes (1 to 10000; 16 by default)
+/// and what happens to the steps a longer frame owes: `carry` 0 drops them (the water falls
+/// behind the caller's clock, the default), 1 carries them into the following calls.
+#[no_mangle]
+pub extern "C" fn sw_surface_set_step_cap(
+    surface: *mut SwSurface,
+    max_steps: u32,
+    carry: i32,
+) -> SwStatus {
+    guard(|| {
+        let overflow = match carry {
+            0 => Overflow::Drop,
+            1 => Overflow::Carry,
+            other => return Err(Failure::invalid(format!("carry is {other}, not 0 or 1"))),
+        };
+        handle::with(surface, |w| {
+            Ok(w.surface.set_step_cap(max_steps, overflow)?)
+        })
+    })
+}
+
+/// Writes to `out` how far the caller's clock is past the water's last step, as a
+/// fraction of a step in `[0, 1)`: what a renderer that blends the last two states uses.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_interpolation(
+    surface: *const SwSurface,
+    out: *mut f32,
+) -> SwStatus {
+    read_into(surface, out, |w| Ok(w.surface.interpolation()))
+}
+
+/// Advances `steps` steps of the model's timestep, several per pass over memory (bitwise
+/// the same as one at a time). Stops at a failing step; the steps before it stay applied.
+#[no_mangle]
+pub extern "C" fn sw_surface_step(surface: *mut SwSurface, steps: u32) -> SwStatus {
+    handle::call(surface, |w| Ok(w.surface.step_n(steps as u64)?))
+}
+
+/// Drops water at world `(x, z)`: adds `height · exp(−d²/radius²)` to the height of every
+/// free node, `d` its rest distance from the point. `radius` > 0; a drop steeper than one
+/// height per radius may fold the surface.
+#[no_mangle]
+pub extern "C" fn sw_surface_drop_at(
+    surface: *mut SwSurface,
+    x: f32,
+    z: f32,
+    height: f32,
+    radius: f32,
+) -> SwStatus {
+    handle::call(surface, |w| Ok(w.surface.drop_at(x, z, height, radius)?))
+}
+
+/// Deprecated: the earlier name of `sw_surface_drop_at`, which it calls.
+#[no_mangle]
+pub extern "C" fn sw_surface_drop(
+    surface: *mut SwSurface,
+    x: f32,
+    z: f32,
+    height: f32,
+    radius: f32,
+) -> SwStatus {
+    sw_surface_drop_at(surface, x, z, height, radius)
+}

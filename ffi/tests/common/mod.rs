@@ -1,0 +1,74 @@
+//! What the C and C# client tests share: the release build they run on, and fingerprints
+//! of float values in the order the clients print them.
+
+use springwater::{Floater, Shape};
+use std::path::PathBuf;
+use std::process::{Command, Output};
+
+/// Builds `packages` in release for `target` (the host without one) by a nested `cargo
+/// build` into their own target directory, `target/ffi-c/` (cargo holds the test's own
+/// target directory while the tests run, and does not build a library's `staticlib` and
+/// `cdylib` for its tests; it keeps them up to date with the sources), and returns the
+/// directory of the libraries and programs.
+pub fn build_release(packages: &[&str], target: Option<&str>) -> PathBuf {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .parent()
+        .unwrap()
+        .to_path_buf();
+    let dir = root.join("target").join("ffi-c");
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let mut build = Command::new(cargo);
+    build
+        .current_dir(&root)
+        .args(["build", "--release", "--quiet"])
+        .args(packages.iter().flat_map(|p| ["-p", p]))
+        .arg("--target-dir")
+        .arg(&dir);
+    if let Some(target) = target {
+        build.args(["--target", target]);
+    }
+    let out = build.output().expect("cargo runs");
+    assert_ok(&out, &format!("building {}", packages.join(", ")));
+    match target {
+        Some(target) => dir.join(target).join("release"),
+        None => dir.join("release"),
+    }
+}
+
+/// Fails with the program's output unless it succeeded.
+pub fn assert_ok(out: &Output, what: &str) {
+    assert!(
+        out.status.success(),
+        "{what} failed ({}):\n{}\n{}",
+        out.status,
+        String::from_utf8_lossy(&out.stdout),
+        String::from_utf8_lossy(&out.stderr)
+    );
+}
+
+/// FNV-1a over the little-endian bits of `values`.
+pub fn fnv(values: impl Iterator<Item = f32>) -> u64 {
+    values.fold(0xcbf2_9ce4_8422_2325u64, |h, v| {
+        v.to_bits()
+            .to_le_bytes()
+            .iter()
+            .fold(h, |h, &b| (h ^ b as u64).wrapping_mul(0x0100_0000_01b3))
+    })
+}
+
+/// A body's fields in the order the clients fingerprint them: radius, half extents (the
+/// other shape's read as 0), mass, drag, position, velocity, push, water force.
+pub fn floater_floats(f: &Floater) -> Vec<f32> {
+    let (radius, half_extents) = match f.shape {
+        Shape::Sphere { radius } => (radius, [0.0; 3]),
+        Shape::Box { half_extents } => (0.0, half_extents.to_array()),
+        other => panic!("the clients have no code for {other:?}"),
+    };
+    let mut floats = vec![radius];
+    floats.extend(half_extents);
+    floats.extend([f.mass, f.drag]);
+    for v in [f.position, f.velocity, f.push, f.water_force] {
+        floats.extend(v.to_array());
+    }
+    floats
+}

@@ -1,0 +1,320 @@
+//! Editing the water between steps: drops, forces and impulses for the next step, pins,
+//! per-node masses and viscosities, single springs. Every edit checks its input first and
+//! changes nothing when it refuses; edits that could make `params().dt` unsafe (a lighter
+//! node, a stiffer spring, more viscosity) are checked against the critical timestep.
+
+use super::window::rest_coordinate;
+use super::{Spring, Surface};
+use crate::error::{same_length, Error, Result};
+use crate::grid::SpringId;
+use crate::params;
+use crate::state::NodeValues;
+
+impl Surface {
+    /// Drops a disturbance: adds `height · exp(−d²/radius²)` to y of every free node, `d`
+    /// the distance from the node's rest position `(col·h, row·h)` to the point `(x, z)`.
+    ///
+    /// Everything is in world units: `x`, `z` in the water's local space (any finite point,
+    /// also outside the footprint), `height` and `radius` in the same length unit as
+    /// `params().spacing`. Drops with `|height| ≤ radius` and a radius of at least one cell
+    /// keep the lattice in the regime where `critical_dt` guarantees stability.
+    /// On error nothing changes.
+    pub fn drop_at(&mut self, x: f32, z: f32, height: f32, radius: f32) -> Result<()> {
+        params::finite("drop x", x)?;
+        params::finite("drop z", z)?;
+        params::finite("drop height", height)?;
+        params::positive("drop radius", radius)?;
+        let grid = self.grid();
+        let h = self.params.spacing;
+        let [oc, or] = self.window_origin;
+        let inv_r2 = 1.0 / (radius * radius);
+        // `d2 * inv_r2` is 0 × ∞ = NaN at the centre when radius² underflows: the weight
+        // there is 1 by definition.
+        let lift = |y: &[f32], i: usize| {
+            let (c, r) = grid.coords(i);
+            // Rest place in the water frame.
+            let (rx, rz) = (rest_coordinate(c, oc, h), rest_coordinate(r, or, h));
+            let d2 = (rx - x).powi(2) + (rz - z).powi(2);
+            let w = if d2 == 0.0 { 1.0 } else { (-d2 * inv_r2).exp() };
+            y[i] + height * w
+        };
+        // Past `CUT` radii the weight `exp(−d²/r²)` is below e⁻¹²⁰, which is 0 in f32, so
+        // only the nodes of the square around the centre need the exponential; the rest
+        // get `y + height · 0`, which leaves y as it is except that it turns a −0 into +0
+        // when `height ≥ 0` (kept, so the result is the formula's to the bit).
+        const CUT: f32 = 10.954_452; // sqrt(120)
+        let span = |centre: f32, n: usize, origin: i64| {
+            let reach = CUT * radius / h;
+            let centre = centre - origin as f32 * h;
+            let lo = ((centre / h - reach).floor().max(0.0) as usize).min(n);
+            let hi = ((centre / h + reach).ceil().clamp(0.0, n as f32) as usize + 1).min(n);
+            lo..hi
+        };
+        let (cols, rows) = (span(x, grid.cols, oc), span(z, grid.rows, or));
+        let near = |i: usize| {
+            let (c, r) = grid.coords(i);
+            cols.contains(&c) && rows.contains(&r)
+        };
+        let box_nodes = || {
+            rows.clone()
+                .flat_map(|r| cols.clone().map(move |c| r * grid.cols + c))
+        };
+        // Check first, then write: a drop that would overflow a height changes nothing
+        // (outside the square the heights do not change, and the state is finite).
+        let pinned = &self.state.pinned;
+        if box_nodes().any(|i| !pinned[i] && !lift(&self.state.pos[1], i).is_finite()) {
+            return Err(Error::InvalidParam {
+                name: "drop height",
+                value: height as f64,
+                expected: "small enough that every node's height stays finite",
+            });
+        }
+        for i in box_nodes() {
+            if !self.state.pinned[i] {
+                self.state.pos[1][i] = lift(&self.state.pos[1], i);
+            }
+        }
+        if height >= 0.0 {
+            let y = &mut self.state.pos[1];
+            for i in 0..grid.node_count() {
+                if y[i] == 0.0 && !pinned[i] && !near(i) {
+                    y[i] += 0.0;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds `force` to node `node` for the next step only (buoyancy, a paddle, a wake), in
+    /// the lattice's force units (mass units × world units per unit of model time², the
+    /// units of its springs; a force in seconds' units divided by `time_scale²`, see
+    /// `docs/units.md`).
+    pub fn add_force(&mut self, node: usize, force: [f32; 3]) -> Result<()> {
+        self.check_node(node)?;
+        for f in force {
+            params::finite("force", f)?;
+        }
+        let sum: [f32; 3] = std::array::from_fn(|k| self.state.ext[k][node] + force[k]);
+        for f in sum {
+            params::finite("accumulated force", f)?;
+        }
+        for (k, f) in sum.into_iter().enumerate() {
+            self.state.ext[k][node] = f;
+        }
+        self.state.touch_ext(node);
+        Ok(())
+    }
+
+    /// Discards the pending external forces (for example after a step refused them).
+    pub fn clear_forces(&mut self) {
+        self.state.touch_all_ext();
+        self.state.clear_ext();
+    }
+
+    /// Adds a velocity change `dv` to a free node now (an impulse divided by its mass), in
+    /// world units per unit of model time like [`Surface::velocities`].
+    pub fn add_velocity(&mut self, node: usize, dv: [f32; 3]) -> Result<()> {
+        self.check_node(node)?;
+        for v in dv {
+            params::finite("velocity", v)?;
+        }
+        let sum: [f32; 3] = std::array::from_fn(|k| self.state.vel[k][node] + dv[k]);
+        for v in sum {
+            params::finite("resulting velocity", v)?;
+        }
+        if !self.state.pinned[node] {
+            for (k, v) in sum.into_iter().enumerate() {
+                self.state.vel[k][node] = v;
+            }
+        }
+        Ok(())
+    }
+
+    /// Replaces the external force buffer for the next step with `[fx, fy, fz]`, one
+    /// value per node, in the lattice's force units (as [`Surface::add_force`]). Every
+    /// value must be finite; on error nothing changes.
+    pub fn set_forces(&mut self, force: [&[f32]; 3]) -> Result<()> {
+        let n = self.node_count();
+        for c in force {
+            same_length("force buffer", c.len(), n)?;
+            if let Some(&bad) = c.iter().find(|v| !v.is_finite()) {
+                return Err(Error::InvalidParam {
+                    name: "force",
+                    value: bad as f64,
+                    expected: "finite values",
+                });
+            }
+        }
+        for (dst, src) in self.state.ext.iter_mut().zip(force) {
+            dst[..n].copy_from_slice(src);
+        }
+        self.state.touch_all_ext();
+        Ok(())
+    }
+
+    /// Pending external forces `[fx, fy, fz]` for the next step, in the lattice's force
+    /// units (as [`Surface::add_force`]).
+    pub fn forces(&self) -> [&[f32]; 3] {
+        let n = self.node_count();
+        [
+            &self.state.ext[0][..n],
+            &self.state.ext[1][..n],
+            &self.state.ext[2][..n],
+        ]
+    }
+
+    /// Sets the uniform acceleration applied to every free node (gravity, wind), in world
+    /// units per second² ([`Params::acceleration`](crate::Params::acceleration)).
+    pub fn set_acceleration(&mut self, accel: [f32; 3]) -> Result<()> {
+        for a in accel {
+            params::finite("acceleration", a)?;
+        }
+        self.params.acceleration = accel;
+        Ok(())
+    }
+
+    /// Pins (`true`) or frees a node. Pinning zeroes its velocity.
+    pub fn set_pinned(&mut self, node: usize, pinned: bool) -> Result<()> {
+        self.check_node(node)?;
+        self.state.pinned[node] = pinned;
+        self.window_custom = true;
+        if pinned {
+            for v in &mut self.state.vel {
+                v[node] = 0.0;
+            }
+        }
+        let inv_mass = if pinned {
+            0.0
+        } else {
+            1.0 / self.state.mass.get(node)
+        };
+        self.state.inv_mass.set(node, inv_mass);
+        Ok(())
+    }
+
+    /// Whether a node is pinned.
+    pub fn is_pinned(&self, node: usize) -> Result<bool> {
+        self.check_node(node)?;
+        Ok(self.state.pinned[node])
+    }
+
+    /// Sets a node's mass. Refused if it would put `params().dt` at or past the critical
+    /// timestep (the bound uses the smallest mass ever set).
+    pub fn set_mass(&mut self, node: usize, mass: f32) -> Result<()> {
+        self.check_node(node)?;
+        params::positive("mass", mass)?;
+        if !(1.0 / mass).is_finite() {
+            return Err(Error::InvalidParam {
+                name: "mass",
+                value: mass as f64,
+                expected: "at least 1.2e-38 (the reciprocal must be finite)",
+            });
+        }
+        let min_mass = self.min_mass.min(mass);
+        params::check_dt(
+            self.params.dt,
+            self.limit(min_mass, self.max_stiffness, self.max_viscosity),
+        )?;
+        self.min_mass = min_mass;
+        self.state.mass.set(node, mass);
+        self.window_custom = true;
+        if !self.state.pinned[node] {
+            self.state.inv_mass.set(node, 1.0 / mass);
+        }
+        Ok(())
+    }
+
+    /// Sets a node's viscosity `γ` (≥ 0). Refused if it would put `params().dt` at or past
+    /// the critical timestep (explicit damping has a limit too; the bound uses the largest
+    /// viscosity ever set).
+    pub fn set_viscosity(&mut self, node: usize, viscosity: f32) -> Result<()> {
+        self.check_node(node)?;
+        params::non_negative("viscosity", viscosity)?;
+        let max_viscosity = self.max_viscosity.max(viscosity);
+        params::check_dt(
+            self.params.dt,
+            self.limit(self.min_mass, self.max_stiffness, max_viscosity),
+        )?;
+        self.max_viscosity = max_viscosity;
+        self.state.viscosity.set(node, viscosity);
+        self.window_custom = true;
+        Ok(())
+    }
+
+    /// Node masses, row-major. Uniform masses are not stored per node: the view reads
+    /// them where they are (see [`NodeValues`]).
+    pub fn masses(&self) -> NodeValues<'_> {
+        NodeValues::new(&self.state.mass)
+    }
+
+    /// Node viscosities `γ`, row-major, the absorbing frame's ramp included. Stored per
+    /// node only once a node differs from its default (see [`NodeValues`]).
+    pub fn viscosities(&self) -> NodeValues<'_> {
+        NodeValues::new(&self.state.viscosity)
+    }
+
+    /// Pinned flags.
+    pub fn pinned(&self) -> &[bool] {
+        &self.state.pinned
+    }
+
+    /// A spring's rest length and coefficient; `None` if the grid has no such spring.
+    pub fn spring(&self, id: SpringId) -> Option<Spring> {
+        (id.origin < self.node_count() && self.grid().spring_end(id.family, id.origin).is_some())
+            .then(|| {
+                let (stiffness, rest) = self.springs.get(id.family, id.origin);
+                Spring { rest, stiffness }
+            })
+    }
+
+    /// Sets a spring's rest length (≥ 0) and coefficient (> 0). Refused, with nothing
+    /// changed, if the spring does not exist or the coefficient would put `params().dt` at
+    /// or past the critical timestep.
+    ///
+    /// ```
+    /// use springwater::{Family, Params, Spring, SpringId, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(8, 8))?;
+    /// let id = SpringId { family: Family::E, origin: 9 };
+    /// assert_eq!(water.spring(id), Some(Spring { rest: 0.5, stiffness: 7.0 }));
+    /// water.set_spring(id, Spring { rest: 0.8, stiffness: 5.0 })?;
+    /// assert_eq!(water.spring(id).unwrap().stiffness, 5.0);
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn set_spring(&mut self, id: SpringId, spring: Spring) -> Result<()> {
+        let Spring {
+            rest,
+            stiffness: coef,
+        } = spring;
+        self.check_node(id.origin)?;
+        if self.grid().spring_end(id.family, id.origin).is_none() {
+            return Err(Error::OutOfRange {
+                what: "spring origin",
+                index: id.origin,
+                len: self.node_count(),
+            });
+        }
+        params::non_negative("rest length", rest)?;
+        params::positive("stiffness", coef)?;
+        let max_stiffness = self.max_stiffness.max(coef);
+        params::check_dt(
+            self.params.dt,
+            self.limit(self.min_mass, max_stiffness, self.max_viscosity),
+        )?;
+        self.max_stiffness = max_stiffness;
+        self.springs.set(id, rest, coef);
+        Ok(())
+    }
+
+    fn check_node(&self, node: usize) -> Result<()> {
+        if node < self.node_count() {
+            Ok(())
+        } else {
+            Err(Error::OutOfRange {
+                what: "node",
+                index: node,
+                len: self.node_count(),
+            })
+        }
+    }
+}
