@@ -111,10 +111,48 @@ impl ModelArgs {
 
     /// A validated surface with the drops applied.
     pub fn surface(&self) -> CliResult<Surface> {
-        let mut s = Surface::new(self.params).map_err(lib_error)?;
+        let mut s = Surface::new(self.params).map_err(|e| self.params_error(e))?;
         forced_level(&mut s)?;
         self.apply_drops(&mut s)?;
         Ok(s)
+    }
+
+    /// A refused model in the flags' words, with the limit for this grid where the library
+    /// states it as a formula.
+    fn params_error(&self, e: springwater::Error) -> String {
+        let p = &self.params;
+        let (name, value) = match &e {
+            springwater::Error::InvalidParam { name, value, .. } => (*name, *value),
+            _ => return lib_error(e),
+        };
+        let across = p.cols.min(p.rows);
+        match (name, p.boundary) {
+            ("absorbing width", Boundary::Absorbing { width })
+                if width == Boundary::ABSORBING_WIDTH =>
+            {
+                format!(
+                    "--boundary absorbing: a {}x{} grid is too small for an absorbing frame; \
+                     use a grid of at least 4x4 nodes",
+                    p.cols, p.rows
+                )
+            }
+            ("absorbing width", _) if across >= 4 => format!(
+                "--boundary absorbing:{value}: a {}x{} grid takes an absorbing frame 1 to {} \
+                 cells wide",
+                p.cols,
+                p.rows,
+                (across - 2) / 2
+            ),
+            ("spacing", _) if value.is_finite() && value > 0.0 => format!(
+                "--spacing {}: too large for a {}x{} grid, which may span at most 1e15 units \
+                 (squared lengths must stay finite); use --spacing {} or less",
+                short_f64(value),
+                p.cols,
+                p.rows,
+                Short((1e15 / (p.cols.max(p.rows) - 1) as f64) as f32)
+            ),
+            _ => lib_error(e),
+        }
     }
 
     /// Applies every `--drop` to `s`. The flag speaks grid steps (`COL,ROW` and `RADIUS`
@@ -162,7 +200,8 @@ fn boundary(v: &str) -> CliResult<Boundary> {
 }
 
 /// A library error in the command line's words: the flag that set the refused value goes
-/// first (the library names `Params` fields and arguments, not flags).
+/// first, with the value in its shortest form (the library names `Params` fields and
+/// arguments, not flags, and carries values as `f64`).
 pub fn lib_error(e: springwater::Error) -> String {
     use springwater::Error;
     let flag = match &e {
@@ -179,6 +218,7 @@ pub fn lib_error(e: springwater::Error) -> String {
             "look_at" => Some("--look-at"),
             "eye" => Some("--eye"),
             "patch_cells" => Some("--patch-cells"),
+            "first_range" => Some("--first-range"),
             "depth" => Some("--depth"),
             "ior" => Some("--ior"),
             "field of view" => Some("--fov"),
@@ -186,9 +226,33 @@ pub fn lib_error(e: springwater::Error) -> String {
         },
         _ => None,
     };
-    match flag {
-        Some(flag) => format!("{flag}: {e}"),
-        None => e.to_string(),
+    match (flag, &e) {
+        // The camera's points: the value the library carries is a distance, not what the
+        // user typed.
+        (Some(flag @ ("--look-at" | "--eye")), Error::InvalidParam { expected, .. }) => {
+            format!("{flag}: {expected}")
+        }
+        (
+            Some(flag),
+            Error::InvalidParam {
+                value, expected, ..
+            },
+        ) => {
+            format!("{flag} {}: {expected}", short_f64(*value))
+        }
+        (Some(flag), _) => format!("{flag}: {e}"),
+        (None, _) => e.to_string(),
+    }
+}
+
+/// A library value in the form the user typed it: an `f32`'s shortest round-trip form
+/// where the value is an `f32` (`-0.1`, not `-0.10000000149011612`).
+fn short_f64(v: f64) -> String {
+    let single = v as f32;
+    if f64::from(single) == v || !v.is_finite() {
+        Short(single).to_string()
+    } else {
+        v.to_string()
     }
 }
 
@@ -258,6 +322,37 @@ impl std::fmt::Display for Short {
         } else {
             &plain
         })
+    }
+}
+
+/// `n` and its noun, singular or plural: "1 frame", "3 frames".
+pub fn count(n: impl Into<u64>, noun: &str) -> String {
+    let n = n.into();
+    if n == 1 {
+        format!("1 {noun}")
+    } else {
+        format!("{n} {noun}s")
+    }
+}
+
+/// `v` if it is within `lo..=hi`; the error names the flag, the value and the range.
+pub fn ranged<T: PartialOrd + std::fmt::Display>(v: T, lo: T, hi: T, flag: &str) -> CliResult<T> {
+    if v < lo || v > hi {
+        Err(format!("{flag} must be between {lo} and {hi}, got {v}"))
+    } else {
+        Ok(v)
+    }
+}
+
+/// `v` if it is finite and above zero.
+pub fn positive(v: f32, flag: &str) -> CliResult<f32> {
+    if v.is_finite() && v > 0.0 {
+        Ok(v)
+    } else {
+        Err(format!(
+            "{flag} must be a finite number > 0, got {}",
+            Short(v)
+        ))
     }
 }
 

@@ -19,10 +19,11 @@ pub mod obj;
 mod pointcache;
 
 use crate::args::{
-    lib_error, list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs,
+    count, lib_error, list, next_flag, positive, ranged, string, unexpected, value, CliResult,
+    Flag, Short,
 };
-use crate::render::{positive, progress, ranged};
-use crate::simulate::{starting_surface, MODEL_FLAGS};
+use crate::output::{self, Output, Pending};
+use crate::start::{check_rain, run_steps_until, Start};
 use lexopt::Parser;
 use springwater::disturb::{Rain, Wake};
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
@@ -54,8 +55,8 @@ pub struct Rest {
 trait Writer {
     /// Writes frame `k` (from 1).
     fn frame(&mut self, k: usize, frame: &Frame) -> std::io::Result<()>;
-    /// Completes the file(s) after the last frame.
-    fn finish(self: Box<Self>) -> std::io::Result<()>;
+    /// Completes the file(s) after the last frame; returns them, to be moved into place.
+    fn finish(self: Box<Self>) -> std::io::Result<Vec<Pending>>;
 }
 
 /// What `--out` names.
@@ -88,28 +89,17 @@ impl Format {
 }
 
 pub fn run(p: &mut Parser) -> CliResult<()> {
-    let mut model = ModelArgs {
-        steps: 0,
-        ..ModelArgs::default()
-    };
+    let mut start = Start::with_steps(0);
     let mut frames: usize = 48;
     let mut fps: f32 = 24.0;
     let mut out: Option<PathBuf> = None;
-    let mut load: Option<PathBuf> = None;
-    let mut model_flag: Option<String> = None;
     let mut eye: Option<[f32; 3]> = None;
     let mut optics = RefractionParams::default();
-    let mut floaters: Vec<[f32; 4]> = Vec::new();
     let mut rain: f32 = 0.0;
     let mut seed: u64 = 1;
     let mut wake = false;
     while let Some(arg) = next_flag(p)? {
-        if let Flag::Long(l) = &arg {
-            if MODEL_FLAGS.contains(&l.as_str()) {
-                model_flag.get_or_insert_with(|| l.clone());
-            }
-        }
-        if model.parse_flag(&arg, p)? {
+        if start.parse_flag(&arg, p)? {
             continue;
         }
         let Flag::Long(name) = &arg else {
@@ -119,13 +109,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             "frames" => frames = ranged(value(p, "--frames")?, 1, 1_000_000, "--frames")?,
             "fps" => fps = positive(value(p, "--fps")?, "--fps")?,
             "out" => out = Some(string(p, "--out")?.into()),
-            "load" => load = Some(string(p, "--load")?.into()),
             "eye" => eye = Some(list(&string(p, "--eye")?, "--eye X,Y,Z")?),
             "depth" => optics.depth = positive(value(p, "--depth")?, "--depth")?,
             "ior" => optics.ior = value(p, "--ior")?,
-            "floater" => {
-                floaters.push(list(&string(p, "--floater")?, "--floater X,Z,MASS,RADIUS")?)
-            }
             "rain" => rain = value(p, "--rain")?,
             "seed" => seed = value(p, "--seed")?,
             "wake" => wake = true,
@@ -133,87 +119,117 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         }
     }
     let out = out.ok_or("bake needs --out FILE.glb, FILE.mdd, FILE.pc2 or a directory")?;
+    output::non_empty(&out, "--out")?;
     let format = Format::of(&out)?;
     if !(rain.is_finite() && rain >= 0.0) {
         return Err(format!(
-            "--rain: {rain} is not a rate >= 0 (drops per second)"
+            "--rain: {} is not a rate >= 0 (drops per second)",
+            Short(rain)
         ));
     }
     optics
         .validate()
         .map_err(|e| format!("bake: {}", lib_error(e)))?;
+    let rest_obj = matches!(format, Format::Mdd | Format::Pc2).then(|| rest_obj_path(&out));
+    if let Some(obj) = &rest_obj {
+        check_rest_obj(&out, obj)?;
+    }
+    if let Some(load) = &start.load {
+        output::distinct(&[("--load", load), ("--out", &out)])?;
+    }
 
-    let mut surface = starting_surface(
-        &model,
-        model_flag,
-        load.as_deref(),
-        &floaters,
-        "only --steps, --drop, --floater, --threads and the bake's own flags apply",
-    )?;
-    let dt = surface.params().dt;
-    let mut steps = 0usize;
+    let model = &start.model;
+    let mut surface = start
+        .surface("only --steps, --drop, --floater, --threads and the bake's own flags apply")?;
+    check_rain(rain, &surface)?;
+    let params = *surface.params();
+    let dt = params.dt;
     // A bake owes every frame its whole time: the game's cap on steps per frame (which
     // drops what a stall owes) would cut frames short. Raised to the most `advance` takes;
     // a frame that could need more (its steps, plus one the clock's carried fraction may
     // complete) is refused here, before any step.
     let frame = 1.0f32 / fps;
-    let per_frame =
-        (f64::from(frame) * f64::from(surface.params().time_scale) / f64::from(dt)).ceil();
+    let step_seconds = f64::from(dt) / f64::from(params.time_scale);
+    let per_frame = (f64::from(frame) / step_seconds).ceil();
     if per_frame + 1.0 > Surface::MAX_SUBSTEPS as f64 {
+        let most = Surface::MAX_SUBSTEPS - 1;
+        let fps_needed = Short((1.0 / (most as f64 * step_seconds)) as f32);
+        // A longer timestep is a remedy only below the critical one.
+        let dt_needed = f64::from(frame) * f64::from(params.time_scale) / most as f64;
+        let or_dt = if dt_needed < 0.95 * f64::from(surface.critical_dt()) {
+            format!(", or --dt {} or more", Short(dt_needed as f32))
+        } else {
+            String::new()
+        };
         return Err(format!(
-            "bake: a frame of 1/{fps} s is {per_frame} steps of dt {dt}, more than the {} one frame may take: raise --fps",
-            Surface::MAX_SUBSTEPS
+            "bake: --fps {}: a frame of {} s is {per_frame} steps of dt {} ({} s each), more \
+             than the {most} one frame may take; use --fps {fps_needed} or more{or_dt}",
+            Short(fps),
+            Short(frame),
+            Short(dt),
+            Short(step_seconds as f32),
+        ));
+    }
+    if f64::from(frame) < step_seconds {
+        return Err(format!(
+            "bake: --fps {}: a frame of {} s is shorter than one step ({} s), so most \
+             frames would repeat the one before; use --fps {} or less",
+            Short(fps),
+            Short(frame),
+            Short(step_seconds as f32),
+            Short((1.0 / step_seconds) as f32)
         ));
     }
     surface
         .set_step_cap(Surface::MAX_SUBSTEPS as u32, Overflow::Drop)
         .map_err(lib_error)?;
+    if format == Format::Glb {
+        glb::check_size(&out, &params, frames, start.floaters.len())?;
+    }
 
     // Rain and wake sized in cells, as `render` makes them.
-    let h = surface.params().spacing;
-    let time_scale = surface.params().time_scale;
+    let h = params.spacing;
     let mut rain = (rain > 0.0).then(|| {
         let mut r = Rain::new(rain, seed);
         r.radius = 1.5 * h..3.0 * h;
         r
     });
     let mut wake = wake.then(|| {
-        let cells = surface.params().cols.min(surface.params().rows) as f32;
+        let cells = params.cols.min(params.rows) as f32;
         let mut w = Wake::circle(&surface, 0.3 * cells * h);
-        w.speed = 2.5 * h * time_scale;
+        w.speed = 2.5 * h * params.time_scale;
         w.radius *= h;
         w.strength /= h * h;
         w
     });
 
-    let calm = model.drops.is_empty() && floaters.is_empty() && rain.is_none() && wake.is_none();
-    let calm = calm && load.is_none();
-    let params = *surface.params();
+    let calm = model.drops.is_empty() && start.floaters.is_empty() && rain.is_none();
+    let calm = calm && wake.is_none() && start.load.is_none();
     let (cols, rows) = (params.cols, params.rows);
     let width = (cols - 1) as f32 * h;
     let length = (rows - 1) as f32 * h;
     // Without --eye the texture coordinates are seen from straight above the middle.
     let uv_eye = glam::Vec3::from(eye.unwrap_or([0.5 * width, width.max(length), 0.5 * length]));
 
-    // An unwritable path fails now, before any step (the writers create the files again
-    // once the rest frame is known, after the warm-up steps).
-    if let Err(e) = probe(&out, format) {
-        remove_outputs(&out, format);
-        return Err(e.to_string());
-    }
+    // Every output is started before any step: an unwritable path fails now.
+    let mut files = match format {
+        Format::Directory => Targets::Frames(output::Sequence::create(
+            &out, "--out", "water_", "obj", frames,
+        )?),
+        _ => Targets::Files(
+            Output::create(&out, "--out")?,
+            rest_obj
+                .as_deref()
+                .map(|obj| Output::create(obj, "--out (its rest mesh)"))
+                .transpose()?,
+        ),
+    };
     let started = Instant::now();
-    let interrupted = crate::simulate::on_interrupt();
-    let bar = progress(frames as u64, "frames");
-    let outcome = model.with_threads(|| -> CliResult<()> {
-        // The warm-up stops at Ctrl-C too; the first frame then reports the interruption.
+    let bar = crate::progress::bar(frames as u64, "frames");
+    let mut steps = 0usize;
+    let written = model.with_threads(|| -> CliResult<Vec<Pending>> {
         let hidden = indicatif::ProgressBar::hidden();
-        crate::simulate::run_steps_until(&mut surface, model.steps, &interrupted, &hidden)?;
-        if interrupted.load(std::sync::atomic::Ordering::Relaxed) {
-            return Err(format!(
-                "interrupted in the {} warm-up steps, before frame 1; nothing was written",
-                model.steps
-            ));
-        }
+        run_steps_until(&mut surface, model.steps, &hidden)?;
         let mut shading = Shading::new(uv_eye, optics);
         shading.update(&surface)?;
         // The triangles: full detail, or for a .glb baked for an eye, that eye's LOD.
@@ -231,13 +247,14 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         };
         let fail = |e: std::io::Error| e.to_string();
         let first = shading.frame(&surface);
-        let mut writer: Box<dyn Writer> = match format {
-            Format::Glb => {
-                Box::new(glb::Glb::create(&out, &rest, &first, frames, fps).map_err(&fail)?)
+        let mut writer: Box<dyn Writer> = match std::mem::replace(&mut files, Targets::Taken) {
+            Targets::Files(out, None) => {
+                Box::new(glb::Glb::create(out, &rest, &first, frames, fps).map_err(&fail)?)
             }
-            Format::Mdd | Format::Pc2 => Box::new(
+            Targets::Files(out, Some(obj)) => Box::new(
                 pointcache::PointCache::create(
-                    &out,
+                    out,
+                    obj,
                     format == Format::Mdd,
                     &rest,
                     &first,
@@ -246,15 +263,10 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                 )
                 .map_err(&fail)?,
             ),
-            Format::Directory => Box::new(obj::Sequence::create(&out, &rest).map_err(&fail)?),
+            Targets::Frames(seq) => Box::new(obj::Sequence::new(seq, &rest)),
+            Targets::Taken => unreachable!("the outputs are taken once"),
         };
         for k in 1..=frames {
-            // A cache cut short would not say it was: Ctrl-C leaves no file behind.
-            if interrupted.load(std::sync::atomic::Ordering::Relaxed) {
-                return Err(format!(
-                    "interrupted at frame {k} of {frames}; the partial cache was removed"
-                ));
-            }
             let step = match (&mut rain, &mut wake) {
                 (None, None) => surface.advance(frame),
                 _ => surface.advance_with(frame, &mut (&mut rain, &mut wake)),
@@ -273,15 +285,16 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             bar.inc(1);
         }
         writer.finish().map_err(fail)
-    })?;
+    })??;
     bar.finish_and_clear();
-    if let Err(e) = outcome {
-        remove_outputs(&out, format);
-        return Err(e);
-    }
+    output::commit_all(written).map_err(|e| e.to_string())?;
     let seconds = started.elapsed().as_secs_f64();
     say!(
-        "baked {frames} frames at {fps} fps of a {cols}x{rows} surface: {steps} steps of {dt} ({:.2} per frame), {:.2} s",
+        "baked {} at {} fps of a {cols}x{rows} surface: {} of {} ({:.2} per frame), {:.2} s",
+        count(frames as u64, "frame"),
+        Short(fps),
+        count(steps as u64, "step"),
+        Short(dt),
         steps as f64 / frames as f64,
         seconds
     );
@@ -290,7 +303,11 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         say!("wrote {} ({:.1} KiB)", path.display(), size as f64 / 1024.0);
     }
     if format == Format::Directory {
-        say!("wrote {frames} OBJ files to {}", out.display());
+        say!(
+            "wrote {} to {}",
+            count(frames as u64, "OBJ file"),
+            out.display()
+        );
     }
     if calm {
         eprintln!(
@@ -299,6 +316,41 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         );
     }
     Ok(())
+}
+
+/// The outputs a bake starts before its first step.
+enum Targets {
+    /// The cache, and the rest OBJ beside a point cache.
+    Files(Output, Option<Output>),
+    /// A directory of OBJ frames.
+    Frames(output::Sequence),
+    /// Handed to the writer.
+    Taken,
+}
+
+/// Refuses to replace an OBJ beside a point cache that `bake` did not write (its first
+/// line says so): `--out model.pc2` must not overwrite the user's `model.obj`.
+fn check_rest_obj(out: &Path, obj: &Path) -> CliResult<()> {
+    use std::io::BufRead;
+    if !obj.is_file() {
+        return Ok(());
+    }
+    let mut first = String::new();
+    let file =
+        std::fs::File::open(obj).map_err(|e| format!("cannot read {}: {e}", obj.display()))?;
+    let _ = std::io::BufReader::new(file).read_line(&mut first);
+    if first
+        .strip_prefix("# ")
+        .is_some_and(|t| t.starts_with(obj::REST_TITLE))
+    {
+        return Ok(());
+    }
+    Err(format!(
+        "--out {}: the rest mesh goes to {}, which exists and was not written by bake; \
+         move it or choose another name",
+        out.display(),
+        obj.display()
+    ))
 }
 
 /// What a frame needs beyond the positions, computed from the surface after each frame
@@ -357,38 +409,4 @@ fn outputs(out: &Path, format: Format) -> Vec<PathBuf> {
         Format::Mdd | Format::Pc2 => vec![out.to_path_buf(), rest_obj_path(out)],
         Format::Directory => Vec::new(),
     }
-}
-
-/// Creates the outputs (empty) or the directory, to find an unwritable path early.
-fn probe(out: &Path, format: Format) -> std::io::Result<()> {
-    match format {
-        Format::Directory => std::fs::create_dir_all(out).map_err(|e| {
-            std::io::Error::new(e.kind(), format!("cannot create {}: {e}", out.display()))
-        }),
-        _ => outputs(out, format)
-            .iter()
-            .try_for_each(|path| create_io(path).map(drop)),
-    }
-}
-
-/// A bake that failed leaves no truncated file behind (the frames of a directory stay).
-fn remove_outputs(out: &Path, format: Format) {
-    for path in outputs(out, format) {
-        let _ = std::fs::remove_file(path);
-    }
-    if format == Format::Glb {
-        let _ = std::fs::remove_file(glb::part_path(out));
-    }
-}
-
-/// Creates a file for a writer, buffered; the error names the file.
-pub fn create_io(path: &Path) -> std::io::Result<std::io::BufWriter<std::fs::File>> {
-    std::fs::File::create(path)
-        .map(std::io::BufWriter::new)
-        .map_err(|e| named(path, e))
-}
-
-/// An I/O error that says which file it was about: "cannot write PATH: ERROR".
-pub fn named(path: &Path, e: std::io::Error) -> std::io::Error {
-    std::io::Error::new(e.kind(), format!("cannot write {}: {e}", path.display()))
 }

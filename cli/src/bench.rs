@@ -80,7 +80,14 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                             "--compare: unknown kernel '{other}' (reference, naive, floor, 1step, none)"
                         )),
                     })
-                    .collect::<CliResult<_>>()?;
+                    .collect::<CliResult<Vec<_>>>()?;
+                // Each kernel once, in the order first given.
+                let mut seen = Vec::new();
+                compare.retain(|k| {
+                    let new = !seen.contains(k);
+                    seen.push(*k);
+                    new
+                });
             }
             other => return Err(unexpected(other, "bench")),
         }

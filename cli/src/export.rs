@@ -6,7 +6,8 @@
 use crate::args::{
     lib_error, list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs,
 };
-use crate::simulate::{create, run_steps};
+use crate::output::Output;
+use crate::start::run_steps_until;
 use lexopt::Parser;
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use springwater::refraction::{refract, Refraction, RefractionParams};
@@ -51,8 +52,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut lod = LodMesh::new(lod).map_err(|e| format!("export: {}", lib_error(e)))?;
     let mut surface = model.surface()?;
     // Open the output first: an unwritable path fails before any work is done.
-    let file = create(&obj)?;
-    model.with_threads(|| run_steps(&mut surface, model.steps))??;
+    let out = Output::create(&obj, "--obj")?;
+    let hidden = indicatif::ProgressBar::hidden();
+    model.with_threads(|| run_steps_until(&mut surface, model.steps, &hidden))??;
 
     let view = surface.mesh_view();
     let mut normals = Normals::new();
@@ -60,8 +62,18 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut uv = Refraction::default();
     refract(&view, &normals, eye, &optics, &mut uv).map_err(|e| format!("export: {e}"))?;
     lod.update(&view, eye);
-    write_obj(&surface, &normals, &uv, &lod, eye, &optics, file)
-        .map_err(|e| format!("cannot write {}: {e}", obj.display()))?;
+    let fail = |e: std::io::Error| format!("cannot write {}: {e}", obj.display());
+    write_obj(
+        &surface,
+        &normals,
+        &uv,
+        &lod,
+        eye,
+        &optics,
+        out.file().map_err(fail)?,
+    )
+    .map_err(fail)?;
+    out.commit().map_err(|e| e.to_string())?;
     say!(
         "wrote {}: {} vertices, {} triangles (full grid: {})",
         obj.display(),

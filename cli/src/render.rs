@@ -1,11 +1,11 @@
 //! `springwater render`: the water as an animated GIF (and/or PNG frames).
 
 use crate::args::{
-    lib_error, list, next_flag, string, unexpected, value, CliResult, Flag, ModelArgs,
+    count, lib_error, list, next_flag, positive, ranged, string, unexpected, value, CliResult,
+    Flag, ModelArgs, Short,
 };
 use crate::image::{read_png, write_png, GifWriter, Histogram, Palette};
-use crate::simulate::create;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use crate::output::{self, Output, Pending};
 use lexopt::Parser;
 use springwater::disturb::{Disturbance, Rain, Wake};
 use springwater::render::{Ball, Camera, Frame, RenderParams, Renderer, StageTimes, Texture};
@@ -14,8 +14,8 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 /// Raindrops per second by default: 0.3 per unit of model time at the default time scale of
-/// 24 (the product, so the default picture is the one it always was).
-const DEFAULT_RAIN: f32 = 0.3 * 24.0;
+/// 24.
+const DEFAULT_RAIN: f32 = 7.2;
 
 /// The render command's options beyond the model flags.
 #[derive(Debug, Clone)]
@@ -118,30 +118,66 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     if !(o.orbit.is_finite() && o.orbit.abs() <= 3600.0) {
         return Err(format!(
             "--orbit: {} is not an angle in degrees between -3600 and 3600",
-            o.orbit
+            Short(o.orbit)
         ));
     }
     if o.out.is_none() && o.png.is_none() {
         return Err("render needs --out FILE.gif or --png DIR (or both)".into());
     }
+    if let Some(out) = &o.out {
+        output::non_empty(out, "--out")?;
+        let gif = out
+            .extension()
+            .is_some_and(|e| e.eq_ignore_ascii_case("gif"));
+        if !gif && !output::is_stream(out) {
+            return Err(format!(
+                "--out {}: render writes a GIF, and the name does not end in .gif \
+                 (for PNG frames use --png DIR)",
+                out.display()
+            ));
+        }
+    }
+    if o.follow && o.wake {
+        return Err(
+            "--follow and --wake cannot be combined: --follow draws its own ball and wake \
+             crossing open water; --wake draws one circling the pool"
+                .into(),
+        );
+    }
+    // A GIF counts frame times in hundredths of a second, from 2 (what viewers show) to
+    // 65535 (0.0016 fps is 62500).
+    let (lo, hi) = (0.0016, 50.0);
+    if !(o.fps >= lo && o.fps <= hi) {
+        return Err(format!(
+            "--fps must be between {} and {} (a GIF frame lasts 2 to 62500 hundredths of a \
+             second), got {}",
+            Short(lo),
+            Short(hi),
+            Short(o.fps)
+        ));
+    }
     if !(o.rain.is_finite() && o.rain >= 0.0) {
         return Err(format!(
             "--rain: {} is not a rate >= 0 (drops per second)",
-            o.rain
+            Short(o.rain)
         ));
     }
     if !(o.ior.is_finite() && o.ior >= 1.0) {
         return Err(format!(
             "--ior: {} is not an index of refraction >= 1",
-            o.ior
+            Short(o.ior)
         ));
     }
     if !(o.caustics.is_finite() && o.caustics >= 0.0) {
-        return Err(format!("--caustics: {} is not a strength >= 0", o.caustics));
+        return Err(format!(
+            "--caustics: {} is not a strength >= 0",
+            Short(o.caustics)
+        ));
     }
 
     // Validates the model and the drops before anything is opened.
     let surface = model.surface()?;
+    crate::start::check_rain(o.rain, &surface)?;
     let params = *surface.params();
     let mut camera = Camera::framing(params.cols, params.rows, params.spacing, o.width, o.height);
     if let Some(e) = o.eye {
@@ -171,19 +207,18 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     render_params.lod_pixels = Some(o.lod_pixels);
     let mut renderer = Renderer::new(render_params, bottom).map_err(lib_error)?;
 
-    // Open every output before any work: an unwritable path fails at once.
+    // Start every output before any work: an unwritable path fails at once. A render that
+    // fails or is stopped part-way leaves the files that were there as they were.
     let gif_file = o
         .out
         .as_ref()
-        .map(|path| create(path).map(|f| (path.clone(), f)))
+        .map(|path| Output::create(path, "--out"))
         .transpose()?;
-    // A render that fails part-way leaves no truncated GIF behind.
-    let mut cleanup = RemoveOnDrop(o.out.as_deref());
-    if let Some(dir) = &o.png {
-        std::fs::create_dir_all(dir)
-            .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
-        create(&frame_path(dir, 0))?;
-    }
+    let pngs = o
+        .png
+        .as_ref()
+        .map(|dir| output::Sequence::create(dir, "--png", "frame_", "png", o.frames - 1))
+        .transpose()?;
 
     // A GIF needs its palette before its first frame. Frames that fit in memory are kept
     // and encoded after one pass; larger animations are simulated and drawn twice (the
@@ -196,7 +231,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         .unwrap_or(KEEP_FRAMES_BYTES);
     let two_pass = gif_file.is_some() && frame_bytes * o.frames as u64 > keep;
     let passes = if two_pass { 2 } else { 1 };
-    let bar = progress(o.frames as u64 * passes, "frames");
+    let bar = crate::progress::bar(o.frames as u64 * passes, "frames");
     let start = Instant::now();
     let mut clock = Clock::default();
     let mut frames: Vec<Vec<u8>> = Vec::new();
@@ -210,12 +245,12 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             &camera,
             &mut clock,
             |k, frame| {
-                if let Some(dir) = &o.png {
+                if let Some(seq) = &pngs {
                     let t = Instant::now();
-                    let path = frame_path(dir, k);
-                    let file = create(&path)?;
-                    write_png(file, frame.width(), frame.height(), frame.rgb())
-                        .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
+                    let shown = seq.path().join(seq.name(k));
+                    let fail = |e: std::io::Error| format!("cannot write {}: {e}", shown.display());
+                    let file = std::fs::File::create(seq.frame_path(k)).map_err(fail)?;
+                    write_png(file, frame.width(), frame.height(), frame.rgb()).map_err(fail)?;
                     png_time += t.elapsed();
                 }
                 if gif_file.is_some() {
@@ -231,8 +266,11 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     })??;
 
     let mut gif_time = Duration::ZERO;
-    if let Some((path, file)) = gif_file {
+    let mut pending: Vec<Pending> = pngs.into_iter().map(Pending::Frames).collect();
+    if let Some(out) = gif_file {
+        let path = out.path().to_path_buf();
         let fail = |e: String| format!("cannot write {}: {e}", path.display());
+        let file = out.file().map_err(|e| fail(e.to_string()))?;
         let t = Instant::now();
         let palette = model.with_threads(|| Palette::median_cut(&histogram))?;
         let delay = (100.0 / o.fps).round().clamp(2.0, 65535.0) as u16;
@@ -264,23 +302,28 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             gif_time += t.elapsed();
         }
         gif.finish().map_err(fail)?;
+        pending.push(Pending::File(out));
     }
     bar.finish_and_clear();
-    cleanup.0 = None;
+    output::commit_all(pending).map_err(|e| e.to_string())?;
 
     let drawn = (o.frames as u64 * passes) as f64;
     let ms = |d: Duration| d.as_secs_f64() * 1e3 / drawn;
     let total = start.elapsed();
     say!(
-        "rendered {} frames of {}x{} pixels, a {}x{} surface, {} steps per frame after {} warm-up steps{}",
-        o.frames,
+        "rendered {} of {}x{} pixels, a {}x{} surface, {} per frame after {}{}",
+        count(o.frames as u64, "frame"),
         o.width,
         o.height,
         params.cols,
         params.rows,
-        o.substeps,
-        model.steps,
-        if two_pass { " (twice: too large to keep for the GIF palette)" } else { "" }
+        count(o.substeps as u64, "step"),
+        count(model.steps, "warm-up step"),
+        if two_pass {
+            " (twice: too large to keep for the GIF palette)"
+        } else {
+            ""
+        }
     );
     let lod = renderer.lod();
     let levels = lod.patch_levels();
@@ -293,13 +336,14 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         2 * (params.cols - 1) * (params.rows - 1),
     );
     say!(
-        "disturbances: {raindrops} raindrops (rate {}, seed {}){}",
-        o.rain,
+        "disturbances: {} (rate {}, seed {}){}",
+        count(raindrops, "raindrop"),
+        Short(o.rain),
         o.seed,
         if o.wake { ", a wake" } else { "" }
     );
     if o.floaters > 0 {
-        say!("floaters     {} balls", o.floaters);
+        say!("floaters     {}", count(o.floaters as u64, "ball"));
     }
     if o.follow {
         say!(
@@ -328,20 +372,13 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         say!("wrote {} ({:.1} KiB)", path.display(), size as f64 / 1024.0);
     }
     if let Some(dir) = &o.png {
-        say!("wrote {} PNG frames to {}", o.frames, dir.display());
+        say!(
+            "wrote {} to {}",
+            count(o.frames as u64, "PNG frame"),
+            dir.display()
+        );
     }
     Ok(())
-}
-
-/// Removes the file at its path when dropped, unless the path was taken out.
-struct RemoveOnDrop<'a>(Option<&'a std::path::Path>);
-
-impl Drop for RemoveOnDrop<'_> {
-    fn drop(&mut self) {
-        if let Some(path) = self.0 {
-            let _ = std::fs::remove_file(path);
-        }
-    }
 }
 
 /// Frames kept in memory for the GIF palette before `render` switches to two passes
@@ -512,36 +549,4 @@ fn run_steps(
         surface.step().map_err(|e| e.to_string())?;
     }
     Ok(())
-}
-
-fn frame_path(dir: &std::path::Path, k: usize) -> PathBuf {
-    dir.join(format!("frame_{k:04}.png"))
-}
-
-/// A progress bar on stderr counting `unit`s; indicatif draws nothing when stderr is not a terminal.
-pub fn progress(count: u64, unit: &str) -> ProgressBar {
-    let bar = ProgressBar::with_draw_target(Some(count), ProgressDrawTarget::stderr());
-    let template = format!(
-        "{{bar:40.cyan/blue}} {{pos}}/{{len}} {unit} {{elapsed_precise}} (eta {{eta}}) {{msg}}"
-    );
-    if let Ok(style) = ProgressStyle::with_template(&template) {
-        bar.set_style(style);
-    }
-    bar
-}
-
-pub fn ranged<T: PartialOrd + std::fmt::Display>(v: T, lo: T, hi: T, flag: &str) -> CliResult<T> {
-    if v < lo || v > hi {
-        Err(format!("{flag} must be between {lo} and {hi}, got {v}"))
-    } else {
-        Ok(v)
-    }
-}
-
-pub fn positive(v: f32, flag: &str) -> CliResult<f32> {
-    if v.is_finite() && v > 0.0 {
-        Ok(v)
-    } else {
-        Err(format!("{flag} must be a finite number > 0, got {v}"))
-    }
 }

@@ -11,124 +11,111 @@
 //! water frame, so a node of the overlap appears with the bits of an unshifted run's node
 //! `(col + DC, row + DR)`, and the strip that came in is calm.
 
-use crate::args::{list, next_flag, number, string, unexpected, CliResult, Flag, ModelArgs, Short};
+use crate::args::{number, string, unexpected, CliResult, Flag, Short};
+use crate::output::{self, Output};
+use crate::start::{run_steps_until, Start};
 use lexopt::Parser;
-use springwater::{Floater, Surface};
+use springwater::window::MAX_ORIGIN_CELLS;
+use springwater::Surface;
 use std::io::Write;
-use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::path::PathBuf;
 use std::time::Instant;
 
-/// Model flags whose values a snapshot already holds.
-pub const MODEL_FLAGS: [&str; 8] = [
-    "size",
-    "dt",
-    "mass",
-    "stiffness",
-    "viscosity",
-    "rest-ratio",
-    "spacing",
-    "boundary",
-];
-
 pub fn run(p: &mut Parser) -> CliResult<()> {
-    let mut model = ModelArgs::default();
+    let mut start = Start::with_steps(100);
     let mut csv: Option<PathBuf> = None;
     let mut save: Option<PathBuf> = None;
-    let mut load: Option<PathBuf> = None;
-    let mut model_flag: Option<String> = None;
-    let mut floaters: Vec<[f32; 4]> = Vec::new();
     let mut follow_shift: Option<[i32; 2]> = None;
-    while let Some(arg) = next_flag(p)? {
-        if let Flag::Long(l) = &arg {
-            if MODEL_FLAGS.contains(&l.as_str()) {
-                model_flag.get_or_insert_with(|| l.clone());
-            }
-        }
-        if model.parse_flag(&arg, p)? {
+    while let Some(arg) = crate::args::next_flag(p)? {
+        if start.parse_flag(&arg, p)? {
             continue;
         }
         match arg {
             Flag::Long(l) if l == "csv" => csv = Some(string(p, "--csv")?.into()),
             Flag::Long(l) if l == "save" => save = Some(string(p, "--save")?.into()),
-            Flag::Long(l) if l == "load" => load = Some(string(p, "--load")?.into()),
             Flag::Long(l) if l == "follow-shift" => {
                 follow_shift = Some(cells(&string(p, "--follow-shift")?)?)
-            }
-            Flag::Long(l) if l == "floater" => {
-                floaters.push(list(&string(p, "--floater")?, "--floater X,Z,MASS,RADIUS")?)
             }
             other => return Err(unexpected(other, "simulate")),
         }
     }
-    let mut surface = starting_surface(
-        &model,
-        model_flag,
-        load.as_deref(),
-        &floaters,
-        "only --steps, --drop, --threads, --follow-shift, --csv and --save apply",
-    )?;
+    // `--save` may replace its own `--load` input (the new file moves into place only when
+    // complete); the CSV may replace neither.
+    let mut named = Vec::new();
+    named.extend(csv.as_deref().map(|p| ("--csv", p)));
+    named.extend(save.as_deref().map(|p| ("--save", p)));
+    output::distinct(&named)?;
+    if let (Some(c), Some(l)) = (&csv, &start.load) {
+        output::distinct(&[("--csv", c), ("--load", l)])?;
+    }
+    let mut surface =
+        start.surface("only --steps, --drop, --threads, --follow-shift, --csv and --save apply")?;
+    let model = &start.model;
+    if let Some([dc, dr]) = follow_shift {
+        // Checked before the steps: a shift the window cannot take refuses the run now.
+        let [oc, or] = surface.origin_cells();
+        for (name, origin, d) in [("DC", oc, dc), ("DR", or, dr)] {
+            let (lo, hi) = (-MAX_ORIGIN_CELLS - origin, MAX_ORIGIN_CELLS - origin);
+            if !(lo..=hi).contains(&i64::from(d)) {
+                return Err(format!(
+                    "--follow-shift {dc},{dr}: {name} {d} is out of range: the window may \
+                     move {lo} to {hi} cells from where it is (within {MAX_ORIGIN_CELLS} \
+                     cells of the water's origin, where every cell index is an exact f32)"
+                ));
+            }
+        }
+    }
     // Open the outputs first: an unwritable path fails before any work is done.
-    let csv = csv
-        .map(|path| create(&path).map(|file| (path, file)))
-        .transpose()?;
+    let csv = csv.map(|path| Output::create(&path, "--csv")).transpose()?;
     let save = save
-        .map(|path| create(&path).map(|file| (path, file)))
+        .map(|path| Output::create(&path, "--save"))
         .transpose()?;
-    let start = Instant::now();
-    let interrupted = on_interrupt();
-    let bar = crate::render::progress(model.steps, "steps");
+    let started = Instant::now();
+    let bar = crate::progress::bar(model.steps, "steps");
     let outcome = model.with_threads(|| {
-        let done = run_steps_until(&mut surface, model.steps, &interrupted, &bar)?;
+        let done = run_steps_until(&mut surface, model.steps, &bar)?;
         if let Some([dc, dr]) = follow_shift {
             surface
                 .shift(dc, dr)
                 .map_err(|e| format!("--follow-shift {dc},{dr}: {e}"))?;
         }
-        Ok(done)
+        Ok::<_, String>(done)
     });
     bar.finish_and_clear();
-    if let Err(e) | Ok(Err(e)) = outcome {
-        // Leave no empty output behind that a later --load would only call truncated.
-        for (path, _) in csv.iter().chain(&save) {
-            let _ = std::fs::remove_file(path);
-        }
-        return Err(e);
-    }
-    let steps_run = outcome.unwrap_or(Ok(0)).unwrap_or(0);
-    let seconds = start.elapsed().as_secs_f64();
+    // A failure drops the outputs: the files that were there stay as they were.
+    let steps_run = outcome??;
+    let seconds = started.elapsed().as_secs_f64();
     // The files before the report: a report that cannot be printed leaves them complete.
     let mut wrote = Vec::new();
-    if let Some((path, file)) = csv {
-        write_csv(&surface, file).map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        wrote.push(path);
+    let mut pending = Vec::new();
+    if let Some(out) = csv {
+        let fail = |e: std::io::Error| format!("cannot write {}: {e}", out.path().display());
+        write_csv(&surface, out.file().map_err(fail)?).map_err(fail)?;
+        wrote.push(out.path().to_path_buf());
+        pending.push(output::Pending::File(out));
     }
-    if let Some((path, file)) = save {
+    if let Some(out) = save {
+        let fail = |e: String| format!("cannot write {}: {e}", out.path().display());
+        let file = out.file().map_err(|e| fail(e.to_string()))?;
         surface
             .save(std::io::BufWriter::new(file))
-            .map_err(|e| format!("cannot write {}: {e}", path.display()))?;
-        wrote.push(path);
+            .map_err(|e| fail(e.to_string()))?;
+        wrote.push(out.path().to_path_buf());
+        pending.push(output::Pending::File(out));
     }
+    output::commit_all(pending).map_err(|e| e.to_string())?;
     print_summary(&surface, steps_run, seconds)?;
     for path in &wrote {
         say!("wrote {}", path.display());
     }
     if steps_run < model.steps {
         eprintln!(
-            "springwater: interrupted after {steps_run} of {} steps; {}",
-            model.steps,
-            if wrote.is_empty() {
-                "the summary is the state reached".to_owned()
-            } else {
-                format!(
-                    "{} the state reached",
-                    if wrote.len() == 1 {
-                        "the file holds"
-                    } else {
-                        "the files hold"
-                    }
-                )
+            "springwater: interrupted after {steps_run} of {}; {}",
+            crate::args::count(model.steps, "step"),
+            match wrote.len() {
+                0 => "the summary is the state reached",
+                1 => "the file holds the state reached",
+                _ => "the files hold the state reached",
             }
         );
         std::process::exit(130);
@@ -136,104 +123,29 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     Ok(())
 }
 
-/// A flag that Ctrl-C (SIGINT, or SIGTERM) raises: the steps stop at the next one and the
-/// outputs are written as the run left them. A second Ctrl-C ends the process at once.
-pub fn on_interrupt() -> Arc<AtomicBool> {
-    let flag = Arc::new(AtomicBool::new(false));
-    let raised = flag.clone();
-    // Without a handler (it cannot be installed twice, and WASI has no signals) Ctrl-C
-    // ends the run as before.
-    #[cfg(not(target_family = "wasm"))]
-    let _ = ctrlc::set_handler(move || {
-        if raised.swap(true, Ordering::SeqCst) {
-            std::process::exit(130);
-        }
-    });
-    #[cfg(target_family = "wasm")]
-    drop(raised);
-    flag
-}
-
-/// Steps up to `steps` times, stopping early when `stop` is raised; returns the steps
-/// taken. The bar (drawn only on a terminal) moves every 64 steps.
-pub fn run_steps_until(
-    surface: &mut Surface,
-    steps: u64,
-    stop: &AtomicBool,
-    bar: &indicatif::ProgressBar,
-) -> CliResult<u64> {
-    for done in 0..steps {
-        if stop.load(Ordering::Relaxed) {
-            return Ok(done);
-        }
-        surface.step().map_err(|e| e.to_string())?;
-        if done % 64 == 63 {
-            bar.set_position(done + 1);
-        }
-    }
-    Ok(steps)
-}
-
-/// Parses `DC,DR`: two whole numbers of cells (signed).
+/// Parses `DC,DR`: two whole numbers of cells (signed; the range is checked against the
+/// window's origin before the steps).
 fn cells(v: &str) -> CliResult<[i32; 2]> {
     const WHAT: &str = "--follow-shift DC,DR";
+    let limit = 2 * MAX_ORIGIN_CELLS;
+    let one = |s: &str| -> CliResult<i32> {
+        let d: i64 = number(s, WHAT)?;
+        i32::try_from(d)
+            .ok()
+            .filter(|d| i64::from(*d).abs() <= limit)
+            .ok_or_else(|| {
+                format!(
+                    "{WHAT}: {d} is out of range: a shift moves the window at most \
+                     {MAX_ORIGIN_CELLS} cells from the water's origin"
+                )
+            })
+    };
     match v.split(',').collect::<Vec<_>>()[..] {
-        [dc, dr] => Ok([number(dc, WHAT)?, number(dr, WHAT)?]),
+        [dc, dr] => Ok([one(dc)?, one(dr)?]),
         _ => Err(format!(
             "{WHAT} expects 2 comma-separated whole numbers, got '{v}'"
         )),
     }
-}
-
-/// The surface a command starts from: the snapshot `load` names, with the `--drop`s added,
-/// or the model the flags describe (`model_flag`, the first model flag given, may not come
-/// with `--load`: `what_applies` says which flags do), and the `--floater` balls on it,
-/// released at rest on the calm surface.
-pub fn starting_surface(
-    model: &ModelArgs,
-    model_flag: Option<String>,
-    load: Option<&Path>,
-    floaters: &[[f32; 4]],
-    what_applies: &str,
-) -> CliResult<Surface> {
-    let mut surface = match (load, model_flag) {
-        (Some(_), Some(flag)) => {
-            return Err(format!(
-                "--{flag} cannot be combined with --load: the model comes from the snapshot \
-                 ({what_applies})"
-            ))
-        }
-        (Some(path), None) => {
-            let mut s = load_snapshot(path)?;
-            model.apply_drops(&mut s)?;
-            s
-        }
-        (None, _) => model.surface()?,
-    };
-    for &[x, z, mass, radius] in floaters {
-        surface
-            .add_floater(Floater::sphere(radius, mass, [x, 0.0, z]))
-            .map_err(|e| format!("--floater {x},{z},{mass},{radius}: {e}"))?;
-    }
-    Ok(surface)
-}
-
-/// Reads a snapshot file, naming it in the error.
-pub fn load_snapshot(path: &Path) -> CliResult<Surface> {
-    let file =
-        std::fs::File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let mut s = Surface::load(std::io::BufReader::new(file))
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    crate::args::forced_level(&mut s)?;
-    Ok(s)
-}
-
-/// Steps `steps` times, naming the failing step.
-pub fn run_steps(surface: &mut Surface, steps: u64) -> CliResult<()> {
-    for _ in 0..steps {
-        surface.step().map_err(|e| e.to_string())?;
-    }
-    Ok(())
 }
 
 /// Prints the summary; `steps_run` (this run's steps, not the loaded ones) sets the rate.
@@ -317,11 +229,6 @@ fn peak_memory() -> Option<u64> {
     let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     Some(kib * 1024)
-}
-
-/// Creates an output file, with a one-line error naming it.
-pub fn create(path: &std::path::Path) -> CliResult<std::fs::File> {
-    std::fs::File::create(path).map_err(|e| format!("cannot write {}: {e}", path.display()))
 }
 
 pub fn write_csv(s: &Surface, file: std::fs::File) -> std::io::Result<()> {

@@ -2,24 +2,10 @@
 //! steps, the glTF checked by the Khronos validator, and the caches opened in Blender.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Command;
 
-fn springwater(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_springwater"))
-        .args(args)
-        .output()
-        .unwrap()
-}
-
-fn ok(args: &[&str]) -> String {
-    let out = springwater(args);
-    assert!(
-        out.status.success(),
-        "springwater {args:?}: {}",
-        String::from_utf8_lossy(&out.stderr)
-    );
-    String::from_utf8(out.stdout).unwrap()
-}
+mod common;
+use common::*;
 
 /// A real client's test that cannot run here says why; where CI installed the clients
 /// (`SPRINGWATER_REQUIRE_TOOLS` set), not running one is a failure.
@@ -265,33 +251,35 @@ fn bad_outputs_fail_in_one_line_before_any_frame() {
 }
 
 #[test]
-fn a_full_disk_is_an_error_at_the_frame_not_a_panic() {
-    // /dev/full accepts the open and fails every write.
+fn a_full_disk_is_an_error_not_a_panic_and_the_device_stays() {
+    // /dev/full accepts the open and fails every write. A cache named through a link to
+    // it is written in place, as a stream (a device has no earlier content to keep).
     if !Path::new("/dev/full").exists() {
         println!("skipped: no /dev/full here");
         return;
     }
     let dir = scratch("full");
     std::fs::create_dir_all(&dir).unwrap();
-    let link = dir.join("water_0001.obj");
+    let link = dir.join("full.pc2");
     let _ = std::fs::remove_file(&link);
     std::os::unix::fs::symlink("/dev/full", &link).unwrap();
-    let o = springwater(&[
+    let err = refused(&[
         "bake",
         "--size",
         "9x9",
         "--frames",
         "3",
         "--out",
-        dir.to_str().unwrap(),
+        link.to_str().unwrap(),
     ]);
-    let err = String::from_utf8_lossy(&o.stderr);
-    assert_eq!(o.status.code(), Some(2), "{err}");
-    assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(
-        err.contains("frame 1") && err.contains("No space left"),
-        "{err}"
-    );
+    assert!(err.contains("No space left"), "{err}");
+    assert!(std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(Path::new("/dev/full").exists());
+    // The rest OBJ, a regular file, was discarded with the failed run.
+    assert!(!dir.join("full.obj").exists());
 }
 
 /// Runs `blender -b` on tests/blender/check_bake.py; false (after saying why) if there is
@@ -473,8 +461,18 @@ fn a_bake_continues_from_a_snapshot() {
 }
 
 #[test]
-fn ctrl_c_stops_a_bake_and_leaves_no_partial_file() {
-    let cache = scratch("interrupted.pc2");
+fn ctrl_c_stops_a_bake_and_leaves_the_earlier_cache_as_it_was() {
+    let dir = scratch("interrupted");
+    std::fs::create_dir_all(&dir).unwrap();
+    let cache = dir.join("interrupted.pc2");
+    ok(&line(
+        "bake --size 5x5 --drop 2,2,1,1 --frames 2 --out @",
+        &[&cache],
+    ));
+    let before = (
+        std::fs::read(&cache).unwrap(),
+        std::fs::read(cache.with_extension("obj")).unwrap(),
+    );
     let child = Command::new(env!("CARGO_BIN_EXE_springwater"))
         .args([
             "bake",
@@ -502,10 +500,19 @@ fn ctrl_c_stops_a_bake_and_leaves_no_partial_file() {
     assert!(status.success());
     let out = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(out.status.code(), Some(130), "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(err.contains("interrupted at frame"), "{err}");
-    assert!(!cache.exists() && !cache.with_extension("obj").exists());
+    assert!(err.contains("stopped by Ctrl-C"), "{err}");
+    let after = (
+        std::fs::read(&cache).unwrap(),
+        std::fs::read(cache.with_extension("obj")).unwrap(),
+    );
+    assert!(after == before, "the earlier cache changed");
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        2,
+        "a partial file was left"
+    );
 }
 
 #[test]
@@ -601,23 +608,19 @@ fn a_long_frame_takes_all_its_steps() {
     assert_eq!(obj_positions(&dir.join("water_0002.obj")), want);
 
     // A frame longer than `advance` may ever step is refused before anything is written.
-    let refused = scratch("fps-tiny");
-    let out = springwater(&[
-        "bake",
-        "--size",
-        "9x9",
-        "--frames",
-        "2",
-        "--fps",
-        "0.0001",
-        "--out",
-        refused.to_str().unwrap(),
-    ]);
-    let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
-    assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(err.contains("raise --fps"), "{err}");
-    assert!(!refused.exists());
+    let tiny = scratch("fps-tiny");
+    let err = refused(&line(
+        "bake --size 9x9 --frames 2 --fps 0.0001 --out @",
+        &[&tiny],
+    ));
+    assert!(err.contains("use --fps 0.0060006 or more"), "{err}");
+    // The longer timestep that would fit is past the critical one: not offered.
+    assert!(!err.contains("--dt"), "{err}");
+    assert!(!tiny.exists());
+    // With a tiny timestep, a longer one is the remedy too.
+    let err = refused(&line("bake --size 9x9 --dt 1e-6 --out @", &[&tiny]));
+    assert!(err.contains("--dt 1.0001e-4 or more"), "{err}");
+    assert!(!tiny.exists());
 }
 
 #[test]
@@ -663,7 +666,9 @@ fn rain_a_wake_open_water_and_threads_bake_the_same_bits_on_one_thread_and_two()
 
 #[test]
 fn ctrl_c_during_the_warm_up_steps_stops_the_bake_too() {
-    let cache = scratch("interrupted-warm-up.mdd");
+    let dir = scratch("interrupted-warm-up");
+    std::fs::create_dir_all(&dir).unwrap();
+    let cache = dir.join("interrupted-warm-up.mdd");
     let child = Command::new(env!("CARGO_BIN_EXE_springwater"))
         .args([
             "bake",
@@ -700,8 +705,12 @@ fn ctrl_c_during_the_warm_up_steps_stops_the_bake_too() {
     }
     let out = child.wait_with_output().unwrap();
     let err = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert_eq!(out.status.code(), Some(130), "{err}");
     assert_eq!(err.lines().count(), 1, "{err}");
-    assert!(err.contains("before frame 1; nothing was written"), "{err}");
-    assert!(!cache.exists() && !cache.with_extension("obj").exists());
+    assert!(err.contains("stopped by Ctrl-C"), "{err}");
+    assert_eq!(
+        std::fs::read_dir(&dir).unwrap().count(),
+        0,
+        "a file was left"
+    );
 }

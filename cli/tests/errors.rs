@@ -315,7 +315,7 @@ fn open_water_and_floater_flags_are_checked() {
     refused(&["simulate", "--boundary", "absorbing:0"], "--boundary");
     refused(
         &["simulate", "--size", "40x40", "--boundary", "absorbing:20"],
-        "absorbing width",
+        "--boundary absorbing:20: a 40x40 grid takes an absorbing frame 1 to 19 cells wide",
     );
     refused(&["simulate", "--boundary", "absorbing:x"], "WIDTH");
     refused(&["simulate", "--boundary", "absorbent"], "--boundary");

@@ -13,7 +13,7 @@
 //!
 //! **Streaming.** A GLB puts its JSON chunk (which needs every accessor's length and
 //! `min`/`max`) before its binary chunk, so the binary data is written frame by frame to
-//! a temporary file beside the output (`FILE.glb.part`), and at the end the header and
+//! a scratch file beside the output (removed at the end), and at the end the header and
 //! JSON are written and the binary data copied after them: memory stays the size of one
 //! frame whatever `--frames` is, at the cost of writing the data twice. (Reserving room
 //! for the JSON at the front and seeking back would avoid the copy, but the JSON's length
@@ -25,7 +25,10 @@
 //! a few dozen lines of `format!`. Floats are printed in Rust's shortest round-trip form,
 //! so `min`/`max` match the data exactly, as the Khronos validator checks.
 
-use super::{named, Frame, Rest, Writer};
+use super::{Frame, Rest, Writer};
+use crate::args::CliResult;
+use crate::output::{named, Output, Pending};
+use springwater::Params;
 use std::fmt::Write as _;
 use std::fs::File;
 use std::io::{BufWriter, Seek, Write};
@@ -36,17 +39,35 @@ const UNSIGNED_INT: u32 = 5125;
 const ARRAY_BUFFER: u32 = 34962;
 const ELEMENT_ARRAY_BUFFER: u32 = 34963;
 
-/// The temporary file that holds the binary chunk while frames are written.
-pub fn part_path(out: &Path) -> PathBuf {
-    let mut name = out.as_os_str().to_owned();
-    name.push(".part");
-    PathBuf::from(name)
+/// Refuses, before any step, a bake whose `.glb` would pass the format's 32-bit lengths:
+/// the bytes counted at full detail (the most triangles an eye's LOD can have).
+pub fn check_size(path: &Path, p: &Params, frames: usize, floaters: usize) -> CliResult<()> {
+    let n = (p.cols * p.rows) as u64;
+    let triangles = 2 * (p.cols as u64 - 1) * (p.rows as u64 - 1);
+    let frames = frames as u64;
+    let bytes =
+        n * 32 + triangles * 12 + frames * (n * 24 + 12 + 12 * floaters as u64) + frames * 200;
+    let limit = u32::MAX as u64 - (1 << 20);
+    if bytes > limit {
+        let per_frame = n * 24 + 12 + 12 * floaters as u64 + 200;
+        let most = limit.saturating_sub(n * 32 + triangles * 12) / per_frame;
+        return Err(format!(
+            "--out {}: a .glb holds at most 4 GiB and this bake needs about {:.1} GiB; \
+             bake at most {} of this grid, or a smaller grid, or write .pc2 or .mdd",
+            path.display(),
+            bytes as f64 / (1u64 << 30) as f64,
+            crate::args::count(most, "frame")
+        ));
+    }
+    Ok(())
 }
 
 pub struct Glb {
     path: PathBuf,
-    out: File,
+    out: Output,
     part_path: PathBuf,
+    /// The scratch file (removed when dropped) and a buffered handle on it.
+    _scratch: Output,
     part: BufWriter<File>,
     /// Bytes written to `part`.
     offset: u64,
@@ -66,46 +87,25 @@ pub struct Glb {
 
 impl Glb {
     pub fn create(
-        path: &Path,
+        out: Output,
         rest: &Rest,
         first: &Frame,
         frames: usize,
         fps: f32,
     ) -> std::io::Result<Self> {
         let n = rest.cols * rest.rows;
-        // A GLB's lengths are 32-bit: refuse a bake that cannot fit before any work.
-        let bytes = n as u64 * 32
-            + rest.indices.len() as u64 * 4
-            + frames as u64 * (n as u64 * 24 + 12 + 12 * first.floaters.len() as u64)
-            + frames as u64 * 200;
-        if bytes > u32::MAX as u64 - (1 << 20) {
-            return Err(std::io::Error::new(
-                std::io::ErrorKind::InvalidInput,
-                format!(
-                    "{}: a .glb holds at most 4 GiB and this bake needs about {:.1} GiB; \
-                     bake fewer frames or a smaller grid, or write .pc2 or .mdd",
-                    path.display(),
-                    bytes as f64 / (1u64 << 30) as f64
-                ),
-            ));
-        }
-        let out = File::create(path).map_err(|e| named(path, e))?;
-        let part_path = part_path(path);
-        // Read back at the end, so opened for reading too.
-        let part = std::fs::OpenOptions::new()
-            .read(true)
-            .write(true)
-            .create(true)
-            .truncate(true)
-            .open(&part_path)
-            .map_err(|e| named(&part_path, e))?;
+        let path = out.path().to_path_buf();
+        let scratch = Output::scratch(&path)?;
+        let part_path = scratch.path().to_path_buf();
+        let part = BufWriter::new(scratch.file().map_err(|e| named(&path, e))?);
         let [x, y, z] = first.positions;
         let normals = first.normals;
         let mut glb = Self {
-            path: path.to_path_buf(),
+            path,
             out,
             part_path,
-            part: BufWriter::new(part),
+            _scratch: scratch,
+            part,
             offset: 0,
             frames,
             fps,
@@ -338,7 +338,7 @@ impl Writer for Glb {
         result.map_err(|e| named(&self.part_path, e))
     }
 
-    fn finish(mut self: Box<Self>) -> std::io::Result<()> {
+    fn finish(mut self: Box<Self>) -> std::io::Result<Vec<Pending>> {
         let json = self
             .write_animation()
             .and_then(|json| self.part.flush().map(|()| json))
@@ -353,7 +353,7 @@ impl Writer for Glb {
             let total = u32::try_from(total).map_err(|_| {
                 std::io::Error::new(std::io::ErrorKind::InvalidData, "larger than 4 GiB")
             })?;
-            let mut w = BufWriter::new(&self.out);
+            let mut w = BufWriter::new(self.out.file()?);
             w.write_all(b"glTF")?;
             w.write_all(&2u32.to_le_bytes())?;
             w.write_all(&total.to_le_bytes())?;
@@ -365,11 +365,9 @@ impl Writer for Glb {
             let mut part = self.part.get_ref();
             part.rewind()?;
             std::io::copy(&mut part, &mut w)?;
-            w.flush()?;
-            drop(w);
-            self.out.sync_all()
+            w.flush()
         })();
-        let _ = std::fs::remove_file(&self.part_path);
-        result.map_err(|e| named(&self.path, e))
+        result.map_err(|e| named(&self.path, e))?;
+        Ok(vec![Pending::File(self.out)])
     }
 }

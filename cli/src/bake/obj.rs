@@ -3,16 +3,27 @@
 //! row-major, the triangles as `f a/a/a b/b/b c/c/c` (1-based, counter-clockwise seen
 //! from +y), as `springwater export` writes them.
 
-use super::{create_io, named, Frame, Rest, Writer};
+use super::{Frame, Rest, Writer};
 use crate::args::Short;
+use crate::output::{named, Pending};
 use springwater::mesh::Normals;
 use springwater::refraction::Refraction;
 use std::io::Write;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-/// Writes `frame` with `rest`'s triangles to `path`.
-pub fn write(path: &Path, title: &str, rest: &Rest, frame: &Frame) -> std::io::Result<()> {
-    let mut w = create_io(path)?;
+/// The start of the first line of the rest mesh beside a point cache: a bake may replace
+/// an OBJ that begins so, and no other.
+pub const REST_TITLE: &str = "springwater bake: the rest mesh of";
+
+/// Writes `frame` with `rest`'s triangles to `file` (`path` names it in errors).
+pub fn write(
+    file: std::fs::File,
+    path: &Path,
+    title: &str,
+    rest: &Rest,
+    frame: &Frame,
+) -> std::io::Result<()> {
+    let mut w = std::io::BufWriter::new(file);
     let result = (|| {
         writeln!(w, "# {title}")?;
         mesh(
@@ -57,41 +68,33 @@ pub fn mesh(
 
 /// One OBJ per frame in a directory.
 pub struct Sequence {
-    dir: PathBuf,
+    frames: crate::output::Sequence,
     rest: Rest,
 }
 
 impl Sequence {
-    /// Creates the directory if needed and checks that a frame can be written there.
-    pub fn create(dir: &Path, rest: &Rest) -> std::io::Result<Self> {
-        std::fs::create_dir_all(dir).map_err(|e| {
-            std::io::Error::new(e.kind(), format!("cannot create {}: {e}", dir.display()))
-        })?;
-        let first = frame_path(dir, 1);
-        create_io(&first)?;
-        Ok(Self {
-            dir: dir.to_path_buf(),
+    pub fn new(frames: crate::output::Sequence, rest: &Rest) -> Self {
+        Self {
+            frames,
             rest: Rest {
                 indices: rest.indices.clone(),
                 cols: rest.cols,
                 rows: rest.rows,
             },
-        })
+        }
     }
-}
-
-/// `DIR/water_0001.obj` for frame 1.
-pub fn frame_path(dir: &Path, k: usize) -> PathBuf {
-    dir.join(format!("water_{k:04}.obj"))
 }
 
 impl Writer for Sequence {
     fn frame(&mut self, k: usize, frame: &Frame) -> std::io::Result<()> {
         let title = format!("springwater bake: frame {k}");
-        write(&frame_path(&self.dir, k), &title, &self.rest, frame)
+        let shown = self.frames.path().join(self.frames.name(k));
+        let file =
+            std::fs::File::create(self.frames.frame_path(k)).map_err(|e| named(&shown, e))?;
+        write(file, &shown, &title, &self.rest, frame)
     }
 
-    fn finish(self: Box<Self>) -> std::io::Result<()> {
-        Ok(())
+    fn finish(self: Box<Self>) -> std::io::Result<Vec<Pending>> {
+        Ok(vec![Pending::Frames(self.frames)])
     }
 }

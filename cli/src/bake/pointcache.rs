@@ -11,13 +11,16 @@
 //! scene frame k shows frame k with the Mesh Cache modifier's `frame_start` at 1; the OBJ
 //! is frame 0, the state before the first frame.
 
-use super::{create_io, named, obj, rest_obj_path, Frame, Rest, Writer};
+use super::{obj, Frame, Rest, Writer};
+use crate::output::{named, Output, Pending};
 use std::fs::File;
 use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 pub struct PointCache {
     path: PathBuf,
+    out: Output,
+    rest: Output,
     file: BufWriter<File>,
     big_endian: bool,
     points: usize,
@@ -26,7 +29,8 @@ pub struct PointCache {
 impl PointCache {
     /// Writes the rest OBJ and the cache's header; `mdd` picks MDD over PC2.
     pub fn create(
-        path: &Path,
+        out: Output,
+        rest_obj: Output,
         mdd: bool,
         rest: &Rest,
         first: &Frame,
@@ -42,14 +46,17 @@ impl PointCache {
         };
         let count = i32::try_from(frames).map_err(|_| too_many())?;
         let n = i32::try_from(points).map_err(|_| too_many())?;
-        let mut file = create_io(path)?;
+        let path = out.path().to_path_buf();
+        let mut file = BufWriter::new(out.file().map_err(|e| named(&path, e))?);
         let title = format!(
-            "springwater bake: the rest mesh of {}, frame 0",
+            "{} {}, frame 0",
+            obj::REST_TITLE,
             path.file_name().unwrap_or_default().to_string_lossy()
         );
         // A full-detail mesh, whatever the eye: every node is used, so importers keep
         // every vertex, in order.
-        obj::write(&rest_obj_path(path), &title, rest, first)?;
+        let obj_file = rest_obj.file().map_err(|e| named(rest_obj.path(), e))?;
+        obj::write(obj_file, rest_obj.path(), &title, rest, first)?;
         let header = (|| {
             if mdd {
                 file.write_all(&count.to_be_bytes())?;
@@ -67,9 +74,11 @@ impl PointCache {
             }
             Ok(())
         })();
-        header.map_err(|e| named(path, e))?;
+        header.map_err(|e| named(&path, e))?;
         Ok(Self {
-            path: path.to_path_buf(),
+            path,
+            out,
+            rest: rest_obj,
             file,
             big_endian: mdd,
             points,
@@ -96,11 +105,8 @@ impl Writer for PointCache {
         result.map_err(|e| named(&self.path, e))
     }
 
-    fn finish(mut self: Box<Self>) -> std::io::Result<()> {
-        let result = self
-            .file
-            .flush()
-            .and_then(|()| self.file.get_ref().sync_all());
-        result.map_err(|e| named(&self.path, e))
+    fn finish(mut self: Box<Self>) -> std::io::Result<Vec<Pending>> {
+        self.file.flush().map_err(|e| named(&self.path, e))?;
+        Ok(vec![Pending::File(self.rest), Pending::File(self.out)])
     }
 }
