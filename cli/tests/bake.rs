@@ -624,6 +624,18 @@ fn a_long_frame_takes_all_its_steps() {
 }
 
 #[test]
+fn frames_of_thousands_of_steps_take_every_step_they_mean() {
+    // 100 s frames are 6,000 steps of 0.4 each; the f32 nearest 0.4 is a hair longer, and
+    // that rounding must not cost the second frame a step.
+    let dir = scratch("fps-hundredth");
+    let report = ok(&line(
+        "bake --size 9x9 --drop 4,4,1,2 --frames 2 --fps 0.01 --out @",
+        &[&dir],
+    ));
+    assert!(report.contains(" 12000 steps of 0.4 "), "{report}");
+}
+
+#[test]
 fn rain_a_wake_open_water_and_threads_bake_the_same_bits_on_one_thread_and_two() {
     // Every disturbance and the absorbing frame go through bake, and the thread count
     // changes nothing (the engine's promise, through the command line).

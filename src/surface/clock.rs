@@ -49,6 +49,26 @@ pub enum Overflow {
 /// game time at the defaults).
 pub(crate) const TOLERANCE: f64 = 1e-4;
 
+/// The timestep the game meant: `dt`'s shortest decimal (what `{dt}` prints and what a
+/// caller wrote), read back as an `f64`. The `f32` nearest 0.4 is 0.4000000059604645, so
+/// a frame of 100 s at the default time scale holds 5,999.99991 of those, and a few such
+/// frames in a row would lose a step to the rounding of one `f32` constant; counted in
+/// steps of 0.4 (to `f64` precision) the frame holds 6,000. Deterministic on every
+/// platform: formatting and parsing floats are exact algorithms, not libm. Written into a
+/// buffer on the stack: the clock allocates nothing.
+fn decimal(dt: f32) -> f64 {
+    use std::io::Write;
+    let mut buf = [0u8; 64];
+    let mut out = std::io::Cursor::new(&mut buf[..]);
+    let printed = write!(out, "{dt}").is_ok();
+    let len = out.position() as usize;
+    let meant = std::str::from_utf8(&buf[..len])
+        .ok()
+        .filter(|_| printed)
+        .and_then(|text| text.parse::<f64>().ok());
+    meant.unwrap_or(dt as f64)
+}
+
 /// The accumulator and the cap, one per surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Clock {
@@ -79,7 +99,7 @@ impl Clock {
     /// Adds `model` time to the accumulator and takes out the steps of `dt` to run now:
     /// returns how many, the cap and the overflow rule applied.
     pub fn tick(&mut self, model: f64, dt: f32, time_scale: f32) -> u32 {
-        let dt = dt as f64;
+        let dt = decimal(dt);
         self.owed += model;
         let due = (self.owed / dt + TOLERANCE).floor().max(0.0);
         let steps = due.min(self.max_steps as f64);
@@ -100,7 +120,7 @@ impl Clock {
 
     /// How far the owed time is into the next step, in `[0, 1)`.
     pub fn fraction(&self, dt: f32) -> f32 {
-        let f = (self.owed / dt as f64) as f32;
+        let f = (self.owed / decimal(dt)) as f32;
         if f >= 1.0 {
             // Only when steps are carried past the cap: the renderer is a whole step or
             // more behind, and the nearest it can show is the last state.
@@ -342,6 +362,18 @@ mod tests {
         assert_eq!(c.tick(0.4 * (1.0 - 1e-6), 0.4, 24.0), 1);
         assert_eq!(c.fraction(0.4), 0.0);
         assert_eq!(c.tick(0.4, 0.4, 24.0), 1);
+    }
+
+    /// Frames of thousands of steps of `dt = 0.4`, whose `f32` is a little longer than 0.4:
+    /// each frame takes every step it meant, frame after frame.
+    #[test]
+    fn long_frames_take_every_step_they_mean() {
+        let mut c = clock(10_000, Overflow::Drop);
+        for frame in 0..100 {
+            // 100 s at the default time scale: 6,000 steps of 0.4.
+            assert_eq!(c.tick(100.0 * 24.0, 0.4, 24.0), 6_000, "frame {frame}");
+        }
+        assert_eq!(c.dropped, 0.0);
     }
 
     #[test]
