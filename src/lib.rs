@@ -105,6 +105,7 @@
 mod absorb;
 #[cfg_attr(not(feature = "internals"), allow(dead_code))]
 mod baselines;
+pub mod body;
 pub mod buffers;
 pub mod disturb;
 mod error;
