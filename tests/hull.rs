@@ -288,29 +288,20 @@ fn the_boat_is_a_closed_symmetric_displacement_hull() {
     let mirror = Hull::new(&mirrored, &rewound).unwrap();
     assert!(close(mirror.volume(), boat.volume() as f64, 1e-6));
     // Coarse and fine boats agree on the volume to a few per cent.
-    let coarse = BoatShape {
-        stations: 10,
-        segments: 3,
-        ..shape
-    }
-    .hull()
-    .unwrap();
+    let mut coarse = shape;
+    coarse.stations = 10;
+    coarse.segments = 3;
+    let coarse = coarse.hull().unwrap();
     assert!(((coarse.volume() / boat.volume()) - 1.0).abs() < 0.05);
-    for bad in [
-        BoatShape { beam: 0.0, ..shape },
-        BoatShape {
-            length: f32::NAN,
-            ..shape
-        },
-        BoatShape {
-            stations: 1,
-            ..shape
-        },
-        BoatShape {
-            segments: 2000,
-            ..shape
-        },
-    ] {
+    let bad_shapes: [fn(&mut BoatShape); 4] = [
+        |b| b.beam = 0.0,
+        |b| b.length = f32::NAN,
+        |b| b.stations = 1,
+        |b| b.segments = 2000,
+    ];
+    for change in bad_shapes {
+        let mut bad = shape;
+        change(&mut bad);
         assert!(
             matches!(bad.hull(), Err(Error::InvalidParam { .. })),
             "{bad:?}"
@@ -367,4 +358,20 @@ fn inertia_is_symmetric_and_scales_with_mass() {
         .iter()
         .all(|d| d.abs() < 1e-5 * ten.x_axis.x));
     let _ = (Mat3::IDENTITY, Quat::IDENTITY);
+}
+
+#[cfg(feature = "serde")]
+#[test]
+fn a_hull_goes_through_serde_and_is_validated_on_the_way_back() {
+    let boat = BoatShape::default().hull().unwrap();
+    let json = serde_json::to_string(&boat).unwrap();
+    let back: Hull = serde_json::from_str(&json).unwrap();
+    assert_eq!(back, boat);
+    // One triangle dropped: the file no longer describes a closed mesh.
+    let mut value: serde_json::Value = serde_json::from_str(&json).unwrap();
+    value["triangles"].as_array_mut().unwrap().pop();
+    let error = serde_json::from_value::<Hull>(value)
+        .unwrap_err()
+        .to_string();
+    assert!(error.contains("the mesh is open"), "{error}");
 }

@@ -24,11 +24,16 @@ use crate::params;
 ///
 /// let boat = BoatShape::default().hull()?;
 /// assert_eq!(boat.triangles().len(), 2024);
-/// let coarse = BoatShape { stations: 12, segments: 4, ..BoatShape::default() }.hull()?;
-/// assert_eq!(coarse.triangles().len(), 4 * 12 * 4 + 2 * 12 + 2 * 4);
+/// let mut coarse = BoatShape::default();
+/// (coarse.stations, coarse.segments) = (12, 4);
+/// assert_eq!(coarse.hull()?.triangles().len(), 4 * 12 * 4 + 2 * 12 + 2 * 4);
 /// # Ok::<(), springwater::Error>(())
 /// ```
+///
+/// `#[non_exhaustive]` (a dimension may come): start from [`BoatShape::default`] and
+/// assign the fields to change.
 #[derive(Debug, Clone, Copy, PartialEq)]
+#[non_exhaustive]
 pub struct BoatShape {
     /// Length overall, transom to stem, world units (default 6).
     pub length: f32,

@@ -61,7 +61,15 @@ use glam::{DVec3, Mat3, Vec3};
 /// assert!((inertia.x_axis.x - 8.0 * (0.25 + 1.0) / 3.0).abs() < 1e-6);
 /// # Ok::<(), springwater::Error>(())
 /// ```
+///
+/// With the `serde` feature a hull is written as its `vertices` and `triangles`, and read
+/// back through [`Hull::new`], so a damaged or edited file cannot make an invalid hull.
 #[derive(Debug, Clone, PartialEq)]
+#[cfg_attr(
+    feature = "serde",
+    derive(serde::Serialize, serde::Deserialize),
+    serde(into = "HullMesh", try_from = "HullMesh")
+)]
 pub struct Hull {
     vertices: Vec<[f32; 3]>,
     triangles: Vec<[u32; 3]>,
@@ -198,6 +206,33 @@ impl Hull {
             out.push_str(&format!("f {} {} {}\n", a + 1, b + 1, c + 1));
         }
         out
+    }
+}
+
+/// What serde writes and reads of a hull: the mesh, validated again on reading.
+#[cfg(feature = "serde")]
+#[derive(serde::Serialize, serde::Deserialize)]
+struct HullMesh {
+    vertices: Vec<[f32; 3]>,
+    triangles: Vec<[u32; 3]>,
+}
+
+#[cfg(feature = "serde")]
+impl From<Hull> for HullMesh {
+    fn from(hull: Hull) -> Self {
+        Self {
+            vertices: hull.vertices,
+            triangles: hull.triangles,
+        }
+    }
+}
+
+#[cfg(feature = "serde")]
+impl TryFrom<HullMesh> for Hull {
+    type Error = Error;
+
+    fn try_from(mesh: HullMesh) -> Result<Self> {
+        Hull::new(&mesh.vertices, &mesh.triangles)
     }
 }
 

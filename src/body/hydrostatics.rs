@@ -66,8 +66,10 @@ use crate::{params, Buoyancy};
 use glam::{DVec3, Quat, Vec2, Vec3};
 
 /// What the water does to a hull in one pose: [`Hull::submerged`]. World frame, world
-/// units; forces in mass units × world units per second².
+/// units; forces in mass units × world units per second². `#[non_exhaustive]`: a
+/// quantity may come.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
 pub struct Submerged {
     /// The volume below the water, cubic world units (`F_y / (ρ g)`, zero when dry).
     pub volume: f32,
@@ -83,7 +85,9 @@ pub struct Submerged {
 }
 
 /// The water surface's section through a hull, projected on the horizontal plane.
+/// `#[non_exhaustive]`: a quantity may come.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[non_exhaustive]
 pub struct Waterplane {
     /// Area, square world units (zero when the hull is dry or wholly under).
     pub area: f32,
