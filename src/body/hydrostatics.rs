@@ -31,19 +31,21 @@
 //! closed wet region into volume integrals, and the lid contributes nothing to any of them
 //! because the depth vanishes on it:
 //!
-//! * `F = ρ g V ŷ` with `V` the submerged volume, and the buoyancy acts through the
-//!   centroid of that volume: `τ = (B − o) × F`;
+//! * in flat water, `F = ρ g V ŷ` with `V` the submerged volume, and the buoyancy acts
+//!   through the centroid `B` of that volume: `τ = (B − o) × F`;
 //! * the submerged volume itself is `V = −∫_W d n_y dA` (the field `(0, −d, 0)` has
 //!   divergence 1 and vanishes on the lid), and its first moments are
 //!   `∫ x dV = −∫_W x d n_y dA`, the same for z, and `∫ y dV = −∫_W d (y + d/2) n_y dA`;
 //! * the waterplane (the lid, seen from above) has `∫ f dA = −∫_W f n_y dA` for any
-//!   `f(x, z)`, which gives its area, centre and second moments.
+//!   `f(x, z)`, which gives its area, centre and second moments; Stokes' theorem turns
+//!   that into an integral along the wet surface's edge, the waterline, so only the
+//!   triangles the waterline cuts add to it.
 //!
-//! These hold for any water surface that is one height per `(x, z)`: for waves, `V` is
-//! the volume below the water's surface (taken linear across each triangle), the force
-//! also has horizontal parts (the pressure on a slope), and everything is still the
-//! integral of the pressure over the clipped triangles. Against a flat plane every result
-//! is exact to rounding.
+//! The last two hold for any water surface that is one height per `(x, z)`: on waves, `V`
+//! is the volume below the water's surface (taken linear across each triangle) and still
+//! `F_y / (ρ g)`, the force also has horizontal parts (the pressure on a slope), and
+//! force and torque are still the integrals of the pressure over the clipped triangles.
+//! Against a flat plane every result is exact to rounding.
 //!
 //! **Why triangles rather than columns.** Columns under the hull (a grid of vertical rays
 //! through the mesh, each column's submerged length) make Archimedes hold only to the
