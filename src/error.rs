@@ -157,6 +157,12 @@ pub enum Error {
     )]
     JobSystem,
 
+    /// A hull mesh ([`Hull::new`](crate::body::Hull::new)) is not a closed, outward-wound,
+    /// finite triangle mesh of the allowed size. The message names the first vertex,
+    /// triangle or edge at fault and how to repair it.
+    #[error("hull mesh refused: {0}")]
+    InvalidHull(String),
+
     /// A snapshot could not be read: truncated, corrupted, or from another format version.
     #[error("snapshot refused: {0}")]
     Snapshot(String),

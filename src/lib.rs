@@ -106,6 +106,7 @@
 mod absorb;
 #[cfg(feature = "internals")]
 mod baselines;
+pub mod body;
 pub mod buffers;
 pub mod disturb;
 mod error;
