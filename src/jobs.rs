@@ -309,3 +309,51 @@ impl<'a, T> Disjoint<'a, T> {
         unsafe { std::slice::from_raw_parts_mut(self.ptr.add(range.start), range.len()) }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Breaks the contract every way at once: runs each task but the last twice, calls
+    /// indices past the count, and never runs the last task.
+    struct Careless;
+
+    impl JobSystem for Careless {
+        fn workers(&self) -> usize {
+            3
+        }
+        fn run(&self, count: usize, task: &(dyn Fn(usize) + Sync)) {
+            let some = 0..count.saturating_sub(1);
+            some.clone().chain(some.rev()).for_each(task);
+            (count..count + 4).for_each(task);
+        }
+    }
+
+    /// Every unit of every buffer is handed out once, to the task of its range, for every
+    /// length around the unit and the task size, whatever the runner does.
+    #[test]
+    fn each_task_gets_its_own_part_of_every_buffer_once() {
+        let careless = Careless;
+        for runner in [Runner::Here, Runner::Jobs(&careless)] {
+            for len in [0, 1, 6, 7, 8, 49, 50, 51, 333, 1000] {
+                let (mut a, mut b) = (vec![0usize; len], vec![0usize; len]);
+                let parts = [Some(&mut a[..]), Some(&mut b[..]), None];
+                let unit = 7;
+                for_each_part(runner, len, unit, 20, parts, &|range, [a, b, none]| {
+                    assert!(range.start % unit == 0 && range.start < range.end);
+                    assert!(range.len() == unit || range.end == len);
+                    assert!(none.is_none());
+                    for part in [a, b] {
+                        let part = part.expect("a buffer's part");
+                        assert_eq!(part.len(), range.len());
+                        for (k, x) in part.iter_mut().enumerate() {
+                            *x += range.start + k + 1;
+                        }
+                    }
+                });
+                let once: Vec<usize> = (1..=len).collect();
+                assert!(a == once && b == once, "{runner:?}, {len} nodes");
+            }
+        }
+    }
+}
