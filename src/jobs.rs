@@ -165,13 +165,6 @@ pub(crate) trait Split: Sized + Send {
     fn split(self, at: usize) -> (Self, Self);
 }
 
-/// Nothing to split: tasks that write through other means, or only read.
-impl Split for () {
-    fn split(self, _: usize) -> (Self, Self) {
-        ((), ())
-    }
-}
-
 impl<T: Send> Split for &mut [T] {
     fn split(self, at: usize) -> (Self, Self) {
         self.split_at_mut(at)
@@ -207,10 +200,10 @@ impl<S: Split + Default, const K: usize> Split for [S; K] {
 /// split off before the batch and kept behind a lock, and running a task first takes its
 /// part out. A job system that repeats a task runs it once, one that invents indices runs
 /// nothing for them, and a task a job system skipped runs on the calling thread after the
-/// batch. So tasks write disjoint parts of the outputs, in safe code. What the outputs
-/// being complete when this returns relies on is [`JobSystem::run`]'s contract that no
-/// call of the task outlives `run`: safe Rust cannot break it (the task is borrowed for
-/// the call), a C host must keep it (`finish_task` waits for every item).
+/// batch. So tasks write disjoint parts of the outputs, in safe code. That every part is
+/// written when this returns rests on [`JobSystem::run`]'s contract that no call of the
+/// task outlives `run`: safe Rust cannot break it (the task is borrowed for the call), a
+/// C host must keep it (`finish_task` waits for every item).
 pub(crate) fn for_each_part<P: Split>(
     runner: Runner<'_>,
     len: usize,
