@@ -11,11 +11,13 @@
 //! * `interleave_vertices`: packed `Vertex` buffer (position, normal, uv) from the SoA
 //!   slices; `interleave_all`: that plus separate position, normal and uv buffers, in the
 //!   same pass (the aim is a tenth of `step` or less; it is memory-bound, so the ratio
-//!   grows on grids that outgrow the caches).
+//!   grows on grids that outgrow the caches);
+//! * `fill_frame_vertices`: normals, refraction and the packed `Vertex` buffer in one pass
+//!   (the same buffer as `normals_and_refraction` then `interleave_vertices`).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::Vec3;
-use springwater::buffers::{interleave, Vertex, VertexBuffers};
+use springwater::buffers::{fill_frame, interleave, Vertex, VertexBuffers};
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use springwater::refraction::{normals_and_refraction, refract, Refraction, RefractionParams};
 use springwater::{Params, Surface};
@@ -97,6 +99,15 @@ fn render(c: &mut Criterion) {
                     vertices: Some(&mut vertices),
                 };
                 interleave(black_box(&view), &normals, &uv, out).unwrap()
+            })
+        });
+        g.bench_function(BenchmarkId::new("fill_frame_vertices", &size), |b| {
+            b.iter(|| {
+                let out = VertexBuffers {
+                    vertices: Some(&mut vertices),
+                    ..Default::default()
+                };
+                fill_frame(black_box(&view), eye, &optics, out).unwrap()
             })
         });
 

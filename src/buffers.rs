@@ -48,7 +48,7 @@
 use std::ops::Range;
 
 use crate::error::{same_length, Result};
-use crate::jobs::{for_each_range, Disjoint, Runner};
+use crate::jobs::{for_each_part, Runner, Split};
 use crate::mesh::Normals;
 use crate::refraction::{Refraction, RefractionParams, Refractor};
 use crate::view::MeshView;
@@ -109,7 +109,7 @@ pub fn interleave(
         n: [&normals.x, &normals.y, &normals.z],
         uv: [&uv.u, &uv.v],
     };
-    split(view.runner(), src, out);
+    fill_blocks(view.runner(), src, out);
     Ok(())
 }
 
@@ -152,20 +152,25 @@ pub fn fill_frame(
     let k = Refractor::new(view, eye, params)?;
     let (n, cols) = (view.grid().node_count(), view.cols());
     check(n, &out)?;
-    let parts = Parts::new(out);
     let rows_per_block = (FRAME_BLOCK / cols).max(1);
-    for_each_range(view.runner(), n, rows_per_block * cols, BLOCK, &|nodes| {
-        with_scratch(nodes.len(), |[nx, ny, nz, u, v, fresnel]| {
-            k.rows(view, nodes.start / cols, [nx, ny, nz], [u, v, fresnel]);
-            let src = Source {
-                p: [view.x(), view.y(), view.z()].map(|c| &c[nodes.clone()]),
-                n: [&*nx, &*ny, &*nz],
-                uv: [&*u, &*v],
-            };
-            // SAFETY: `for_each_range` runs each block once and blocks do not overlap.
-            fill(src, unsafe { parts.range(nodes) });
-        })
-    });
+    for_each_part(
+        view.runner(),
+        n,
+        rows_per_block * cols,
+        BLOCK,
+        out,
+        &|nodes, out| {
+            with_scratch(nodes.len(), |[nx, ny, nz, u, v, fresnel]| {
+                k.rows(view, nodes.start / cols, [nx, ny, nz], [u, v, fresnel]);
+                let src = Source {
+                    p: [view.x(), view.y(), view.z()].map(|c| &c[nodes.clone()]),
+                    n: [&*nx, &*ny, &*nz],
+                    uv: [&*u, &*v],
+                };
+                fill(src, out);
+            })
+        },
+    );
     Ok(())
 }
 
@@ -250,49 +255,34 @@ impl Source<'_> {
     }
 }
 
-/// The output buffers, for the tasks to take their nodes of.
-struct Parts<'a> {
-    positions: Option<Disjoint<'a, [f32; 3]>>,
-    normals: Option<Disjoint<'a, [f32; 3]>>,
-    uvs: Option<Disjoint<'a, [f32; 2]>>,
-    vertices: Option<Disjoint<'a, Vertex>>,
-}
-
-impl<'a> Parts<'a> {
-    fn new(out: VertexBuffers<'a>) -> Self {
-        Self {
-            positions: out.positions.map(Disjoint::new),
-            normals: out.normals.map(Disjoint::new),
-            uvs: out.uvs.map(Disjoint::new),
-            vertices: out.vertices.map(Disjoint::new),
-        }
-    }
-
-    /// The nodes `r` of every buffer.
-    ///
-    /// # Safety
-    ///
-    /// No other task may hold nodes overlapping `r` at the same time.
-    unsafe fn range(&self, r: Range<usize>) -> VertexBuffers<'a> {
-        // SAFETY: the caller holds these nodes alone.
-        unsafe {
-            VertexBuffers {
-                positions: self.positions.as_ref().map(|d| d.part(r.clone())),
-                normals: self.normals.as_ref().map(|d| d.part(r.clone())),
-                uvs: self.uvs.as_ref().map(|d| d.part(r.clone())),
-                vertices: self.vertices.as_ref().map(|d| d.part(r.clone())),
-            }
-        }
+/// A task's nodes of every buffer.
+impl Split for VertexBuffers<'_> {
+    fn split(self, at: usize) -> (Self, Self) {
+        let (positions, positions_rest) = self.positions.split(at);
+        let (normals, normals_rest) = self.normals.split(at);
+        let (uvs, uvs_rest) = self.uvs.split(at);
+        let (vertices, vertices_rest) = self.vertices.split(at);
+        let head = VertexBuffers {
+            positions,
+            normals,
+            uvs,
+            vertices,
+        };
+        let tail = VertexBuffers {
+            positions: positions_rest,
+            normals: normals_rest,
+            uvs: uvs_rest,
+            vertices: vertices_rest,
+        };
+        (head, tail)
     }
 }
 
 /// Every node, in tasks of whole blocks run by the view's runner, each block filled while
 /// its inputs are in cache. Every element is written by the same code on any thread.
-fn split(runner: Runner<'_>, src: Source<'_>, out: VertexBuffers<'_>) {
-    let parts = Parts::new(out);
-    for_each_range(runner, src.len(), BLOCK, BLOCK, &|block| {
-        // SAFETY: `for_each_range` runs each block once and blocks do not overlap.
-        fill(src.range(block.clone()), unsafe { parts.range(block) });
+fn fill_blocks(runner: Runner<'_>, src: Source<'_>, out: VertexBuffers<'_>) {
+    for_each_part(runner, src.len(), BLOCK, BLOCK, out, &|block, out| {
+        fill(src.range(block), out)
     });
 }
 

@@ -9,7 +9,7 @@
 //! wait from a worker thread works too.
 //!
 //! The render-side stages read a surface through its [`MeshView`](crate::MeshView), which
-//! carries the same host: [`for_each_range`] cuts their outputs into tasks for it, and
+//! carries the same host: [`for_each_part`] cuts their outputs into tasks for it, and
 //! calls [`JobSystem::run`] once per stage from the thread that called the stage (never
 //! from inside a task either). A stage called from inside one of the host's own jobs
 //! therefore needs a job system that can wait there.
@@ -19,8 +19,7 @@
 //! and a single thread give the same state.
 
 use std::ops::Range;
-use std::sync::atomic::{AtomicBool, Ordering};
-use std::sync::Arc;
+use std::sync::{Arc, Mutex, PoisonError};
 
 /// A host's job system that runs the engine's colour batches on its own threads.
 ///
@@ -157,24 +156,61 @@ impl Runner<'_> {
     }
 }
 
-/// Runs `task(unit)` for every unit of `0..len` cut into `unit`-long ranges (the last may
-/// be shorter), the units grouped into tasks at least `min_len` long run by `runner`: as
-/// many tasks as that allows on rayon (whose work stealing balances them), about four per
-/// worker for a job system (whose tasks may each cost a hand-over).
+/// Output buffers a stage's tasks each take their own nodes of: one element per node (or
+/// per element of whatever `len` of [`for_each_part`] counts), split at a node into the
+/// nodes before and the nodes from it on. Splitting moves the borrow, so the parts of one
+/// buffer never overlap, and a task that holds a part holds it alone.
+pub(crate) trait Split: Sized + Send {
+    /// `(self[..at], self[at..])`, in nodes. Panics if `self` holds fewer than `at`.
+    fn split(self, at: usize) -> (Self, Self);
+}
+
+impl<T: Send> Split for &mut [T] {
+    fn split(self, at: usize) -> (Self, Self) {
+        self.split_at_mut(at)
+    }
+}
+
+/// An optional buffer: `None` splits into two `None`s.
+impl<S: Split> Split for Option<S> {
+    fn split(self, at: usize) -> (Self, Self) {
+        self.map(|s| s.split(at)).unzip()
+    }
+}
+
+/// Several buffers of one length, split at the same node.
+impl<S: Split + Default, const K: usize> Split for [S; K] {
+    fn split(mut self, at: usize) -> (Self, Self) {
+        let head = self.each_mut().map(|s| {
+            let (head, tail) = std::mem::take(s).split(at);
+            *s = tail;
+            head
+        });
+        (head, self)
+    }
+}
+
+/// Runs `task(range, part)` for every unit of `0..len` cut into `unit`-long ranges (the
+/// last may be shorter), `part` being `parts`' elements of `range` ([`Split`]); the units
+/// are grouped into tasks at least `min_len` long run by `runner`: as many tasks as that
+/// allows on rayon (whose work stealing balances them), about four per worker for a job
+/// system (whose tasks may each cost a hand-over).
 ///
-/// Every unit runs exactly once, whatever indices the runner passes: a task is claimed
-/// before it runs, so a job system that repeats a task runs it once, one that invents
-/// indices runs nothing for them, and a task a job system skipped runs on the calling
-/// thread after the batch. Tasks may therefore write disjoint parts of one buffer
-/// ([`Disjoint`]) by their unit. What this relies on is [`JobSystem::run`]'s contract
-/// that no call of the task outlives `run`: safe Rust cannot break it (the task is
-/// borrowed for the call), a C host must keep it (`finish_task` waits for every item).
-pub(crate) fn for_each_range(
+/// Every unit runs exactly once, whatever indices the runner passes: each task's part is
+/// split off before the batch and kept behind a lock, and running a task first takes its
+/// part out. A job system that repeats a task runs it once, one that invents indices runs
+/// nothing for them, and a task a job system skipped runs on the calling thread after the
+/// batch. So tasks write disjoint parts of the outputs, in safe code. That every part is
+/// written when this returns rests on [`JobSystem::run`]'s contract that no call of the
+/// task outlives `run`: safe Rust cannot break it (the task is borrowed for the call), a
+/// C host must keep it (`finish_task` waits for every item).
+pub(crate) fn for_each_part<P: Split>(
     runner: Runner<'_>,
     len: usize,
     unit: usize,
     min_len: usize,
-    task: &(dyn Fn(Range<usize>) + Sync),
+    parts: P,
+    task: &(dyn Fn(Range<usize>, P) + Sync),
 ) {
     let unit = unit.max(1);
     let units = len.div_ceil(unit);
@@ -184,38 +220,50 @@ pub(crate) fn for_each_range(
     };
     let per = min_len.div_ceil(unit).max(per_worker).max(1);
     let count = units.div_ceil(per);
-    // Task `i`: its units, one after the other.
-    let run = |i: usize| {
-        for first in (i * per..((i + 1) * per).min(units)).map(|u| u * unit) {
-            task(first..(first + unit).min(len));
+    // A task's nodes, with their part: its units, one after the other.
+    let run = |nodes: Range<usize>, mut part: P| {
+        for first in nodes.clone().step_by(unit) {
+            let end = (first + unit).min(nodes.end);
+            let (head, rest) = part.split(end - first);
+            task(first..end, head);
+            part = rest;
         }
     };
     if count <= 1 {
-        (0..count).for_each(run);
+        run(0..len, parts);
         return;
     }
-    let claims: Vec<AtomicBool> = (0..count).map(|_| AtomicBool::new(false)).collect();
-    let claim = |i: usize| {
-        claims
-            .get(i)
-            .is_some_and(|c| !c.swap(true, Ordering::AcqRel))
+    let span = per * unit;
+    let nodes = |i: usize| i * span..((i + 1) * span).min(len);
+    let mut tasks = Vec::with_capacity(count);
+    let mut rest = parts;
+    for i in 0..count {
+        let (head, tail) = rest.split(nodes(i).len());
+        tasks.push(Mutex::new(Some(head)));
+        rest = tail;
+    }
+    // Task `i`'s part, for the one call that takes it first. The lock is never held while
+    // anything can panic, so it is never poisoned; taking the part regardless keeps that
+    // an argument, not an assumption.
+    let claim = |i: usize| -> Option<P> {
+        let slot = tasks.get(i)?;
+        slot.lock().unwrap_or_else(PoisonError::into_inner).take()
     };
     runner.run(count, &|i| {
-        if claim(i) {
-            run(i)
+        if let Some(part) = claim(i) {
+            run(nodes(i), part)
         }
     });
     for i in 0..count {
-        if claim(i) {
-            run(i);
+        if let Some(part) = claim(i) {
+            run(nodes(i), part);
         }
     }
 }
 
 /// A mutable slice that tasks running at once take disjoint parts of: which part a task
-/// takes follows from its index (the engine's bands, [`for_each_range`]'s ranges), and a
-/// claim makes sure each index runs at most once, whatever the job system does, so no
-/// part is ever taken twice.
+/// takes follows from its index (the engine's bands), and a claim makes sure each index
+/// runs at most once, whatever the job system does, so no part is ever taken twice.
 pub(crate) struct Disjoint<'a, T> {
     ptr: *mut T,
     len: usize,
@@ -252,5 +300,53 @@ impl<'a, T> Disjoint<'a, T> {
         // SAFETY: in bounds (checked above) of a slice borrowed mutably for `'a`; the
         // caller guarantees no overlapping part is alive.
         unsafe { std::slice::from_raw_parts_mut(self.ptr.add(range.start), range.len()) }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Breaks the contract every way at once: runs each task but the last twice, calls
+    /// indices past the count, and never runs the last task.
+    struct Careless;
+
+    impl JobSystem for Careless {
+        fn workers(&self) -> usize {
+            3
+        }
+        fn run(&self, count: usize, task: &(dyn Fn(usize) + Sync)) {
+            let some = 0..count.saturating_sub(1);
+            some.clone().chain(some.rev()).for_each(task);
+            (count..count + 4).for_each(task);
+        }
+    }
+
+    /// Every unit of every buffer is handed out once, to the task of its range, for every
+    /// length around the unit and the task size, whatever the runner does.
+    #[test]
+    fn each_task_gets_its_own_part_of_every_buffer_once() {
+        let careless = Careless;
+        for runner in [Runner::Here, Runner::Jobs(&careless)] {
+            for len in [0, 1, 6, 7, 8, 49, 50, 51, 333, 1000] {
+                let (mut a, mut b) = (vec![0usize; len], vec![0usize; len]);
+                let parts = [Some(&mut a[..]), Some(&mut b[..]), None];
+                let unit = 7;
+                for_each_part(runner, len, unit, 20, parts, &|range, [a, b, none]| {
+                    assert!(range.start % unit == 0 && range.start < range.end);
+                    assert!(range.len() == unit || range.end == len);
+                    assert!(none.is_none());
+                    for part in [a, b] {
+                        let part = part.expect("a buffer's part");
+                        assert_eq!(part.len(), range.len());
+                        for (k, x) in part.iter_mut().enumerate() {
+                            *x += range.start + k + 1;
+                        }
+                    }
+                });
+                let once: Vec<usize> = (1..=len).collect();
+                assert!(a == once && b == once, "{runner:?}, {len} nodes");
+            }
+        }
     }
 }

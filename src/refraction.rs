@@ -66,7 +66,8 @@
 
 use crate::error::{same_length, Error, Result};
 use crate::mesh::Normals;
-use crate::simd::{Chunks, ChunksMut, Vector};
+use crate::mesh::{load, store, xyz_chunks, xyz_chunks_mut};
+use crate::simd::Vector;
 use crate::view::MeshView;
 use glam::Vec3;
 
@@ -355,28 +356,13 @@ impl crate::simd::Kernel for RefractChunk<'_, '_, '_> {
             out,
         } = self;
         let c = Consts::<V>::new(k);
-        // Chunk views cut to exactly `count` chunks: reading them below needs no bounds
-        // check the compiler cannot prove.
-        let count = out[0].len() / V::LANES;
-        let at = |s| Chunks::<V>::new(s, start, count);
-        let p = [at(view.x()), at(view.y()), at(view.z())];
-        let n = normals.map(|s| Chunks::<V>::new(s, 0, count));
-        let mut o = out.map(|s| ChunksMut::<V>::new(s, 0, count));
-        for i in 0..count {
-            // SAFETY: `i < count`, the length of every view.
-            let (pi, ni) = unsafe {
-                (
-                    [p[0].get(i), p[1].get(i), p[2].get(i)],
-                    [n[0].get(i), n[1].get(i), n[2].get(i)],
-                )
-            };
-            let r = refract_lanes(&c, pi, ni);
-            for (o, r) in o.iter_mut().zip(r) {
-                // SAFETY: as above.
-                unsafe { o.put(i, r) };
-            }
+        let len = out[0].len() / V::LANES * V::LANES;
+        let p = xyz_chunks::<V>([view.x(), view.y(), view.z()], start, len);
+        let n = xyz_chunks::<V>(normals, 0, len);
+        for ((p, n), o) in p.zip(n).zip(xyz_chunks_mut::<V>(out, 0, len)) {
+            store(o, refract_lanes(&c, load(p), load(n)));
         }
-        count * V::LANES
+        len
     }
 }
 

@@ -46,18 +46,20 @@
 //! # Ok::<(), springwater::Error>(())
 //! ```
 
+mod lanes;
 mod lod;
 pub(crate) mod normals;
 
+pub(crate) use lanes::{load, store, xyz_chunks, xyz_chunks_mut};
 pub use lod::{LodMesh, LodParams};
 pub(crate) use normals::normals_row;
 
-use crate::jobs::{for_each_range, Disjoint, Runner};
+use crate::jobs::{for_each_part, Runner};
 pub use normals::{compute_normals, Normals};
 
 /// Runs `f(chunk_index, bufs[chunk])` on matching chunks of `len` elements of `K` equally
 /// long buffers, the chunks grouped into tasks of a few thousand elements run by `runner`
-/// ([`for_each_range`]). Each chunk is computed by the same code on any thread, so results
+/// ([`for_each_part`]). Each chunk is computed by the same code on any thread, so results
 /// do not depend on threads.
 pub(crate) fn for_each_chunk<const K: usize, F>(
     runner: Runner<'_>,
@@ -70,10 +72,7 @@ pub(crate) fn for_each_chunk<const K: usize, F>(
     let n = out[0].len();
     debug_assert!(out.iter().all(|b| b.len() == n));
     let len = len.max(1);
-    let parts = out.map(Disjoint::new);
-    for_each_range(runner, n, len, 4096, &|chunk| {
-        // SAFETY: `for_each_range` runs each chunk once and chunks do not overlap.
-        let bufs = parts.each_ref().map(|p| unsafe { p.part(chunk.clone()) });
-        f(chunk.start / len, bufs);
+    for_each_part(runner, n, len, 4096, out, &|chunk, bufs| {
+        f(chunk.start / len, bufs)
     });
 }

@@ -1,6 +1,7 @@
 //! Per-node normals ([`compute_normals`]; its docs give the method).
 
-use crate::simd::{Chunks, ChunksMut, Kernel, Vector};
+use super::{load, store, xyz_chunks, xyz_chunks_mut};
+use crate::simd::{Kernel, Vector};
 use crate::view::MeshView;
 
 /// Unit normals, one per node, row-major: `x[i], y[i], z[i]` is node `i`'s normal.
@@ -134,43 +135,29 @@ impl Kernel for NormalsRow<'_, '_, '_> {
         let here = row * cols;
         let up = row.saturating_sub(1) * cols;
         let down = (row + 1).min(view.rows() - 1) * cols;
-        let (x, y, z) = (view.x(), view.y(), view.z());
+        let xyz = [view.x(), view.y(), view.z()];
         let [ox, oy, oz] = out;
         // Chunk k covers columns 1 + k·LANES ..; it reads one column either side, so the
-        // chunks stop before the last column. Views cut to `count` chunks need no further
-        // bounds checks.
+        // chunks stop before the last column.
         let count = cols.saturating_sub(2) / V::LANES;
-        let at = |s, from| Chunks::<V>::new(s, from, count);
-        let (lx, ly, lz) = (at(x, here), at(y, here), at(z, here));
-        let (rx, ry, rz) = (at(x, here + 2), at(y, here + 2), at(z, here + 2));
-        let (ux_, uy_, uz_) = (at(x, up + 1), at(y, up + 1), at(z, up + 1));
-        let (dx_, dy_, dz_) = (at(x, down + 1), at(y, down + 1), at(z, down + 1));
-        let mut o = [&mut *ox, &mut *oy, &mut *oz].map(|s| ChunksMut::<V>::new(s, 1, count));
+        let len = count * V::LANES;
+        let at = |from| xyz_chunks::<V>(xyz, from, len);
+        let sides = at(here).zip(at(here + 2));
+        let above_below = at(up + 1).zip(at(down + 1));
+        let outs = xyz_chunks_mut::<V>([&mut *ox, &mut *oy, &mut *oz], 1, len);
         let (tiny, huge) = (V::splat(f32::MIN_POSITIVE), V::splat(f32::INFINITY));
-        for k in 0..count {
-            // SAFETY: `k < count`, the length of every view.
-            let [n, ok] = unsafe {
-                let (ux, uy, uz) = (
-                    rx.get(k) - lx.get(k),
-                    ry.get(k) - ly.get(k),
-                    rz.get(k) - lz.get(k),
-                );
-                let (vx, vy, vz) = (
-                    dx_.get(k) - ux_.get(k),
-                    dy_.get(k) - uy_.get(k),
-                    dz_.get(k) - uz_.get(k),
-                );
-                let n = [vy * uz - vz * uy, vz * ux - vx * uz, vx * uy - vy * ux];
-                [n, [n[0] * n[0] + n[1] * n[1] + n[2] * n[2]; 3]]
-            };
-            let len2 = ok[0];
+        for (((l, r), (a, b)), o) in sides.zip(above_below).zip(outs) {
+            let ([lx, ly, lz], [rx, ry, rz]) = (load::<V>(l), load::<V>(r));
+            let ([ax, ay, az], [bx, by, bz]) = (load::<V>(a), load::<V>(b));
+            let (ux, uy, uz) = (rx - lx, ry - ly, rz - lz);
+            let (vx, vy, vz) = (bx - ax, by - ay, bz - az);
+            let n = [vy * uz - vz * uy, vz * ux - vx * uz, vx * uy - vy * ux];
+            let len2 = n[0] * n[0] + n[1] * n[1] + n[2] * n[2];
             let ok = len2.gt(tiny) & len2.lt(huge);
             let inv = V::one() / len2.sqrt();
             let fallback = [V::zero(), V::one(), V::zero()];
-            for axis in 0..3 {
-                // SAFETY: `k < count`.
-                unsafe { o[axis].put(k, V::select(ok, n[axis] * inv, fallback[axis])) };
-            }
+            let unit = |i: usize| V::select(ok, n[i] * inv, fallback[i]);
+            store(o, [unit(0), unit(1), unit(2)]);
         }
         let c = 1 + count * V::LANES;
         for col in std::iter::once(0).chain(c..cols) {
