@@ -218,12 +218,11 @@ pub fn starting_surface(
     Ok(surface)
 }
 
-/// Reads a snapshot file, naming it in the error.
+/// Reads a snapshot file, naming it in the error. The file must hold exactly one snapshot:
+/// data after it is refused (`Surface::from_bytes`), not left unread as a stream would.
 pub fn load_snapshot(path: &Path) -> CliResult<Surface> {
-    let file =
-        std::fs::File::open(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-    let mut s = Surface::load(std::io::BufReader::new(file))
-        .map_err(|e| format!("{}: {e}", path.display()))?;
+    let bytes = std::fs::read(path).map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+    let mut s = Surface::from_bytes(&bytes).map_err(|e| format!("{}: {e}", path.display()))?;
     crate::args::forced_level(&mut s)?;
     Ok(s)
 }
