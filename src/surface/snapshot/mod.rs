@@ -211,6 +211,18 @@ fn frame_width(boundary: Boundary) -> Option<u32> {
     }
 }
 
+/// The model's six `f32` parameters in the format's order (offsets 40 to 64).
+fn model(p: &Params) -> [f32; 6] {
+    [
+        p.spacing,
+        p.mass,
+        p.stiffness,
+        p.viscosity,
+        p.dt,
+        p.rest_ratio,
+    ]
+}
+
 fn bad(msg: impl Into<String>) -> Error {
     Error::Snapshot(msg.into())
 }

@@ -127,18 +127,7 @@ impl Surface {
 /// Whether two surfaces' buffers and default tables are alike: the same grid and the same
 /// model but for the acceleration (which is a field of the state, set any time).
 fn same_model(a: &Params, b: &Params) -> bool {
-    let bits = |p: &Params| {
-        [
-            p.spacing,
-            p.mass,
-            p.stiffness,
-            p.viscosity,
-            p.dt,
-            p.rest_ratio,
-            p.time_scale,
-        ]
-        .map(f32::to_bits)
-    };
+    let bits = |p: &Params| (super::model(p).map(f32::to_bits), p.time_scale.to_bits());
     (a.cols, a.rows, a.boundary) == (b.cols, b.rows, b.boundary) && bits(a) == bits(b)
 }
 

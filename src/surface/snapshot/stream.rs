@@ -101,15 +101,7 @@ impl Fields<'_> {
         sink.record(&(self.encoded_len() as u64).to_le_bytes());
         sink.state(&(p.cols as u64).to_le_bytes());
         sink.state(&(p.rows as u64).to_le_bytes());
-        let model = [
-            p.spacing,
-            p.mass,
-            p.stiffness,
-            p.viscosity,
-            p.dt,
-            p.rest_ratio,
-        ];
-        floats(sink, &model);
+        floats(sink, &super::model(p));
         let boundary: u32 = match p.boundary {
             Boundary::Pinned => 0,
             Boundary::Free => 1,
