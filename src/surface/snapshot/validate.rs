@@ -25,6 +25,8 @@ pub(super) trait NodeFloats: Copy {
     fn part(self, range: Range<usize>) -> Self;
     /// Writes the values from node `at` on into `out` (`out.len()` of them).
     fn read(self, at: usize, out: &mut [f32]);
+    /// The values as a slice, where they can be read in place.
+    fn as_slice(&self) -> Option<&[f32]>;
 }
 
 impl NodeFloats for &[f32] {
@@ -36,6 +38,9 @@ impl NodeFloats for &[f32] {
     }
     fn read(self, at: usize, out: &mut [f32]) {
         out.copy_from_slice(&self[at..at + out.len()]);
+    }
+    fn as_slice(&self) -> Option<&[f32]> {
+        Some(self)
     }
 }
 
@@ -51,6 +56,13 @@ impl NodeFloats for Le<'_> {
         for (o, c) in out.iter_mut().zip(bytes.chunks_exact(4)) {
             *o = f32::from_le_bytes([c[0], c[1], c[2], c[3]]);
         }
+    }
+    /// On a little-endian target, bytes aligned for `f32` (a save in a `Vec<u8>` whose
+    /// arrays start at multiples of 4) are the values themselves.
+    fn as_slice(&self) -> Option<&[f32]> {
+        cfg!(target_endian = "little")
+            .then(|| bytemuck::try_cast_slice(self.0).ok())
+            .flatten()
     }
 }
 
@@ -85,21 +97,27 @@ impl NodePins for &[u8] {
 pub(super) const BLOCK: usize = 256;
 
 /// Calls `f(start, values)` for consecutive blocks of up to [`BLOCK`] nodes of `arrays`
-/// (of one length), each block read into the stack: the checks then run over plain
-/// slices, which the compiler keeps in SIMD registers, wherever the values are stored.
-/// Stops at the first `Some`.
+/// (of one length), each block a slice of the array where it can be read in place, else
+/// read into the stack: the checks then run over plain slices, which the compiler keeps
+/// in SIMD registers, wherever the values are stored. Stops at the first `Some`.
 pub(super) fn blocks<F: NodeFloats, T, const K: usize>(
     arrays: [F; K],
     mut f: impl FnMut(usize, [&[f32]; K]) -> Option<T>,
 ) -> Option<T> {
     let n = arrays.first().map_or(0, |a| a.len());
+    let in_place = arrays.each_ref().map(|a| a.as_slice());
     let mut buffers = [[0f32; BLOCK]; K];
     for start in (0..n).step_by(BLOCK) {
         let len = BLOCK.min(n - start);
-        for (buffer, a) in buffers.iter_mut().zip(arrays) {
-            a.read(start, &mut buffer[..len]);
+        for ((buffer, a), direct) in buffers.iter_mut().zip(arrays).zip(in_place) {
+            if direct.is_none() {
+                a.read(start, &mut buffer[..len]);
+            }
         }
-        let values = std::array::from_fn(|k| &buffers[k][..len]);
+        let values = std::array::from_fn(|k| match in_place[k] {
+            Some(direct) => &direct[start..start + len],
+            None => &buffers[k][..len],
+        });
         if let Some(found) = f(start, values) {
             return Some(found);
         }
