@@ -396,3 +396,29 @@ fn how_the_surface_is_stored_or_run_does_not_change_the_hash() {
     assert_eq!(tables.to_bytes(), s.to_bytes());
     assert_eq!(tables.state_hash(), hash);
 }
+
+#[test]
+fn restore_in_place_reads_bytes_at_any_alignment() {
+    // 19 × 13 nodes: the spring arrays after the one-byte pins start off a multiple of 4,
+    // and a save one byte into its buffer shifts every array.
+    let mut s = Surface::new(Params::with_size(19, 13)).unwrap();
+    s.drop_at(9.0, 6.0, 0.5, 2.0).unwrap();
+    s.step_n(5).unwrap();
+    s.add_force(40, [0.1, 0.2, 0.3]).unwrap();
+    let saved = s.to_bytes();
+    let mut shifted = vec![0u8];
+    shifted.extend_from_slice(&saved);
+    let straight = {
+        let mut t = s.clone();
+        t.step_n(4).unwrap();
+        t.to_bytes()
+    };
+    for bytes in [&saved[..], &shifted[1..]] {
+        s.step_n(3).unwrap();
+        s.restore(bytes).unwrap();
+        assert_eq!(s.to_bytes(), saved);
+        s.step_n(4).unwrap();
+        assert_eq!(s.to_bytes(), straight);
+        s.restore(bytes).unwrap();
+    }
+}
