@@ -362,8 +362,12 @@ impl Snapshot {
 fn encode_into(fields: &stream::Fields<'_>, out: &mut Vec<u8>) {
     out.clear();
     out.reserve(fields.encoded_len());
-    fields.encode(&mut Bytes(out));
-    let crc = crc32fast::hash(out);
+    let mut bytes = Bytes {
+        out,
+        crc: crc32fast::Hasher::new(),
+    };
+    fields.encode(&mut bytes);
+    let crc = bytes.crc.finalize();
     out.extend_from_slice(&crc.to_le_bytes());
     debug_assert_eq!(out.len(), fields.encoded_len());
 }

@@ -27,15 +27,28 @@ pub(crate) trait Sink {
     fn record(&mut self, bytes: &[u8]);
 }
 
-/// Appends every field to a buffer: the binary format.
-pub(super) struct Bytes<'a>(pub &'a mut Vec<u8>);
+/// Appends every field to a buffer, the binary format, and checksums what it appends
+/// while it is still in the cache (a piece at a time), for the CRC-32 at the end.
+pub(super) struct Bytes<'a> {
+    pub out: &'a mut Vec<u8>,
+    pub crc: crc32fast::Hasher,
+}
+
+impl Bytes<'_> {
+    fn append(&mut self, bytes: &[u8]) {
+        for piece in bytes.chunks(1 << 14) {
+            self.out.extend_from_slice(piece);
+            self.crc.update(piece);
+        }
+    }
+}
 
 impl Sink for Bytes<'_> {
     fn state(&mut self, bytes: &[u8]) {
-        self.0.extend_from_slice(bytes);
+        self.append(bytes);
     }
     fn record(&mut self, bytes: &[u8]) {
-        self.0.extend_from_slice(bytes);
+        self.append(bytes);
     }
 }
 
