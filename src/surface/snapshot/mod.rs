@@ -14,20 +14,10 @@
 //!
 //! # The state hash
 //!
-//! [`Surface::state_hash`] is XXH3-64 (the `xxhash-rust` crate: pure Rust, the same output
-//! on every platform) over the snapshot's fields that decide the surface's future — every
-//! field of the format but the framing (magic, version, length, checksum) and the three
-//! counters that only keep count: steps taken, model time simulated and seconds the step
-//! cap dropped. Nothing in the step reads those counters (they report, and the clock's
-//! carried time, which does decide when the next step falls, is hashed), so two peers
-//! whose water is the same hash the same even when one of them loaded its state from a
-//! save. Capacities, padding, caches, the thread pool and the SIMD level are not in the
-//! format, so not in the hash either. Why XXH3-64: it is not cryptographic, and needs not
-//! be (peers compare hashes to find their own bugs, not an attacker's); two different
-//! states collide with probability about 2⁻⁶⁴, so a game comparing one hash a frame for a
-//! year at 60 Hz (about 2·10⁹ hashes) misses a desync with odds around 10⁻¹⁰; and it reads
-//! memory at several bytes a cycle, so hashing a surface costs a fraction of a step of it
-//! (`docs/performance.md`).
+//! [`Surface::state_hash`] sends the encoder's stream to XXH3-64 and skips the fields the
+//! encoder marks as records (framing and counters); its docs say what is in, what is
+//! out and why. XXH3-64 over a checksum such as CRC-32: 64 bits (a desync missed with
+//! odds 2⁻⁶⁴ a comparison, not 2⁻³²), and several bytes a cycle.
 
 mod read;
 mod restore;
@@ -44,7 +34,7 @@ use crate::simd::Floats;
 use crate::springs::Springs;
 use crate::state::State;
 use std::io::{Read, Write};
-use stream::{slices, Bytes, Hash};
+use stream::{slices, Bytes, StateHash};
 use validate::Contents;
 
 /// The first eight bytes of every snapshot.
@@ -481,11 +471,22 @@ impl Surface {
     /// padding, caches, the thread pool, the SIMD level).
     ///
     /// Equal states hash equal on every SIMD level, thread count and platform, so peers of
-    /// a multiplayer game compare hashes to detect a desync (see the [module
-    /// docs](crate::surface::snapshot) for the hash, XXH3-64, and its odds). The hash is
-    /// the one of this crate version's format: peers must run the same version.
+    /// a multiplayer game compare hashes to detect a desync. The hash is XXH3-64 (the
+    /// `xxhash-rust` crate: pure Rust, the same output on every platform) over the fields
+    /// [`Surface::to_bytes`] saves, less the framing (magic, version, length, checksum)
+    /// and the three counters: not cryptographic, and it needs not be (peers look for
+    /// their own bugs, not an attacker's); two different states collide with odds about
+    /// 2⁻⁶⁴, so a game comparing one hash a frame at 60 Hz for a year misses a desync with
+    /// odds around 10⁻¹⁰; and it costs about two steps of the engine on two threads
+    /// (`docs/performance.md`). The hash is that of this crate version's format: peers must
+    /// run the same version.
+    ///
+    /// The counters are left out because nothing in the step reads them: two peers whose
+    /// water is the same hash the same even if one of them loaded its state from a save
+    /// with other counters. The clock's carried time, which decides when the next step
+    /// falls, is in.
     pub fn state_hash(&self) -> u64 {
-        let mut hash = Hash(xxhash_rust::xxh3::Xxh3::new());
+        let mut hash = StateHash(xxhash_rust::xxh3::Xxh3::new());
         self.fields().encode(&mut hash);
         hash.0.digest()
     }

@@ -1,6 +1,6 @@
 //! The encoder, written once: the fields of the current format in their order, sent to a
 //! [`Sink`]. Saving sends them to a byte buffer ([`Bytes`]); [`Surface::state_hash`] sends
-//! the same stream to a hasher ([`Hash`]), which skips the fields marked as records. So
+//! the same stream to a hasher ([`StateHash`]), which skips the fields marked as records. So
 //! what is hashed is what is saved, less the framing and the counters, and the two cannot
 //! drift apart.
 //!
@@ -53,9 +53,9 @@ impl Sink for Bytes<'_> {
 }
 
 /// Feeds the fields that decide the future to XXH3-64.
-pub(super) struct Hash(pub xxhash_rust::xxh3::Xxh3);
+pub(super) struct StateHash(pub xxhash_rust::xxh3::Xxh3);
 
-impl Sink for Hash {
+impl Sink for StateHash {
     fn state(&mut self, bytes: &[u8]) {
         self.0.update(bytes);
     }
