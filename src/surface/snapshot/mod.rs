@@ -412,18 +412,27 @@ impl Surface {
             std::array::from_fn(|f| snap.rest[f].as_slice()),
             std::array::from_fn(|f| snap.stiffness[f].as_slice()),
         );
-        let bounds = [snap.min_mass, snap.max_stiffness, snap.max_viscosity];
-        let progress = (snap.steps, snap.model_time);
-        let mut surface = Surface::from_parts(p, state, springs, bounds, progress);
+        let scalars = snap.scalars();
+        let mut surface = Surface::from_parts(p, state, springs, scalars.bounds, (0, 0.0));
+        surface.take_scalars(&scalars);
         surface.floaters.bodies = snap.floaters;
-        surface.floaters.next_id = snap.next_floater_id;
-        surface.floaters.buoyancy = snap.buoyancy;
-        surface.window_origin = snap.origin_cells;
-        surface.clock.owed = snap.owed_time;
-        (surface.clock.max_steps, surface.clock.overflow) = snap.step_cap;
-        surface.clock.dropped = snap.dropped_seconds;
-        surface.window_custom = true;
         Ok(surface)
+    }
+
+    /// Takes every field of a snapshot but the arrays and the bodies.
+    fn take_scalars(&mut self, s: &Scalars) {
+        self.params = s.params;
+        self.steps = s.steps;
+        self.time = s.model_time;
+        [self.min_mass, self.max_stiffness, self.max_viscosity] = s.bounds;
+        self.floaters.next_id = s.next_floater_id;
+        self.floaters.buoyancy = s.buoyancy;
+        self.window_origin = s.origin_cells;
+        self.clock.owed = s.owed_time;
+        (self.clock.max_steps, self.clock.overflow) = s.step_cap;
+        self.clock.dropped = s.dropped_seconds;
+        // Per-node values may differ from their places' defaults (see `window`).
+        self.window_custom = true;
     }
 
     /// The snapshot in the binary format of the [`Snapshot`] docs, in a new vector

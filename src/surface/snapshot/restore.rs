@@ -82,17 +82,7 @@ impl Surface {
         bodies.clear();
         // (Every body decoded in validation.)
         bodies.extend(saved.bodies.iter().flatten());
-        self.floaters.next_id = scalars.next_floater_id;
-        self.floaters.buoyancy = scalars.buoyancy;
-        self.params = scalars.params;
-        self.steps = scalars.steps;
-        self.time = scalars.model_time;
-        [self.min_mass, self.max_stiffness, self.max_viscosity] = scalars.bounds;
-        self.window_origin = scalars.origin_cells;
-        self.clock.owed = scalars.owed_time;
-        (self.clock.max_steps, self.clock.overflow) = scalars.step_cap;
-        self.clock.dropped = scalars.dropped_seconds;
-        self.window_custom = true;
+        self.take_scalars(&scalars);
         Ok(true)
     }
 
