@@ -161,6 +161,15 @@ fn damaged_snapshots_are_refused() {
         "version 9",
     );
 
+    let junk = scratch("junk.snap");
+    let mut b = bytes.clone();
+    b.extend_from_slice(b"junk appended");
+    std::fs::write(&junk, &b).unwrap();
+    refused(
+        &["simulate", "--load", junk.to_str().unwrap()],
+        "trailing data",
+    );
+
     let text = scratch("text.snap");
     std::fs::write(&text, "col,row,x,y,z\n").unwrap();
     refused(

@@ -6,7 +6,8 @@
 //! Whatever is accepted must be a surface that re-encodes to the same bytes (an older
 //! version: to bytes that load and re-encode to themselves) and steps
 //! without producing non-finite values, the engine bitwise equal to the scalar reference;
-//! whatever is refused must leave `restore`'s target unchanged.
+//! whatever is refused must leave `restore`'s target unchanged. A restored target (in
+//! place when the size and model match) hashes and saves as the loaded surface does.
 
 #![no_main]
 
@@ -78,6 +79,12 @@ fuzz_target!(|data: &[u8]| {
             target
                 .restore(&bytes)
                 .expect("from_bytes accepted the same bytes");
+            // Restored in place or replaced, the state is the loaded one, and saving it
+            // again into a used buffer gives the bytes a fresh save gives.
+            assert_eq!(target.state_hash(), s.state_hash());
+            let mut saved = before.clone();
+            target.save_into(&mut saved);
+            assert_eq!(saved, s.to_bytes(), "save_into equals to_bytes after a restore");
             // The engine and the scalar reference agree bitwise on any valid state, so a
             // loader that leaves a derived table stale shows up here.
             let mut reference = s.clone();

@@ -9,7 +9,7 @@
 //! | `query.rs` | heights, normals and velocities at a point; forces at a point |
 //! | `floaters.rs` | floating bodies and the coupled step |
 //! | `window.rs` | the moving window and the floating origin |
-//! | `snapshot.rs` | snapshots: the whole state as bytes, and back |
+//! | `snapshot/` | snapshots: the whole state as bytes and back, `save_into`, `state_hash` |
 //! | `tuning.rs` | the engine's schedule knobs for tests and benchmarks (`internals`) |
 
 mod clock;
