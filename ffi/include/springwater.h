@@ -606,7 +606,20 @@ SwStatus sw_surface_lod_indices(const struct SwSurface *surface,
 // # Safety
 //
 // `buf` is NULL or points to `len` writable bytes; `size` is NULL or valid.
+//
+// The surface encodes into a buffer of its own that keeps its capacity, so a game that
+// saves every frame allocates nothing after the first save.
 SwStatus sw_surface_save(const struct SwSurface *surface, uint8_t *buf, size_t len, size_t *size);
+
+// Writes a 64-bit hash of everything that decides the surface's future (XXH3-64; see the
+// Rust `Surface::state_hash`) to `out`: equal states give equal hashes on every SIMD
+// level, thread count and platform, so peers of a multiplayer game compare it to catch a
+// desync.
+//
+// # Safety
+//
+// `out` is NULL or valid.
+SwStatus sw_surface_state_hash(const struct SwSurface *surface, uint64_t *out);
 
 // Replaces the surface's state with a snapshot (`len` bytes at `buf`), keeping its job
 // system, SIMD level and LOD parameters. A damaged snapshot is refused and nothing

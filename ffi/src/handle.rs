@@ -24,6 +24,8 @@ pub(crate) struct Water {
     pub lod: LodMesh,
     pub normals: Normals,
     pub queries: Queries,
+    /// The last save (`sw_surface_save`), its capacity kept between calls.
+    pub save: Vec<u8>,
 }
 
 /// The batched queries' buffers, kept between calls.
@@ -44,6 +46,7 @@ impl Water {
             lod: LodMesh::new(LodParams::default()).expect("the default LOD parameters are valid"),
             normals: Normals::new(),
             queries: Default::default(),
+            save: Vec::new(),
         }
     }
 }

@@ -1,6 +1,7 @@
 //! Snapshots: the whole state of a surface as bytes (a versioned binary format with a
 //! checksum), written to a caller's buffer, restored into a surface, or loaded as a new
-//! one.
+//! one; and the state hash peers compare. Together they are what rollback netcode needs:
+//! save every frame into the same buffer, restore an earlier frame, compare hashes.
 
 use crate::handle::{self, SwSurface, Water};
 use crate::ptr::{copy_list_into, in_slice, out_ref};
@@ -15,6 +16,9 @@ use std::borrow::Cow;
 /// # Safety
 ///
 /// `buf` is NULL or points to `len` writable bytes; `size` is NULL or valid.
+///
+/// The surface encodes into a buffer of its own that keeps its capacity, so a game that
+/// saves every frame allocates nothing after the first save.
 #[no_mangle]
 pub unsafe extern "C" fn sw_surface_save(
     surface: *const SwSurface,
@@ -23,7 +27,30 @@ pub unsafe extern "C" fn sw_surface_save(
     size: *mut usize,
 ) -> SwStatus {
     copy_list_into(surface, (buf, len, "buf"), (size, "size"), |w| {
-        Cow::Owned(w.surface.to_bytes())
+        w.surface.save_into(&mut w.save);
+        Cow::Borrowed(&w.save[..])
+    })
+}
+
+/// Writes a 64-bit hash of everything that decides the surface's future (XXH3-64; see the
+/// Rust `Surface::state_hash`) to `out`: equal states give equal hashes on every SIMD
+/// level, thread count and platform, so peers of a multiplayer game compare it to catch a
+/// desync.
+///
+/// # Safety
+///
+/// `out` is NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_state_hash(
+    surface: *const SwSurface,
+    out: *mut u64,
+) -> SwStatus {
+    guard(|| {
+        let out = out_ref(out, "out")?;
+        handle::with(surface, |w| {
+            *out = w.surface.state_hash();
+            Ok(())
+        })
     })
 }
 

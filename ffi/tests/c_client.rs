@@ -217,7 +217,14 @@ fn expected() -> HashMap<&'static str, String> {
     )
     .unwrap();
     lod.update(&view, glam::Vec3::new(0.0, 10.0, 0.0));
+    // The client's rollback run: six frames with a drop each from the saved state.
+    let mut rolled = s.clone();
+    for f in 0..6 {
+        rolled.drop_at(4.0 + f as f32, 5.0, 0.25, 2.0).unwrap();
+        rolled.advance(1.0 / 60.0).unwrap();
+    }
     HashMap::from([
+        ("rollback_hash", format!("{:016x}", rolled.state_hash())),
         ("positions", format!("{positions:016x}")),
         ("normals", format!("{normal_bits:016x}")),
         ("uvs", format!("{uvs:016x}")),

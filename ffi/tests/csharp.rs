@@ -535,7 +535,7 @@ fn the_header_comparison_finds_a_missing_function_field_and_constant() {
     let grown = text
         .replace(
             "size_t sw_last_error(",
-            "SwStatus sw_surface_state_hash(const struct SwSurface *surface, uint64_t *out);\n\
+            "SwStatus sw_surface_body_forces(const struct SwSurface *surface, uint64_t *out);\n\
              size_t sw_last_error(",
         )
         .replace(
@@ -553,7 +553,7 @@ fn the_header_comparison_finds_a_missing_function_field_and_constant() {
     let c = c_layout(&header, &dir, &dir);
     let problems = drift(&header, &c, csharp_layout());
     for expected in [
-        "Native has no sw_surface_state_hash",
+        "Native has no sw_surface_body_forces",
         "the C# SwBuoyancy has no field surface_tension",
         "the C# has no const SW_SHAPE_HULL",
         "struct SwBuoyancy: C# 12, C 16",

@@ -359,6 +359,12 @@ namespace Springwater
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int sw_surface_restore(IntPtr surface, byte* buf, UIntPtr len);
 
+        /// <summary>Writes a 64-bit hash of everything that decides the surface's future (XXH3-64)
+        /// to `out`: equal states give equal hashes on every SIMD level, thread count and
+        /// platform.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_state_hash(IntPtr surface, ulong* @out);
+
         /// <summary>Creates a surface from a snapshot (`len` bytes at `buf`) and writes its handle to
         /// `out`.</summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]

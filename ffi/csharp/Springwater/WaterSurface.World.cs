@@ -196,27 +196,17 @@ namespace Springwater
 
         // ---- The state hash ----
 
-        byte[] hashBuffer;
-
         /// <summary>
-        /// A 64-bit hash of everything that decides the surface's future: equal states give
-        /// equal hashes (on every SIMD level, thread count and architecture), a rollback
-        /// session compares them frame by frame. Allocates only when the state outgrows the
-        /// buffer it keeps.
+        /// A 64-bit hash of everything that decides the surface's future (the library's
+        /// XXH3-64 state hash): equal states give equal hashes on every SIMD level, thread
+        /// count and architecture; a rollback session compares them frame by frame. Allocates
+        /// nothing.
         /// </summary>
         public ulong StateHash()
         {
-            // The C ABI has no state hash yet: this is FNV-1a over the snapshot, which holds
-            // the whole state in a fixed little-endian format. Replace it by
-            // sw_surface_state_hash when the header has it (ffi/tests/csharp.rs fails until
-            // Native declares every function of the header).
-            int size = SnapshotSize;
-            if (hashBuffer == null || hashBuffer.Length < size)
-                hashBuffer = new byte[size];
-            size = SaveInto(hashBuffer);
-            ulong hash = 0xcbf29ce484222325;
-            for (int i = 0; i < size; i++)
-                hash = (hash ^ hashBuffer[i]) * 0x100000001b3;
+            ulong hash;
+            using (var s = Enter())
+                SpringwaterException.Check(Native.sw_surface_state_hash(s.Ptr, &hash));
             return hash;
         }
     }
