@@ -82,18 +82,6 @@ unsafe impl Half for float32x4_t {
     }
 
     #[inline(always)]
-    fn max(self, o: Self) -> Self {
-        // `maxps`: `self` where `self > o`, else `o` (also where either is NaN).
-        Self::select(self.gt(o), self, o)
-    }
-
-    #[inline(always)]
-    fn min(self, o: Self) -> Self {
-        // `minps`: `self` where `self < o`, else `o`.
-        Self::select(self.lt(o), self, o)
-    }
-
-    #[inline(always)]
     fn gt(self, o: Self) -> uint32x4_t {
         neon!(vcgtq_f32(self, o))
     }

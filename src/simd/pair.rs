@@ -33,10 +33,19 @@ pub(crate) unsafe trait Half: Copy + Send + Sync + std::fmt::Debug + 'static {
     fn sqrt(self) -> Self;
     /// Clears the sign bit.
     fn abs(self) -> Self;
-    /// [`Vector::max`] per lane (`maxps` semantics).
-    fn max(self, o: Self) -> Self;
-    /// [`Vector::min`] per lane (`minps` semantics).
-    fn min(self, o: Self) -> Self;
+    /// [`Vector::max`] per lane, `maxps` semantics: `self` where `self > o`, else `o`
+    /// (also where either is NaN). A compare and a select unless the level has `maxps`
+    /// itself: ARM's and wasm's own maxima return NaN for a NaN operand and order −0
+    /// below +0.
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        Self::select(self.gt(o), self, o)
+    }
+    /// [`Vector::min`] per lane, `minps` semantics: `self` where `self < o`, else `o`.
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        Self::select(self.lt(o), self, o)
+    }
     fn gt(self, o: Self) -> Self::Mask;
     fn lt(self, o: Self) -> Self::Mask;
     fn ge(self, o: Self) -> Self::Mask;

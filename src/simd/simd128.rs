@@ -68,18 +68,6 @@ unsafe impl Half for v128 {
     }
 
     #[inline(always)]
-    fn max(self, o: Self) -> Self {
-        // `maxps`: `self` where `self > o`, else `o` (also where either is NaN).
-        Self::select(self.gt(o), self, o)
-    }
-
-    #[inline(always)]
-    fn min(self, o: Self) -> Self {
-        // `minps`: `self` where `self < o`, else `o`.
-        Self::select(self.lt(o), self, o)
-    }
-
-    #[inline(always)]
     fn gt(self, o: Self) -> Self {
         f32x4_gt(self, o)
     }
