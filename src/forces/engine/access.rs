@@ -541,6 +541,7 @@ impl<'a, V: Vector, S: Source<V>, P: SpringValues<V>> Chunk<'_, '_, 'a, V, S, P>
     /// The chunk's external forces on `axis`, if the row has any.
     #[inline(always)]
     pub fn ext(&self, axis: usize) -> Option<V> {
+        #[allow(clippy::manual_map)] // `Option::map` would take a closure: see `FrontRow::new`
         match &self.views.nodes.ext {
             // SAFETY: `k < chunks`, the views' length.
             Some(ext) => Some(unsafe { ext[axis].get(self.k) }),
