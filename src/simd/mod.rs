@@ -13,10 +13,11 @@
 //!
 //! * [`Vector`] is what a kernel is written against: lane arithmetic, masks, the
 //!   neighbour shuffles ([`Vector::east`], [`Vector::west`]), loads, stores and
-//!   non-temporal stores. Its implementations are [`sse2::F32x8`] (two SSE registers),
-//!   [`avx2::F32x8`] (one YMM register), [`avx512::F32x16`] (one ZMM register, mask
-//!   registers for masks), `neon::F32x8` and `simd128::F32x8` (two 128-bit registers, on
-//!   AArch64 and on wasm32 with `+simd128`) and [`portable::F32x8`] (plain arrays, for
+//!   non-temporal stores. Its implementations are [`avx2::F32x8`] (one YMM register),
+//!   [`avx512::F32x16`] (one ZMM register, mask registers for masks), a `pair::Pair` of
+//!   two 128-bit halves written once for SSE2 ([`sse2::F32x8`]), NEON and SIMD128
+//!   (`neon::F32x8`, `simd128::F32x8`, on AArch64 and on wasm32 with `+simd128`), each
+//!   level's file giving its half's intrinsics, and [`portable::F32x8`] (plain arrays, for
 //!   other targets and Miri). Every operation is a single IEEE operation per lane (add, subtract, multiply,
 //!   divide, square root, compare, select): no fused multiply-add, no approximate
 //!   reciprocal. So every level computes the same bits as the scalar reference.
