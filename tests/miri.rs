@@ -1,7 +1,9 @@
-//! The engine's unchecked chunk accesses (`simd::get`/`simd::put`, and the chunk groups of
-//! its ring rows and row forces) on small grids of every width around the lane count, in
-//! single steps and in a pass of three steps, checked against the scalar reference. Small enough
-//! to run under Miri, which checks every access for undefined behaviour:
+//! The engine's unchecked accesses (its access module, `forces/engine/access.rs`: the
+//! front and back buffers, node and spring tables, ring rows and row forces, over the lane
+//! layer's chunk views) on small grids of every width around the lane count, in single
+//! steps and in a pass of three steps, with uniform and edited springs, checked against
+//! the scalar reference. Small enough to run under Miri, which checks every access for
+//! undefined behaviour:
 //!
 //! ```sh
 //! cargo +nightly miri test -p springwater --no-default-features --features internals --test miri

@@ -69,24 +69,6 @@ impl Vector for F32x8 {
         avx!(_mm256_set1_ps(x))
     }
 
-    #[cfg(test)]
-    #[inline(always)]
-    fn from_slice(a: &[f32]) -> Self {
-        let mut l = [0.0; 8];
-        let n = a.len().min(8);
-        l[..n].copy_from_slice(&a[..n]);
-        avx!(_mm256_loadu_ps(l.as_ptr()))
-    }
-
-    #[inline(always)]
-    fn write_to(self, out: &mut [f32]) {
-        let mut l = [0.0; 8];
-        // SAFETY: `l` holds 8 floats; inside the AVX2 entry.
-        unsafe { _mm256_storeu_ps(l.as_mut_ptr(), self.0) };
-        let n = out.len();
-        out.copy_from_slice(&l[..n]);
-    }
-
     #[inline(always)]
     fn sqrt(self) -> Self {
         avx!(_mm256_sqrt_ps(self.0))

@@ -96,25 +96,6 @@ impl Vector for F32x16 {
         F32x16(avx512!(_mm512_set1_ps(x)))
     }
 
-    #[cfg(test)]
-    #[inline(always)]
-    fn from_slice(a: &[f32]) -> Self {
-        let mut l = [0.0; 16];
-        let n = a.len().min(16);
-        l[..n].copy_from_slice(&a[..n]);
-        // SAFETY: `l` holds 16 floats.
-        unsafe { Self::load(l.as_ptr()) }
-    }
-
-    #[inline(always)]
-    fn write_to(self, out: &mut [f32]) {
-        let mut l = [0.0; 16];
-        // SAFETY: `l` holds 16 floats.
-        unsafe { Self::store(l.as_mut_ptr(), self) };
-        let n = out.len();
-        out.copy_from_slice(&l[..n]);
-    }
-
     #[inline(always)]
     fn sqrt(self) -> Self {
         F32x16(avx512!(_mm512_sqrt_ps(self.0)))

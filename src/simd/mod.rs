@@ -5,18 +5,20 @@
 //! A game ships one binary to every player's CPU, so it cannot be built with
 //! `-C target-cpu=native`; a default x86-64 build only knows SSE2. This module lets that
 //! build run the widest kernel the CPU has. [`SimdLevel::detect`] asks the CPU once
-//! (`is_x86_feature_detected!`), `SPRINGWATER_SIMD=scalar|sse2|avx2|avx512|neon|simd128|portable`
-//! forces a level (one the CPU lacks runs the CPU's widest), and every kernel that matters
+//! (`is_x86_feature_detected!`), [`Surface::set_simd_level`](crate::Surface::set_simd_level)
+//! forces a level (one the CPU lacks runs the CPU's widest; the command line reads it from
+//! `SPRINGWATER_SIMD=scalar|sse2|avx2|avx512|neon|simd128|portable`), and every kernel that matters
 //! is compiled once per level. On AArch64 the level is NEON, which every AArch64 CPU has;
 //! on wasm32 it is chosen at build time, since WebAssembly cannot ask the CPU: SIMD128 in a
 //! build with `-C target-feature=+simd128`, the portable lanes without.
 //!
 //! * [`Vector`] is what a kernel is written against: lane arithmetic, masks, the
 //!   neighbour shuffles ([`Vector::east`], [`Vector::west`]), loads, stores and
-//!   non-temporal stores. Its implementations are [`sse2::F32x8`] (two SSE registers),
-//!   [`avx2::F32x8`] (one YMM register), [`avx512::F32x16`] (one ZMM register, mask
-//!   registers for masks), `neon::F32x8` and `simd128::F32x8` (two 128-bit registers, on
-//!   AArch64 and on wasm32 with `+simd128`) and [`portable::F32x8`] (plain arrays, for
+//!   non-temporal stores. Its implementations are [`avx2::F32x8`] (one YMM register),
+//!   [`avx512::F32x16`] (one ZMM register, mask registers for masks), a `pair::Pair` of
+//!   two 128-bit halves written once for SSE2 ([`sse2::F32x8`]), NEON and SIMD128
+//!   (`neon::F32x8`, `simd128::F32x8`, on AArch64 and on wasm32 with `+simd128`), each
+//!   level's file giving its half's intrinsics, and [`portable::F32x8`] (plain arrays, for
 //!   other targets and Miri). Every operation is a single IEEE operation per lane (add, subtract, multiply,
 //!   divide, square root, compare, select): no fused multiply-add, no approximate
 //!   reciprocal. So every level computes the same bits as the scalar reference.
@@ -91,7 +93,6 @@
 //! its stack frame starts on a cache line and no spilled register straddles two.
 
 use std::ops::{Add, AddAssign, BitAnd, BitAndAssign, Div, Mul, Neg, Not, Sub};
-use std::sync::OnceLock;
 
 /// Implements `+ - * /` and unary `-` for a vector type `$t`, each from one expression in
 /// the operands `$a` and `$b` (`$b` unused for negation).
@@ -152,8 +153,16 @@ macro_rules! operators {
 pub(crate) mod avx2;
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod avx512;
+mod chunks;
+mod level;
 #[cfg(target_arch = "aarch64")]
 pub(crate) mod neon;
+#[cfg(any(
+    target_arch = "x86_64",
+    target_arch = "aarch64",
+    all(target_arch = "wasm32", target_feature = "simd128"),
+))]
+mod pair;
 pub(crate) mod portable;
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 pub(crate) mod simd128;
@@ -163,176 +172,9 @@ pub(crate) mod sse2;
 /// The most lanes any level has (AVX-512): buffers are padded and aligned for it.
 pub const MAX_LANES: usize = 16;
 
-/// An instruction set the engine can run on.
-///
-/// Every level gives the same results, bit for bit; they differ only in speed. The x86-64
-/// levels are declared from the narrowest to the widest, so on x86-64 a level compares
-/// below a wider one; comparisons between levels of different architectures mean nothing.
-/// More levels may be added as the engine learns other instruction sets.
-#[non_exhaustive]
-#[derive(Debug, Clone, Copy, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum SimdLevel {
-    /// No SIMD: the step is the plain scalar reference loop. Runs everywhere.
-    Scalar,
-    /// SSE2, part of every x86-64 CPU: 8 lanes in two 128-bit registers.
-    Sse2,
-    /// AVX2: 8 lanes in one 256-bit register.
-    Avx2,
-    /// AVX-512F: 16 lanes in one 512-bit register.
-    Avx512,
-    /// The lane kernels on 8 lanes of plain `f32` arrays, vectorised (or not) by the
-    /// compiler: what targets without a SIMD level here run (a `wasm32` build without
-    /// `+simd128`, RISC-V, …). Runs everywhere.
-    Portable,
-    /// NEON (Advanced SIMD), part of every AArch64 CPU: 8 lanes in two 128-bit registers.
-    Neon,
-    /// WebAssembly SIMD128: 8 lanes in two `v128`. Present in a `wasm32` build made with
-    /// `-C target-feature=+simd128` (wasm has no run-time detection).
-    Simd128,
-}
-
-impl SimdLevel {
-    /// Every level: the scalar reference, the x86-64 levels narrowest first, the portable
-    /// lanes, then the levels of other architectures.
-    pub const ALL: [SimdLevel; 7] = [
-        Self::Scalar,
-        Self::Sse2,
-        Self::Avx2,
-        Self::Avx512,
-        Self::Portable,
-        Self::Neon,
-        Self::Simd128,
-    ];
-
-    /// The widest level this CPU runs (asked once, then cached): AVX-512, AVX2 or SSE2 on
-    /// x86-64, NEON on AArch64, SIMD128 on a `wasm32` build with `+simd128`, the portable
-    /// lanes elsewhere (and under Miri).
-    pub fn detect() -> SimdLevel {
-        static DETECTED: OnceLock<SimdLevel> = OnceLock::new();
-        *DETECTED.get_or_init(detect_cpu)
-    }
-
-    /// Whether this CPU runs `self`: the scalar reference and the portable lanes run
-    /// everywhere; an x86-64 level where the CPU has it; NEON on AArch64; SIMD128 in a
-    /// `wasm32` build with `+simd128`.
-    pub fn is_available(self) -> bool {
-        let best = Self::detect();
-        match self {
-            Self::Scalar | Self::Portable => true,
-            Self::Sse2 | Self::Avx2 | Self::Avx512 => {
-                matches!(best, Self::Sse2 | Self::Avx2 | Self::Avx512) && self <= best
-            }
-            Self::Neon | Self::Simd128 => self == best,
-        }
-    }
-
-    /// `self` if this CPU runs it, else the widest level it runs ([`SimdLevel::detect`]).
-    ///
-    /// On x86-64 this clamps a wider level down (`avx512` on an AVX2 CPU runs `avx2`); a
-    /// level of another architecture (`neon` on x86-64, `avx2` on AArch64 or in a browser)
-    /// runs the CPU's widest level too, so that one setting, written into a game's
-    /// configuration, runs on every platform the game ships to.
-    pub fn clamped(self) -> SimdLevel {
-        if self.is_available() {
-            self
-        } else {
-            Self::detect()
-        }
-    }
-
-    /// The level `SPRINGWATER_SIMD` names if it is set (clamped to what the CPU has), else
-    /// [`SimdLevel::detect`]. An unknown value of the variable is an error that names it.
-    /// The library never calls this itself (a [`Surface`](crate::Surface) starts at
-    /// [`SimdLevel::detect`]): the command line and the tests do, and a host that wants the
-    /// variable honoured passes the result to
-    /// [`Surface::set_simd_level`](crate::Surface::set_simd_level).
-    pub fn from_env() -> crate::Result<SimdLevel> {
-        match std::env::var(ENV) {
-            Ok(v) => v.parse::<SimdLevel>().map(SimdLevel::clamped),
-            Err(std::env::VarError::NotPresent) => Ok(Self::detect()),
-            Err(std::env::VarError::NotUnicode(_)) => Err(crate::Error::InvalidSimdLevel {
-                value: "(not valid UTF-8)".into(),
-            }),
-        }
-    }
-
-    /// The name `SPRINGWATER_SIMD` and the CLI use: `scalar`, `sse2`, `avx2`, `avx512`,
-    /// `portable`, `neon`, `simd128`.
-    pub fn name(self) -> &'static str {
-        match self {
-            Self::Scalar => "scalar",
-            Self::Sse2 => "sse2",
-            Self::Avx2 => "avx2",
-            Self::Avx512 => "avx512",
-            Self::Portable => "portable",
-            Self::Neon => "neon",
-            Self::Simd128 => "simd128",
-        }
-    }
-
-    /// `f32` lanes per vector at this level (1 for scalar).
-    pub fn lanes(self) -> usize {
-        match self {
-            Self::Scalar => 1,
-            Self::Sse2 | Self::Avx2 | Self::Portable | Self::Neon | Self::Simd128 => 8,
-            Self::Avx512 => 16,
-        }
-    }
-}
-
-/// The environment variable that forces a level.
-pub const ENV: &str = "SPRINGWATER_SIMD";
-
-impl std::fmt::Display for SimdLevel {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.write_str(self.name())
-    }
-}
-
-impl std::str::FromStr for SimdLevel {
-    type Err = crate::Error;
-
-    fn from_str(s: &str) -> crate::Result<Self> {
-        Self::ALL
-            .into_iter()
-            .find(|l| l.name().eq_ignore_ascii_case(s.trim()))
-            .ok_or_else(|| crate::Error::InvalidSimdLevel { value: s.into() })
-    }
-}
-
-#[cfg(all(target_arch = "x86_64", not(miri)))]
-fn detect_cpu() -> SimdLevel {
-    if std::arch::is_x86_feature_detected!("avx512f") {
-        SimdLevel::Avx512
-    } else if std::arch::is_x86_feature_detected!("avx2") {
-        SimdLevel::Avx2
-    } else {
-        SimdLevel::Sse2
-    }
-}
-
-/// NEON is part of every AArch64 CPU (the `aarch64` targets enable it in their baseline).
-#[cfg(all(target_arch = "aarch64", not(miri)))]
-fn detect_cpu() -> SimdLevel {
-    SimdLevel::Neon
-}
-
-/// A `wasm32` build has SIMD128 exactly when it was compiled with `+simd128`: a module
-/// that uses it does not load in an engine without it, so there is nothing to detect.
-#[cfg(all(target_arch = "wasm32", target_feature = "simd128", not(miri)))]
-fn detect_cpu() -> SimdLevel {
-    SimdLevel::Simd128
-}
-
-/// Miri and other targets run the portable lanes.
-#[cfg(not(any(
-    all(target_arch = "x86_64", not(miri)),
-    all(target_arch = "aarch64", not(miri)),
-    all(target_arch = "wasm32", target_feature = "simd128", not(miri)),
-)))]
-fn detect_cpu() -> SimdLevel {
-    SimdLevel::Portable
-}
+pub use chunks::{round_up, Floats};
+pub(crate) use chunks::{Chunks, ChunksMut};
+pub use level::SimdLevel;
 
 /// A vector of `f32` lanes: what the lane kernels are written against.
 ///
@@ -376,10 +218,24 @@ pub(crate) trait Vector:
 
     /// Lanes from `a[..LANES]`, zeros past the end of a shorter `a`.
     #[cfg(test)]
-    fn from_slice(a: &[f32]) -> Self;
+    #[inline(always)]
+    fn from_slice(a: &[f32]) -> Self {
+        let mut l = [0.0; MAX_LANES];
+        let n = a.len().min(Self::LANES);
+        l[..n].copy_from_slice(&a[..n]);
+        // SAFETY: `l` holds `MAX_LANES ≥ LANES` floats.
+        unsafe { Self::load(l.as_ptr()) }
+    }
 
     /// Writes the first `out.len()` (at most `LANES`) lanes to `out`.
-    fn write_to(self, out: &mut [f32]);
+    #[inline(always)]
+    fn write_to(self, out: &mut [f32]) {
+        let mut l = [0.0; MAX_LANES];
+        // SAFETY: `l` holds `MAX_LANES ≥ LANES` floats.
+        unsafe { Self::store(l.as_mut_ptr(), self) };
+        let n = out.len();
+        out.copy_from_slice(&l[..Self::LANES][..n]);
+    }
 
     /// IEEE square root per lane.
     fn sqrt(self) -> Self;
@@ -554,152 +410,6 @@ pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, k: K) -> K::Output {
     }
 }
 
-/// `count` chunks of `V::LANES` floats of a slice, from element `start` on. The length
-/// check happens once, when the view is made; [`Chunks::get`] then reads without one.
-#[derive(Debug)]
-pub(crate) struct Chunks<'a, V> {
-    s: &'a [f32],
-    _lanes: std::marker::PhantomData<V>,
-}
-
-impl<V> Clone for Chunks<'_, V> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-
-impl<V> Copy for Chunks<'_, V> {}
-
-impl<'a, V: Vector> Chunks<'a, V> {
-    /// Chunk `k` is `s[start + k·LANES ..][..LANES]`. Panics if `s` is shorter than that.
-    #[inline(always)]
-    pub fn new(s: &'a [f32], start: usize, count: usize) -> Self {
-        Self {
-            s: &s[start..start + count * V::LANES],
-            _lanes: std::marker::PhantomData,
-        }
-    }
-
-    /// Number of chunks.
-    #[inline(always)]
-    pub fn len(self) -> usize {
-        self.s.len() / V::LANES
-    }
-
-    /// Chunk `k`, without a bounds check.
-    ///
-    /// # Safety
-    ///
-    /// `k < self.len()`.
-    #[inline(always)]
-    pub unsafe fn get(self, k: usize) -> V {
-        debug_assert!(k < self.len());
-        // SAFETY: `k < len`, so `k·LANES + LANES ≤ s.len()`.
-        unsafe { V::load(self.s.as_ptr().add(k * V::LANES)) }
-    }
-}
-
-/// Mutable [`Chunks`].
-#[derive(Debug)]
-pub(crate) struct ChunksMut<'a, V> {
-    s: &'a mut [f32],
-    _lanes: std::marker::PhantomData<V>,
-}
-
-impl<'a, V: Vector> ChunksMut<'a, V> {
-    /// Chunk `k` is `s[start + k·LANES ..][..LANES]`. Panics if `s` is shorter than that.
-    #[inline(always)]
-    pub fn new(s: &'a mut [f32], start: usize, count: usize) -> Self {
-        Self {
-            s: &mut s[start..start + count * V::LANES],
-            _lanes: std::marker::PhantomData,
-        }
-    }
-
-    /// Number of chunks.
-    #[inline(always)]
-    pub fn len(&self) -> usize {
-        self.s.len() / V::LANES
-    }
-
-    /// Stores `v` into chunk `k`, without a bounds check.
-    ///
-    /// # Safety
-    ///
-    /// `k < self.len()`.
-    #[inline(always)]
-    pub unsafe fn put(&mut self, k: usize, v: V) {
-        debug_assert!(k < self.len());
-        // SAFETY: `k < len`, so `k·LANES + LANES ≤ s.len()`.
-        unsafe { V::store(self.s.as_mut_ptr().add(k * V::LANES), v) }
-    }
-
-    /// Stores `v` into chunk `k` with a non-temporal store ([`Vector::stream`]).
-    ///
-    /// # Safety
-    ///
-    /// `k < self.len()`, and chunk `k` starts on a `size_of::<V>()` boundary.
-    #[inline(always)]
-    pub unsafe fn stream(&mut self, k: usize, v: V) {
-        debug_assert!(k < self.len());
-        // SAFETY: `k < len`, so `k·LANES + LANES ≤ s.len()`.
-        let p = unsafe { self.s.as_mut_ptr().add(k * V::LANES) };
-        debug_assert!((p as usize).is_multiple_of(core::mem::size_of::<V>()));
-        // SAFETY: `p` is valid for `LANES` floats; the caller guarantees its alignment.
-        unsafe { V::stream(p, v) }
-    }
-}
-
-/// Rounds `n` up to a multiple of [`MAX_LANES`].
-pub const fn round_up(n: usize) -> usize {
-    n.div_ceil(MAX_LANES) * MAX_LANES
-}
-
-/// 64 bytes of `f32`, aligned to 64: the unit [`Floats`] allocates in.
-#[derive(Clone, Copy, Default, bytemuck::Pod, bytemuck::Zeroable)]
-#[repr(C, align(64))]
-struct Block([f32; MAX_LANES]);
-
-/// A zero-initialised `f32` buffer that starts on a 64-byte boundary, so that chunk loads
-/// at multiples of any level's lane count never straddle two cache lines. Dereferences to
-/// `[f32]`.
-#[derive(Clone, Default)]
-pub struct Floats {
-    blocks: Vec<Block>,
-    len: usize,
-}
-
-impl Floats {
-    /// `len` zeros.
-    pub fn zeros(len: usize) -> Self {
-        Self {
-            blocks: vec![Block::default(); len.div_ceil(MAX_LANES)],
-            len,
-        }
-    }
-}
-
-impl std::ops::Deref for Floats {
-    type Target = [f32];
-    #[inline(always)]
-    fn deref(&self) -> &[f32] {
-        &bytemuck::cast_slice(&self.blocks)[..self.len]
-    }
-}
-
-impl std::ops::DerefMut for Floats {
-    #[inline(always)]
-    fn deref_mut(&mut self) -> &mut [f32] {
-        &mut bytemuck::cast_slice_mut(&mut self.blocks)[..self.len]
-    }
-}
-
-impl std::fmt::Debug for Floats {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_list().entries(self.iter()).finish()
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -837,33 +547,5 @@ mod tests {
             dispatch(level, LaneOps);
         }
         portable::F32x8::enter(Each(LaneOps));
-    }
-
-    #[test]
-    fn level_names_round_trip() {
-        for l in SimdLevel::ALL {
-            assert_eq!(l.name().parse::<SimdLevel>().unwrap(), l);
-        }
-        assert!("avx3".parse::<SimdLevel>().is_err());
-        let best = SimdLevel::detect();
-        assert!(best.is_available());
-        for l in SimdLevel::ALL {
-            // A level the CPU lacks runs its widest; one it has runs as asked.
-            let want = if l.is_available() { l } else { best };
-            assert_eq!(l.clamped(), want, "{l}");
-        }
-        // Exactly one level of each architecture can be the widest here.
-        let native = [SimdLevel::Neon, SimdLevel::Simd128];
-        assert_eq!(native.map(|l| l.is_available()), native.map(|l| l == best));
-        if cfg!(all(target_arch = "aarch64", not(miri))) {
-            assert_eq!(best, SimdLevel::Neon);
-        }
-        if cfg!(all(
-            target_arch = "wasm32",
-            target_feature = "simd128",
-            not(miri)
-        )) {
-            assert_eq!(best, SimdLevel::Simd128);
-        }
     }
 }

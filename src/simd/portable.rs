@@ -72,18 +72,6 @@ impl Vector for F32x8 {
         Self([x; 8])
     }
 
-    #[cfg(test)]
-    #[inline(always)]
-    fn from_slice(a: &[f32]) -> Self {
-        Self(core::array::from_fn(|i| a.get(i).copied().unwrap_or(0.0)))
-    }
-
-    #[inline(always)]
-    fn write_to(self, out: &mut [f32]) {
-        let n = out.len();
-        out.copy_from_slice(&self.0[..n]);
-    }
-
     #[inline(always)]
     fn sqrt(self) -> Self {
         self.map(f32::sqrt)

@@ -13,197 +13,133 @@
 //! −0 below +0, where the reference returns the second operand. Negation and `abs` only
 //! touch the sign bit, as the spec defines `fneg`/`fabs`.
 
-use super::{SimdLevel, Task, Vector};
+use super::pair::{Half, Pair};
+use super::SimdLevel;
 use core::arch::wasm32::*;
 
 /// Eight `f32` lanes in two `v128`, low half first.
-#[derive(Debug, Clone, Copy)]
-#[repr(C)]
-pub(crate) struct F32x8([v128; 2]);
+pub(crate) type F32x8 = Pair<v128>;
 
-// SAFETY: two `v128` are 32 bytes of plain data: no padding, every bit pattern valid.
-unsafe impl bytemuck::Zeroable for F32x8 {}
-// SAFETY: as above.
-unsafe impl bytemuck::Pod for F32x8 {}
+// SAFETY: `v128` is 16 bytes of plain data: no padding, every bit pattern valid.
+unsafe impl Half for v128 {
+    /// All-ones lanes.
+    type Mask = v128;
 
-impl F32x8 {
-    /// `f` on each half.
-    #[inline(always)]
-    fn map(self, f: impl Fn(v128) -> v128) -> Self {
-        Self(self.0.map(f))
-    }
-
-    /// `f` on each pair of halves.
-    #[inline(always)]
-    fn zip(self, o: Self, f: impl Fn(v128, v128) -> v128) -> Self {
-        Self([f(self.0[0], o.0[0]), f(self.0[1], o.0[1])])
-    }
-}
-
-operators!(F32x8, |a, b| {
-    add: a.zip(b, |x, y| f32x4_add(x, y)),
-    sub: a.zip(b, |x, y| f32x4_sub(x, y)),
-    mul: a.zip(b, |x, y| f32x4_mul(x, y)),
-    div: a.zip(b, |x, y| f32x4_div(x, y)),
-    neg: a.map(|x| f32x4_neg(x)),
-});
-
-impl core::ops::BitAnd for F32x8 {
-    type Output = Self;
-    #[inline(always)]
-    fn bitand(self, o: Self) -> Self {
-        self.zip(o, |x, y| v128_and(x, y))
-    }
-}
-
-impl core::ops::BitAndAssign for F32x8 {
-    #[inline(always)]
-    fn bitand_assign(&mut self, o: Self) {
-        *self = *self & o;
-    }
-}
-
-impl core::ops::Not for F32x8 {
-    type Output = Self;
-    #[inline(always)]
-    fn not(self) -> Self {
-        self.zip(Self::all_lanes(), |x, y| v128_xor(x, y))
-    }
-}
-
-impl Vector for F32x8 {
-    const LANES: usize = 8;
-    type Mask = F32x8;
+    const LEVEL: SimdLevel = SimdLevel::Simd128;
 
     #[inline(always)]
     fn splat(x: f32) -> Self {
-        let h = f32x4_splat(x);
-        Self([h, h])
-    }
-
-    #[cfg(test)]
-    #[inline(always)]
-    fn from_slice(a: &[f32]) -> Self {
-        let mut l = [0.0; 8];
-        let n = a.len().min(8);
-        l[..n].copy_from_slice(&a[..n]);
-        // SAFETY: `l` holds 8 floats.
-        unsafe { Self::load(l.as_ptr()) }
+        f32x4_splat(x)
     }
 
     #[inline(always)]
-    fn write_to(self, out: &mut [f32]) {
-        let mut l = [0.0; 8];
-        // SAFETY: `l` holds 8 floats.
-        unsafe { Self::store(l.as_mut_ptr(), self) };
-        let n = out.len();
-        out.copy_from_slice(&l[..n]);
+    fn add(self, o: Self) -> Self {
+        f32x4_add(self, o)
+    }
+
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        f32x4_sub(self, o)
+    }
+
+    #[inline(always)]
+    fn mul(self, o: Self) -> Self {
+        f32x4_mul(self, o)
+    }
+
+    #[inline(always)]
+    fn div(self, o: Self) -> Self {
+        f32x4_div(self, o)
+    }
+
+    #[inline(always)]
+    fn neg(self) -> Self {
+        f32x4_neg(self)
     }
 
     #[inline(always)]
     fn sqrt(self) -> Self {
-        self.map(|x| f32x4_sqrt(x))
+        f32x4_sqrt(self)
     }
 
     #[inline(always)]
     fn abs(self) -> Self {
-        self.map(|x| f32x4_abs(x))
-    }
-
-    #[inline(always)]
-    fn max(self, o: Self) -> Self {
-        // `maxps`: `self` where `self > o`, else `o` (also where either is NaN).
-        Self::select(self.gt(o), self, o)
-    }
-
-    #[inline(always)]
-    fn min(self, o: Self) -> Self {
-        // `minps`: `self` where `self < o`, else `o`.
-        Self::select(self.lt(o), self, o)
+        f32x4_abs(self)
     }
 
     #[inline(always)]
     fn gt(self, o: Self) -> Self {
-        self.zip(o, |x, y| f32x4_gt(x, y))
+        f32x4_gt(self, o)
     }
 
     #[inline(always)]
     fn lt(self, o: Self) -> Self {
-        self.zip(o, |x, y| f32x4_lt(x, y))
+        f32x4_lt(self, o)
     }
 
     #[inline(always)]
     fn ge(self, o: Self) -> Self {
-        self.zip(o, |x, y| f32x4_ge(x, y))
+        f32x4_ge(self, o)
     }
 
     #[inline(always)]
     fn select(m: Self, a: Self, b: Self) -> Self {
-        Self([
-            v128_bitselect(a.0[0], b.0[0], m.0[0]),
-            v128_bitselect(a.0[1], b.0[1], m.0[1]),
-        ])
+        v128_bitselect(a, b, m)
+    }
+
+    #[inline(always)]
+    fn mask_and(a: Self, b: Self) -> Self {
+        v128_and(a, b)
+    }
+
+    #[inline(always)]
+    fn mask_not(m: Self) -> Self {
+        v128_xor(m, Self::all_lanes())
     }
 
     #[inline(always)]
     fn all_lanes() -> Self {
-        let h = u32x4_splat(u32::MAX);
-        Self([h, h])
+        u32x4_splat(u32::MAX)
     }
 
     #[inline(always)]
-    fn first_lanes(count: usize) -> Self {
-        let n = u32x4_splat(count.min(8) as u32);
-        Self([
-            u32x4_lt(u32x4(0, 1, 2, 3), n),
-            u32x4_lt(u32x4(4, 5, 6, 7), n),
-        ])
+    fn lanes_below(first: u32, count: u32) -> Self {
+        let index = u32x4(first, first + 1, first + 2, first + 3);
+        u32x4_lt(index, u32x4_splat(count))
     }
 
     #[inline(always)]
     fn all(m: Self) -> bool {
-        u32x4_all_true(v128_and(m.0[0], m.0[1]))
+        u32x4_all_true(m)
     }
 
     #[inline(always)]
     fn any_nan(self) -> bool {
         // A lane differs from itself only if it is NaN.
-        let nan = self.zip(self, |x, y| f32x4_ne(x, y));
-        v128_any_true(v128_or(nan.0[0], nan.0[1]))
+        v128_any_true(f32x4_ne(self, self))
     }
 
     #[inline(always)]
-    fn east(lo: Self, hi: Self) -> Self {
-        let ([a, b], [c, _]) = (lo.0, hi.0);
-        Self([
-            i32x4_shuffle::<1, 2, 3, 4>(a, b),
-            i32x4_shuffle::<1, 2, 3, 4>(b, c),
-        ])
+    fn east(a: Self, b: Self) -> Self {
+        i32x4_shuffle::<1, 2, 3, 4>(a, b)
     }
 
     #[inline(always)]
-    fn west(lo: Self, hi: Self) -> Self {
-        let ([_, b], [c, d]) = (lo.0, hi.0);
-        Self([
-            i32x4_shuffle::<3, 4, 5, 6>(b, c),
-            i32x4_shuffle::<3, 4, 5, 6>(c, d),
-        ])
+    fn west(a: Self, b: Self) -> Self {
+        i32x4_shuffle::<3, 4, 5, 6>(a, b)
     }
 
     #[inline(always)]
     unsafe fn load(p: *const f32) -> Self {
-        // SAFETY: the caller guarantees `p` is readable for 8 floats; `v128_load` takes
+        // SAFETY: the caller guarantees `p` is readable for 4 floats; `v128_load` takes
         // any alignment.
-        unsafe { Self([v128_load(p.cast()), v128_load(p.add(4).cast())]) }
+        unsafe { v128_load(p.cast()) }
     }
 
     #[inline(always)]
     unsafe fn store(p: *mut f32, v: Self) {
-        // SAFETY: the caller guarantees `p` is writable for 8 floats.
-        unsafe {
-            v128_store(p.cast(), v.0[0]);
-            v128_store(p.add(4).cast(), v.0[1]);
-        }
+        // SAFETY: the caller guarantees `p` is writable for 4 floats.
+        unsafe { v128_store(p.cast(), v) }
     }
 
     #[inline(always)]
@@ -215,18 +151,4 @@ impl Vector for F32x8 {
 
     #[inline(always)]
     fn fence() {}
-
-    const LEVEL: SimdLevel = SimdLevel::Simd128;
-
-    #[inline(always)]
-    fn enter<T: Task<Self>>(task: T) -> T::Output {
-        // A function of its own, as the other levels' entries are.
-        #[inline(never)]
-        fn entry<T: Task<F32x8>>(task: T) -> T::Output {
-            debug_assert!(F32x8::LEVEL.is_available());
-            super::align_frame();
-            task.run()
-        }
-        entry(task)
-    }
 }

@@ -25,6 +25,7 @@
 //! own, without the level's instruction set. Every level computes the same operations in
 //! the same order, so the results do not depend on it, nor on the thread count.
 
+mod access;
 mod row;
 mod schedule;
 mod scratch;

@@ -29,15 +29,16 @@
 //! ([`super::super::scalar::node_force`]), so the two agree bit for bit, whatever the
 //! schedule and the level.
 
+use super::access::{
+    each_chunk, Around, BackRow, Chunk, ChunkWork, EitherValues, FrontRow, NodeViews, RowPair,
+    RowViews, Shared, Sink, Source, SpringValues, Tables,
+};
 use super::scratch::{Group, Row, RowForces};
 use super::StepConfig;
 use crate::grid::Family;
-use crate::simd::{Chunks, ChunksMut, Task, Vector};
-use crate::springs::{Springs, Tables as SpringTables};
+use crate::simd::{Task, Vector};
+use crate::springs::Springs;
 use crate::state::NodeTable;
-
-/// The cache line the non-temporal stores fill, in bytes (x86-64).
-const CACHE_LINE: usize = 64;
 
 /// Everything a band reads: front buffers and tables, shared by all tasks.
 pub(super) struct Inputs<'a, V: Vector> {
@@ -121,22 +122,7 @@ impl<'a, V: Vector> Inputs<'a, V> {
     /// Row `r` of the front buffers (level 0).
     #[inline(always)]
     pub fn front(&self, r: usize) -> FrontRow<'a, V> {
-        // Written out, as is every view a row advance builds: a closure passed to
-        // `array::map` is compiled on its own and became calls, several per row.
-        let (chunks, start) = (self.chunks(), r * self.cols);
-        let ([x, y, z], [vx, vy, vz]) = (self.pos, self.vel);
-        FrontRow {
-            pos: [
-                Chunks::new(x, start, chunks + 1),
-                Chunks::new(y, start, chunks + 1),
-                Chunks::new(z, start, chunks + 1),
-            ],
-            vel: [
-                Chunks::new(vx, start, chunks),
-                Chunks::new(vy, start, chunks),
-                Chunks::new(vz, start, chunks),
-            ],
-        }
+        FrontRow::new(self.pos, self.vel, r * self.cols, self.chunks())
     }
 }
 
@@ -211,178 +197,6 @@ pub(super) enum RowOut<'a, V> {
     Ring(&'a mut Row<V>),
 }
 
-/// Chunk access to a row's positions and velocities, whatever its layout; `chunks` is the
-/// row's chunk count. Chunk `chunks` (one past the row) is readable for positions: it
-/// holds the next row's nodes, padding or zeros (as do the lanes past the row in the last
-/// chunk), which only ever meet masked-off springs.
-pub(super) trait Source<V>: Copy {
-    /// Rows of this kind may carry external forces. Only the front buffers do: a pass
-    /// applies them in its first step. (Known when the kernel is compiled, so a ring row's
-    /// kernel has no test for them.)
-    const EXTERNAL: bool;
-
-    /// Positions of chunk `k`.
-    ///
-    /// # Safety
-    ///
-    /// `k ≤ chunks`.
-    unsafe fn pos(self, k: usize) -> [V; 3];
-
-    /// Velocities of chunk `k`.
-    ///
-    /// # Safety
-    ///
-    /// `k < chunks`.
-    unsafe fn vel(self, k: usize) -> [V; 3];
-}
-
-/// A row of the front buffers as chunk views: positions `chunks + 1` chunks long,
-/// velocities `chunks`.
-pub(super) struct FrontRow<'a, V> {
-    pos: [Chunks<'a, V>; 3],
-    vel: [Chunks<'a, V>; 3],
-}
-
-impl<V> Clone for FrontRow<'_, V> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-
-impl<V> Copy for FrontRow<'_, V> {}
-
-impl<V: Vector> Source<V> for FrontRow<'_, V> {
-    const EXTERNAL: bool = true;
-
-    #[inline(always)]
-    unsafe fn pos(self, k: usize) -> [V; 3] {
-        let [x, y, z] = self.pos;
-        // SAFETY: `k ≤ chunks`, the views hold `chunks + 1`.
-        unsafe { [x.get(k), y.get(k), z.get(k)] }
-    }
-
-    #[inline(always)]
-    unsafe fn vel(self, k: usize) -> [V; 3] {
-        let [x, y, z] = self.vel;
-        // SAFETY: `k < chunks`.
-        unsafe { [x.get(k), y.get(k), z.get(k)] }
-    }
-}
-
-/// A [`Row`]'s groups (`chunks + 2`; chunk `k` is group `k + 1`).
-impl<V: Vector> Source<V> for &[[V; 6]] {
-    const EXTERNAL: bool = false;
-
-    #[inline(always)]
-    unsafe fn pos(self, k: usize) -> [V; 3] {
-        debug_assert!(k + 1 < self.len());
-        // SAFETY: `k + 1 ≤ chunks + 1`.
-        let g = unsafe { self.get_unchecked(k + 1) };
-        [g[0], g[1], g[2]]
-    }
-
-    #[inline(always)]
-    unsafe fn vel(self, k: usize) -> [V; 3] {
-        debug_assert!(k + 2 < self.len());
-        // SAFETY: `k + 1 ≤ chunks`.
-        let g = unsafe { self.get_unchecked(k + 1) };
-        [g[3], g[4], g[5]]
-    }
-}
-
-/// Where [`RowKernel::run_into`] writes a row's new `[x, y, z, vx, vy, vz]`.
-trait Sink<V> {
-    /// Whole chunk `k`.
-    ///
-    /// # Safety
-    ///
-    /// `k < cols / LANES`.
-    unsafe fn put(&mut self, k: usize, new: [V; 6]);
-
-    /// The last chunk `k`, partial: only the lanes on in `real` belong to the row.
-    fn put_partial(&mut self, k: usize, new: [V; 6], real: V::Mask)
-    where
-        V: Vector;
-}
-
-/// A back-buffer row: its whole chunks and the columns after them.
-struct BackRow<'a, V> {
-    whole: [ChunksMut<'a, V>; 6],
-    tail: [&'a mut [f32]; 6],
-    /// Write the whole chunks with non-temporal stores.
-    stream: bool,
-}
-
-impl<'a, V: Vector> BackRow<'a, V> {
-    #[inline(always)]
-    fn new(dst: [&'a mut [f32]; 6], cols: usize, stream: bool) -> Self {
-        let full = cols / V::LANES;
-        let [x, y, z, vx, vy, vz] = dst;
-        let [x, y, z, vx, vy, vz] = [
-            x[..cols].split_at_mut(full * V::LANES),
-            y[..cols].split_at_mut(full * V::LANES),
-            z[..cols].split_at_mut(full * V::LANES),
-            vx[..cols].split_at_mut(full * V::LANES),
-            vy[..cols].split_at_mut(full * V::LANES),
-            vz[..cols].split_at_mut(full * V::LANES),
-        ];
-        BackRow {
-            whole: [
-                ChunksMut::new(x.0, 0, full),
-                ChunksMut::new(y.0, 0, full),
-                ChunksMut::new(z.0, 0, full),
-                ChunksMut::new(vx.0, 0, full),
-                ChunksMut::new(vy.0, 0, full),
-                ChunksMut::new(vz.0, 0, full),
-            ],
-            tail: [x.1, y.1, z.1, vx.1, vy.1, vz.1],
-            stream,
-        }
-    }
-}
-
-impl<V: Vector> Sink<V> for BackRow<'_, V> {
-    #[inline(always)]
-    unsafe fn put(&mut self, k: usize, new: [V; 6]) {
-        for (o, v) in self.whole.iter_mut().zip(new) {
-            if self.stream {
-                // SAFETY: `k < cols / LANES`, the length of `whole`; with `stream` every row
-                // starts on a lane boundary of its 64-byte-aligned buffer (`Inputs::stream`).
-                unsafe { o.stream(k, v) };
-            } else {
-                // SAFETY: `k < cols / LANES`, the length of `whole`.
-                unsafe { o.put(k, v) };
-            }
-        }
-    }
-
-    #[inline(always)]
-    fn put_partial(&mut self, _: usize, new: [V; 6], _: V::Mask) {
-        for (t, v) in self.tail.iter_mut().zip(new) {
-            v.write_to(t);
-        }
-    }
-}
-
-/// A [`Row`]'s groups.
-impl<V: Vector> Sink<V> for &mut [[V; 6]] {
-    #[inline(always)]
-    unsafe fn put(&mut self, k: usize, new: [V; 6]) {
-        debug_assert!(k + 2 < self.len());
-        // SAFETY: `k + 1 ≤ chunks`.
-        unsafe { *self.get_unchecked_mut(k + 1) = new };
-    }
-
-    #[inline(always)]
-    fn put_partial(&mut self, k: usize, new: [V; 6], real: V::Mask) {
-        // The lanes past the row stay zero.
-        let g = &mut self[k + 1];
-        for (g, v) in g.iter_mut().zip(new) {
-            *g = V::keep(real, v);
-        }
-    }
-}
-
 /// Force on the `i` lanes from springs `i → j`: `c (L − L0) d / L`, zero where `L = 0`
 /// (the same operations as [`super::super::scalar::spring_force`]).
 #[inline(always)]
@@ -392,100 +206,6 @@ fn spring_force<V: Vector>(pi: [V; 3], pj: [V; 3], coef: V, rest: V) -> [V; 3] {
     let l = l2.sqrt();
     let s = V::keep(l2.gt(V::zero()), coef * (l - rest) / l);
     [s * d[0], s * d[1], s * d[2]]
-}
-
-/// One family's coefficients and rest lengths along one row, as chunk views of its
-/// tables.
-struct Table<'a, V> {
-    coef: Chunks<'a, V>,
-    rest: Chunks<'a, V>,
-}
-
-impl<V> Clone for Table<'_, V> {
-    fn clone(&self) -> Self {
-        *self
-    }
-}
-
-impl<V> Copy for Table<'_, V> {}
-
-impl<'a, V: Vector> Table<'a, V> {
-    /// Family `fam`'s table for the `chunks` chunks of the row starting at node `base`,
-    /// in the lanes the kernel evaluates its springs in: a SW spring in the lane of its
-    /// lower end, one column west of its origin, so that table is read one node on. (The
-    /// tables are padded past the last node by more than a chunk.)
-    #[inline(always)]
-    fn of(sp: &'a SpringTables, fam: Family, base: usize, chunks: usize) -> Self {
-        let start = base + usize::from(fam == Family::SW);
-        Table {
-            coef: Chunks::new(&sp.coef[fam as usize], start, chunks),
-            rest: Chunks::new(&sp.rest[fam as usize], start, chunks),
-        }
-    }
-
-    /// [`Table::of`] for every family. (Written out: a closure passed to `array::map`
-    /// is compiled on its own, and became four calls per row.)
-    #[inline(always)]
-    fn all(sp: &'a SpringTables, base: usize, chunks: usize) -> [Self; 4] {
-        let [e, s, se, sw] = Family::ALL;
-        [
-            Self::of(sp, e, base, chunks),
-            Self::of(sp, s, base, chunks),
-            Self::of(sp, se, base, chunks),
-            Self::of(sp, sw, base, chunks),
-        ]
-    }
-
-    /// `(coefficient, rest length)` of chunk `k`.
-    ///
-    /// # Safety
-    ///
-    /// `k < chunks`.
-    #[inline(always)]
-    unsafe fn at(self, k: usize) -> (V, V) {
-        // SAFETY: the caller guarantees `k` is in range of both views.
-        unsafe { (self.coef.get(k), self.rest.get(k)) }
-    }
-}
-
-/// Where a row's springs take their coefficient and rest length from: the kernel is
-/// compiled once for each kind.
-trait SpringValues<V> {
-    /// `(coefficient, rest length)` of family `fam`'s springs in chunk `k`'s lanes.
-    ///
-    /// # Safety
-    ///
-    /// `k < chunks` of the row.
-    unsafe fn at(&self, fam: Family, k: usize) -> (V, V);
-}
-
-/// Every family's springs share one coefficient and rest length ([`Inputs::uniform`]):
-/// the eight values stay in registers and no table is read.
-struct Shared<V>([(V, V); 4]);
-
-impl<V: Vector> Shared<V> {
-    #[inline(always)]
-    fn new([e, s, se, sw]: [(f32, f32); 4]) -> Self {
-        Self([splat2(e), splat2(s), splat2(se), splat2(sw)])
-    }
-}
-
-impl<V: Vector> SpringValues<V> for Shared<V> {
-    #[inline(always)]
-    unsafe fn at(&self, fam: Family, _k: usize) -> (V, V) {
-        self.0[fam as usize]
-    }
-}
-
-/// Each spring's own values, read from the families' tables along the row.
-struct Tables<'a, V>([Table<'a, V>; 4]);
-
-impl<V: Vector> SpringValues<V> for Tables<'_, V> {
-    #[inline(always)]
-    unsafe fn at(&self, fam: Family, k: usize) -> (V, V) {
-        // SAFETY: `k < chunks` (the caller's contract), within the table views.
-        unsafe { self.0[fam as usize].at(k) }
-    }
 }
 
 /// Evaluates the S, SE and SW springs from row `r` of level `from` down to row r+1 (zero
@@ -515,28 +235,11 @@ pub(super) fn down_springs<V: Vector>(
     }
 }
 
-/// Where [`springs_down`] takes its values: the tables if the springs have them, else the
-/// shared values. One copy of the loop for both, with a branch per chunk: this runs once
-/// per band and level, and a second copy of the loop, as [`RowKernel::advance`] has,
-/// added a quarter to the crate's compile time for no measurable speed.
-enum DownValues<'a, V> {
-    Tables(Tables<'a, V>),
-    Shared(Shared<V>),
-}
-
-impl<V: Vector> SpringValues<V> for DownValues<'_, V> {
-    #[inline(always)]
-    unsafe fn at(&self, fam: Family, k: usize) -> (V, V) {
-        match self {
-            // SAFETY: the caller's contract, passed on.
-            Self::Tables(t) => unsafe { t.at(fam, k) },
-            // SAFETY: as above.
-            Self::Shared(s) => unsafe { s.at(fam, k) },
-        }
-    }
-}
-
-/// [`down_springs`] from row `here` to row `down`.
+/// [`down_springs`] from row `here` to row `down`. Its springs come from the tables if
+/// the springs have them, else the shared values: one copy of the loop for both, with a
+/// branch per chunk ([`EitherValues`]). This runs once per band and level, and a second
+/// copy of the loop, as [`RowKernel::advance`] has, added a quarter to the crate's compile
+/// time for no measurable speed.
 #[inline(always)]
 fn springs_down<V: Vector, S: Source<V>>(
     inp: &Inputs<V>,
@@ -547,21 +250,24 @@ fn springs_down<V: Vector, S: Source<V>>(
 ) {
     let chunks = inp.chunks();
     let springs = match (inp.springs.tables(), inp.uniform) {
-        (Some(t), _) => DownValues::Tables(Tables(Table::all(t, r * inp.cols, chunks))),
-        (None, Some(shared)) => DownValues::Shared(Shared::new(shared)),
+        (Some(t), _) => EitherValues::Tables(Tables::new(t, r * inp.cols, chunks)),
+        (None, Some(shared)) => EitherValues::Shared(Shared::new(shared)),
         (None, None) => unreachable!("springs that differ have tables"),
     };
+    let rows = RowPair::new(chunks, here, down, &springs);
     let edges = Edges::<V>::new(inp.cols);
     let groups = out.groups_mut(inp.cols);
     for (k, group) in groups[1..=chunks].iter_mut().enumerate() {
-        // SAFETY: `k < chunks`; positions are readable up to chunk `chunks`.
-        let (h0, h1, d0, d1) =
-            unsafe { (here.pos(k), here.pos(k + 1), down.pos(k), down.pos(k + 1)) };
+        let at = rows.around(k);
+        let (h0, d0) = (at.here, at.below);
         // Each spring from the end its force is kept for (see `RowKernel::chunk`).
-        let ends = [(h0, d0), (h0, east3(d0, d1)), (d0, east3(h0, h1))];
+        let ends = [
+            (h0, d0),
+            (h0, east3(d0, at.below_east)),
+            (d0, east3(h0, at.here_east)),
+        ];
         for (i, fam) in [Family::S, Family::SE, Family::SW].into_iter().enumerate() {
-            // SAFETY: `k < chunks` of the row.
-            let (coef, rest) = unsafe { springs.at(fam, k) };
+            let (coef, rest) = rows.spring(fam, k);
             let f = spring_force(ends[i].0, ends[i].1, coef, rest);
             group[i] = edges.only_springs(fam, k, chunks, true, f);
         }
@@ -631,22 +337,20 @@ impl<V: Vector, S: Source<V>, P: SpringValues<V>> Task<V> for RowRun<'_, '_, '_,
     #[inline(always)]
     fn run(self) -> bool {
         let RowRun {
-            kernel,
+            kernel: k,
             springs,
             sent,
             dst,
         } = self;
-        let cols = kernel.inp.cols;
+        let cols = k.inp.cols;
         match dst {
-            RowOut::Back(b) => {
-                kernel.run_into(&springs, sent, BackRow::new(b, cols, kernel.inp.stream))
-            }
-            RowOut::Ring(row) => kernel.run_into(&springs, sent, row.groups_mut(cols)),
+            RowOut::Back(b) => k.run_into(&springs, sent, BackRow::new(b, cols, k.inp.stream)),
+            RowOut::Ring(row) => k.run_into(&springs, sent, row.groups_mut(cols)),
         }
     }
 }
 
-/// The chunk views one row's advance reads (see [`advance_row`]).
+/// What one row's advance reads (see [`advance_row`]), before [`RowRun`] makes its views.
 struct RowKernel<'a, 'b, V: Vector, S> {
     inp: &'a Inputs<'b, V>,
     chunks: usize,
@@ -661,13 +365,8 @@ struct RowKernel<'a, 'b, V: Vector, S> {
     d: S,
     /// The row's first node.
     base: usize,
-    inv_mass: Chunks<'a, V>,
-    viscosity: Chunks<'a, V>,
-    /// The row's external forces, if its source carries them ([`Source::EXTERNAL`]) and
-    /// it may hold any ([`Inputs::ext_of_row`]).
-    ext: Option<[Chunks<'a, V>; 3]>,
-    /// What row r−1 sent down ([`RowForces`]: `chunks + 2` groups).
-    arriving: &'a [Group<V>],
+    /// The row's node values and what row r−1 sent down.
+    nodes: NodeViews<'a, V>,
     dt: f32,
     g: [f32; 3],
 }
@@ -682,9 +381,7 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         has_down: bool,
         arriving: &'a [Group<V>],
     ) -> Self {
-        let chunks = inp.chunks();
-        let base = r * inp.cols;
-        let node = |s| Chunks::new(s, base, chunks);
+        let (base, chunks) = (r * inp.cols, inp.chunks());
         let ext = if S::EXTERNAL { inp.ext_of_row(r) } else { None };
         RowKernel {
             inp,
@@ -694,16 +391,14 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             h,
             d,
             base,
-            // A table's row slice starts at the row's first node, whichever way the table
-            // stores it; lanes past the row read its padding, and are discarded.
-            inv_mass: Chunks::new(inp.inv_mass.row(r), 0, chunks),
-            viscosity: Chunks::new(inp.viscosity.row(r), 0, chunks),
-            #[allow(clippy::manual_map)] // `Option::map` would take a closure: see `front`
-            ext: match ext {
-                Some([x, y, z]) => Some([node(x), node(y), node(z)]),
-                None => None,
-            },
-            arriving,
+            nodes: NodeViews::new(
+                chunks,
+                inp.inv_mass.row(r),
+                inp.viscosity.row(r),
+                ext,
+                base,
+                arriving,
+            ),
             dt: inp.cfg.dt,
             g: inp.cfg.accel,
         }
@@ -722,14 +417,14 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             }),
             None => V::enter(RowRun {
                 kernel: self,
-                springs: Tables(Table::all(
+                springs: Tables::new(
                     self.inp
                         .springs
                         .tables()
                         .expect("springs that differ have tables"),
                     self.base,
                     self.chunks,
-                )),
+                ),
                 sent,
                 dst,
             }),
@@ -737,7 +432,8 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
     }
 
     /// Runs every chunk of the row (see [`advance_row`]) and writes the new values into
-    /// `dst`, each spring's coefficient and rest length taken from `springs`.
+    /// `dst`, each spring's coefficient and rest length taken from `springs`, and what the
+    /// row sends down into `sent`.
     #[inline(always)]
     fn run_into<P: SpringValues<V>>(
         &self,
@@ -745,64 +441,32 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         sent: &mut [Group<V>],
         mut dst: impl Sink<V>,
     ) -> bool {
-        let chunks = self.chunks;
-        let full = self.inp.cols / V::LANES;
-        let c = Consts::<V>::new(self);
-        let mut finite = V::zero();
-        // The forces the chunk before sends east (zero before column 0: no node there).
-        let mut west = [V::zero(); 3];
-        let last = chunks - 1;
-        if self.has_down {
-            let mut k = 0;
-            // Chunks narrower than a cache line go in pairs that start on a pair boundary
-            // of the buffers: the non-temporal stores of a large grid's last level then
-            // fill each line in one iteration at AVX2, or its halves in two in a row at
-            // SSE2 (AVX2 at 2048²: 1.4-1.6x the speed of one chunk per iteration, or of
-            // pairs that straddle lines). A chunk a line wide (AVX-512) goes alone, which
-            // keeps fewer registers live.
-            if V::LANES * size_of::<f32>() < CACHE_LINE {
-                if self.odd_start && last > 0 {
-                    // SAFETY: `0 < last < chunks`.
-                    let new = unsafe { self.chunk::<false, P>(&c, springs, 0, &mut west, sent) };
-                    store(&mut dst, full, 0, new, &mut finite);
-                    k = 1;
-                }
-                while k + 1 < last {
-                    // SAFETY: `k < k + 1 < chunks`.
-                    let a = unsafe { self.chunk::<false, P>(&c, springs, k, &mut west, sent) };
-                    // SAFETY: as above.
-                    let b = unsafe { self.chunk::<false, P>(&c, springs, k + 1, &mut west, sent) };
-                    store(&mut dst, full, k, a, &mut finite);
-                    store(&mut dst, full, k + 1, b, &mut finite);
-                    k += 2;
-                }
-            }
-            while k < last {
-                // SAFETY: `k < chunks`.
-                let new = unsafe { self.chunk::<false, P>(&c, springs, k, &mut west, sent) };
-                store(&mut dst, full, k, new, &mut finite);
-                k += 1;
-            }
-        } else {
-            for k in 0..last {
-                // SAFETY: `k < chunks`.
-                let new = unsafe { self.chunk::<true, P>(&c, springs, k, &mut west, sent) };
-                store(&mut dst, full, k, new, &mut finite);
-            }
-        }
-        // SAFETY: `last < chunks`.
-        let new = unsafe { self.chunk::<true, P>(&c, springs, last, &mut west, sent) };
-        if last < full {
-            store(&mut dst, full, last, new, &mut finite);
+        let pair = RowPair::new(self.chunks, self.h, self.d, springs);
+        let mut views = RowViews::new(pair, &self.nodes, sent);
+        let mut work = Work {
+            kernel: self,
+            c: Consts::<V>::new(self),
+            // The forces the chunk before sends east (zero before column 0: no node there).
+            west: [V::zero(); 3],
+            finite: V::zero(),
+        };
+        let new = each_chunk(
+            &mut views,
+            &mut work,
+            &mut dst,
+            self.has_down,
+            self.odd_start,
+        );
+        let real = work.c.edges.tail[Family::S as usize];
+        if dst.put_last(self.chunks - 1, new, real) {
+            work.fold(&new);
         } else {
             // A partial chunk: only the row's own lanes are written and checked.
-            let real = c.edges.tail[Family::S as usize];
-            dst.put_partial(last, new, real);
             for x in &new[..3] {
-                finite += V::keep(real, *x * V::zero());
+                work.finite += V::keep(real, *x * V::zero());
             }
         }
-        !finite.any_nan()
+        !work.finite.any_nan()
     }
 
     /// Family `fam`'s spring force on the `from` end of its springs in chunk `k`'s lanes,
@@ -812,26 +476,21 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
     /// offered for inlining, as is [`RowKernel::chunk`]: unoptimised, every inlined copy
     /// keeps its own stack slots, and the level entry that inlined them all needed 2–3 MB
     /// of stack, more than a thread of rayon's pool has.
-    ///
-    /// # Safety
-    ///
-    /// `k < chunks`.
     #[cfg_attr(not(debug_assertions), inline(always))]
     #[cfg_attr(debug_assertions, inline)]
-    unsafe fn spring<const EDGE: bool, P: SpringValues<V>>(
+    fn spring<const EDGE: bool, P: SpringValues<V>>(
         &self,
         c: &Consts<V>,
-        springs: &P,
-        k: usize,
+        at: &Chunk<'_, '_, '_, V, S, P>,
         fam: Family,
         from: [V; 3],
         to: [V; 3],
     ) -> [V; 3] {
-        // SAFETY: `k < chunks` (the caller's contract).
-        let (coef, rest) = unsafe { springs.at(fam, k) };
+        let (coef, rest) = at.spring(fam);
         let f = spring_force(from, to, coef, rest);
         if EDGE {
-            c.edges.only_springs(fam, k, self.chunks, self.has_down, f)
+            c.edges
+                .only_springs(fam, at.index(), at.chunks(), self.has_down, f)
         } else {
             f
         }
@@ -841,55 +500,41 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
     ///
     /// Each lane `i` evaluates four springs: E (node i to i+1), S (to the node below),
     /// SE (to the node below i+1), and the SW spring that leaves node i+1 for the node
-    /// below i, evaluated from its lower end. Its S, SE and SW forces go into `sent` for
-    /// row r+1 (S and SE as forces on this row's nodes, SW on the row below's). A node's
-    /// force is then the sum of [`scalar::node_force`](super::super::scalar::node_force):
-    /// its own E, S and SE springs, the north neighbour's S spring and the SW spring
-    /// leaving the north-east neighbour, all in its own lane,
-    /// minus what the lane to its west sends east — that lane's E and SW forces and its
-    /// north neighbour's SE — summed there and moved one lane with a single shuffle per
-    /// axis. `west` carries that sum from chunk `k − 1` to chunk `k`. With `EDGE` false
-    /// the chunk is not the last and has a row below: every lane holds a spring of every
-    /// family.
+    /// below i, evaluated from its lower end. Its S, SE and SW forces go down to row r+1
+    /// ([`Chunk::exchange`]; S and SE as forces on this row's nodes, SW on the row
+    /// below's). A node's force is then the sum of
+    /// [`scalar::node_force`](super::super::scalar::node_force): its own E, S and SE
+    /// springs, the north neighbour's S spring and the SW spring leaving the north-east
+    /// neighbour, all in its own lane, minus what the lane to its west sends east — that
+    /// lane's E and SW forces and its north neighbour's SE — summed there and moved one
+    /// lane with a single shuffle per axis. `west` carries that sum from chunk `k − 1` to
+    /// chunk `k`. With `EDGE` false the chunk is not the last and has a row below: every
+    /// lane holds a spring of every family.
     ///
-    /// # Safety
-    ///
-    /// `k < chunks`. (The sources are readable up to chunk `chunks`, the node and table
-    /// views hold `chunks` chunks, the arriving groups and `sent` `chunks + 2` groups,
-    /// chunk `k` being group `k + 1`.)
     /// (Inlined as [`RowKernel::spring`] is.)
     #[cfg_attr(not(debug_assertions), inline(always))]
     #[cfg_attr(debug_assertions, inline)]
-    unsafe fn chunk<const EDGE: bool, P: SpringValues<V>>(
+    fn chunk<const EDGE: bool, P: SpringValues<V>>(
         &self,
         c: &Consts<V>,
-        springs: &P,
-        k: usize,
+        mut at: Chunk<'_, '_, '_, V, S, P>,
         west: &mut [V; 3],
-        sent: &mut [Group<V>],
     ) -> [V; 6] {
-        let (h, d) = (self.h, self.d);
-        // SAFETY: `k + 1 ≤ chunks`.
-        let (h0, d0, h1, d1) = unsafe { (h.pos(k), d.pos(k), h.pos(k + 1), d.pos(k + 1)) };
-        let h_east = east3(h0, h1);
-        // SAFETY: `k < chunks`.
-        let (e, s, se, sw) = unsafe {
-            (
-                self.spring::<EDGE, P>(c, springs, k, Family::E, h0, h_east),
-                self.spring::<EDGE, P>(c, springs, k, Family::S, h0, d0),
-                self.spring::<EDGE, P>(c, springs, k, Family::SE, h0, east3(d0, d1)),
-                self.spring::<EDGE, P>(c, springs, k, Family::SW, d0, h_east),
-            )
-        };
-        // SAFETY: `k < chunks`, within the node views.
-        let (inv_mass, viscosity) = unsafe { (self.inv_mass.get(k), self.viscosity.get(k)) };
+        let Around {
+            here: h0,
+            here_east,
+            below: d0,
+            below_east,
+        } = at.around();
+        let h_east = east3(h0, here_east);
+        let d_east = east3(d0, below_east);
+        let e = self.spring::<EDGE, P>(c, &at, Family::E, h0, h_east);
+        let s = self.spring::<EDGE, P>(c, &at, Family::S, h0, d0);
+        let se = self.spring::<EDGE, P>(c, &at, Family::SE, h0, d_east);
+        let sw = self.spring::<EDGE, P>(c, &at, Family::SW, d0, h_east);
+        let node = at.exchange([s, se, sw]);
+        let (inv_mass, viscosity, north) = (node.inv_mass, node.viscosity, node.north);
         let free = inv_mass.gt(V::zero());
-        debug_assert!(k + 1 < self.arriving.len() && k + 1 < sent.len());
-        // SAFETY: `k + 1 ≤ chunks`, within the arriving groups and `sent`.
-        let north = unsafe {
-            *sent.get_unchecked_mut(k + 1) = [s, se, sw];
-            self.arriving.get_unchecked(k + 1)
-        };
         let mut new = [V::zero(); 6];
         for axis in 0..3 {
             // What this lane sends east, and what arrives from the west.
@@ -898,12 +543,12 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             // Same expression as `scalar::node_force`.
             let mut force =
                 (((e[axis] + s[axis]) + se[axis]) + (north[2][axis] - north[0][axis])) - from_west;
-            if let (true, Some(ext)) = (S::EXTERNAL, self.ext) {
-                // SAFETY: `k < chunks`, within the node views.
-                force += unsafe { ext[axis].get(k) };
+            if S::EXTERNAL {
+                if let Some(ext) = at.ext(axis) {
+                    force += ext;
+                }
             }
-            // SAFETY: `k < chunks`.
-            let v = unsafe { h.vel(k) }[axis];
+            let v = at.vel()[axis];
             let acc = (force - viscosity * v) * inv_mass + V::keep(free, c.g[axis]);
             let v1 = v + acc * c.dt;
             new[axis] = h0[axis] + v1 * c.dt;
@@ -914,6 +559,40 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         new[1] = calm(new[1], c.calm);
         new[4] = calm(new[4], c.calm);
         new
+    }
+}
+
+/// A row's run through its chunks ([`each_chunk`]): the kernel, its constants, and what
+/// goes from chunk to chunk.
+struct Work<'k, 'a, 'b, V: Vector, S> {
+    kernel: &'k RowKernel<'a, 'b, V, S>,
+    c: Consts<V>,
+    /// What the chunk before sends east ([`RowKernel::chunk`]).
+    west: [V; 3],
+    /// The finiteness check of the chunks stored so far ([`Work::stored`]).
+    finite: V,
+}
+
+impl<V: Vector, S: Source<V>, P: SpringValues<V>> ChunkWork<V, S, P> for Work<'_, '_, '_, V, S> {
+    #[inline(always)]
+    fn chunk<const EDGE: bool>(&mut self, at: Chunk<'_, '_, '_, V, S, P>) -> [V; 6] {
+        self.kernel.chunk::<EDGE, P>(&self.c, at, &mut self.west)
+    }
+
+    #[inline(always)]
+    fn stored(&mut self, new: &[V; 6]) {
+        self.fold(new);
+    }
+}
+
+impl<V: Vector, S> Work<'_, '_, '_, V, S> {
+    /// Folds a stored chunk's positions into the finiteness check: `x·0` is 0 for finite
+    /// x and NaN otherwise, and x' is non-finite whenever v' is.
+    #[inline(always)]
+    fn fold(&mut self, new: &[V; 6]) {
+        self.finite += new[0] * V::zero();
+        self.finite += new[1] * V::zero();
+        self.finite += new[2] * V::zero();
     }
 }
 
@@ -937,16 +616,6 @@ impl<V: Vector> Consts<V> {
     }
 }
 
-/// `(coefficient, rest length)` as lanes.
-///
-/// The kernel calls named `#[inline(always)]` functions, never closures: a closure is
-/// compiled on its own, without the level's target features, and the intrinsics in it
-/// become calls (seen as a 10× slower AVX2 step before they were taken out).
-#[inline(always)]
-fn splat2<V: Vector>((c, r): (f32, f32)) -> (V, V) {
-    (V::splat(c), V::splat(r))
-}
-
 /// `x`, or +0 in the lanes where it is smaller in magnitude than `limit` (NaN stays):
 /// [`super::super::scalar::calm`] in lanes.
 #[inline(always)]
@@ -968,18 +637,4 @@ fn east3<V: Vector>(lo: [V; 3], hi: [V; 3]) -> [V; 3] {
 #[inline(always)]
 fn only<V: Vector>(m: V::Mask, f: [V; 3]) -> [V; 3] {
     [V::keep(m, f[0]), V::keep(m, f[1]), V::keep(m, f[2])]
-}
-
-/// Stores chunk `k` (whole: `k < full`) of a row into `dst` and folds its positions into
-/// the finiteness check: `x·0` is 0 for finite x and NaN otherwise, and x' is non-finite
-/// whenever v' is.
-#[inline(always)]
-fn store<V: Vector>(dst: &mut impl Sink<V>, full: usize, k: usize, new: [V; 6], finite: &mut V) {
-    debug_assert!(k < full);
-    // SAFETY: `k < full`: every caller stores a chunk before the last, or the last when it
-    // is whole.
-    unsafe { dst.put(k, new) };
-    *finite += new[0] * V::zero();
-    *finite += new[1] * V::zero();
-    *finite += new[2] * V::zero();
 }
