@@ -12,10 +12,11 @@ const CRATES: [&str; 4] = ["src", "cli/src", "ffi/src", "bevy/src"];
 /// `unsafe` lives"): a folder ends in `/`. The C ABI's exported functions are declared
 /// `unsafe extern "C" fn` wherever they are (a C caller's pointers are the reason); that
 /// declaration is the only `unsafe` allowed outside these places.
-const UNSAFE_PLACES: [&str; 5] = [
+const UNSAFE_PLACES: [&str; 6] = [
     "src/simd/",                   // the lane layer: intrinsics, one file per instruction set
     "src/jobs.rs",                 // disjoint parts of one buffer for tasks running at once
     "src/forces/engine/access.rs", // the engine's unchecked row access
+    "src/forces/engine/schedule.rs", // each band's back-buffer rows and handoff slots
     "ffi/src/ptr.rs",              // the C ABI's pointer and length checks
     "ffi/src/jobs.rs",             // a C host's job-system callbacks
 ];
@@ -89,8 +90,9 @@ fn unsafe_lives_only_in_its_places() {
         }
         let text = code(&std::fs::read_to_string(root().join(file)).unwrap());
         for (n, line) in text.lines().enumerate() {
+            // (String contents are blanked here: `extern "C"` reads `extern ""`.)
             let declaration =
-                name.starts_with("ffi/src/") && line.contains("unsafe extern \"C\" fn");
+                name.starts_with("ffi/src/") && line.contains("unsafe extern \"\" fn");
             let words: Vec<&str> = line
                 .split(|c: char| !(c.is_alphanumeric() || c == '_'))
                 .collect();
