@@ -154,6 +154,7 @@ fn floaters() -> Vec<(&'static str, String)> {
     vec![
         ("floaters", format!("{:016x}", fnv(floats))),
         ("floaters_water", positions_fnv(&s)),
+        ("floaters_hash", format!("{:016x}", s.state_hash())),
     ]
 }
 
@@ -183,7 +184,7 @@ fn window() -> Vec<(&'static str, String)> {
         ),
         ("window_height", format!("{:08x}", height.to_bits())),
         ("window", positions_fnv(&s)),
-        ("state_hash_equal_runs", "True".to_string()),
+        ("window_hash", format!("{:016x}", s.state_hash())),
     ]
 }
 

@@ -49,31 +49,20 @@ pub enum Overflow {
 /// game time at the defaults).
 pub(crate) const TOLERANCE: f64 = 1e-4;
 
-/// The timestep the game meant: `dt`'s shortest decimal (what `{dt}` prints and what a
-/// caller wrote), read back as an `f64`. The `f32` nearest 0.4 is 0.4000000059604645, so
-/// a frame of 100 s at the default time scale holds 5,999.99991 of those, and a few such
-/// frames in a row would lose a step to the rounding of one `f32` constant; counted in
-/// steps of 0.4 (to `f64` precision) the frame holds 6,000. Deterministic on every
-/// platform: formatting and parsing floats are exact algorithms, not libm. Written into a
-/// buffer on the stack: the clock allocates nothing.
-fn decimal(dt: f32) -> f64 {
-    use std::io::Write;
-    let mut buf = [0u8; 64];
-    let mut out = std::io::Cursor::new(&mut buf[..]);
-    let printed = write!(out, "{dt}").is_ok();
-    let len = out.position() as usize;
-    let meant = std::str::from_utf8(&buf[..len])
-        .ok()
-        .filter(|_| printed)
-        .and_then(|text| text.parse::<f64>().ok());
-    meant.unwrap_or(dt as f64)
-}
+/// How far, per step, a whole number of steps may be off from the frames that meant them:
+/// `dt` and a frame's length are each an `f32`, rounded by up to half an ulp (2⁻²⁴) from
+/// what the game meant, and a frame of `n` steps may be off by `n` times that, twice over.
+/// A frame of 100 s at the default time scale holds 5,999.99991 steps of the `f32` nearest
+/// 0.4 (0.4000000059604645): it takes 6,000, and the few 10⁻⁵ of a step it is short are
+/// forgiven (the accumulator goes back to zero) instead of piling up frame after frame.
+const F32_ROUNDING: f64 = 1.0 / (1u64 << 22) as f64;
 
 /// The accumulator and the cap, one per surface.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct Clock {
     /// Model time owed and not yet stepped. After a call of `advance` it is below one
-    /// `dt` (unless steps are carried), and may be below zero by up to `TOLERANCE · dt`
+    /// `dt` (unless steps are carried), and may be below zero by up to `TOLERANCE · dt` plus
+    /// the `f32` rounding of the steps just taken (see `F32_ROUNDING`)
     /// (a step taken a hair early is paid back by the next frame).
     pub owed: f64,
     /// Most steps one call of `advance` takes.
@@ -99,11 +88,18 @@ impl Clock {
     /// Adds `model` time to the accumulator and takes out the steps of `dt` to run now:
     /// returns how many, the cap and the overflow rule applied.
     pub fn tick(&mut self, model: f64, dt: f32, time_scale: f32) -> u32 {
-        let dt = decimal(dt);
+        let dt = dt as f64;
         self.owed += model;
-        let due = (self.owed / dt + TOLERANCE).floor().max(0.0);
+        let owed_steps = self.owed / dt;
+        let due = (owed_steps + TOLERANCE + owed_steps.abs() * F32_ROUNDING)
+            .floor()
+            .max(0.0);
         let steps = due.min(self.max_steps as f64);
         self.owed -= steps * dt;
+        if self.owed.abs() <= steps * dt * F32_ROUNDING {
+            // What is left is the rounding of the steps just taken, not time the game owes.
+            self.owed = 0.0;
+        }
         if due > steps && self.overflow == Overflow::Drop {
             // What is left is the fraction of a step past the last whole one. Taken as a
             // remainder rather than by subtracting the dropped steps, which for an absurd
@@ -120,7 +116,7 @@ impl Clock {
 
     /// How far the owed time is into the next step, in `[0, 1)`.
     pub fn fraction(&self, dt: f32) -> f32 {
-        let f = (self.owed / decimal(dt)) as f32;
+        let f = (self.owed / dt as f64) as f32;
         if f >= 1.0 {
             // Only when steps are carried past the cap: the renderer is a whole step or
             // more behind, and the nearest it can show is the last state.
@@ -369,11 +365,40 @@ mod tests {
     #[test]
     fn long_frames_take_every_step_they_mean() {
         let mut c = clock(10_000, Overflow::Drop);
-        for frame in 0..100 {
+        for frame in 0..100_000 {
             // 100 s at the default time scale: 6,000 steps of 0.4.
             assert_eq!(c.tick(100.0 * 24.0, 0.4, 24.0), 6_000, "frame {frame}");
         }
         assert_eq!(c.dropped, 0.0);
+    }
+
+    /// Frames exactly one `f32` step long, and 60 Hz frames at the default time scale
+    /// (a hair longer than a step): one step each, for ever; 59.94 Hz frames catch up with
+    /// an extra step now and then, as their time says.
+    #[test]
+    fn frames_of_one_step_take_one_step_for_ever() {
+        for (frame, dt, scale) in [
+            (1.0f32 / 60.0, 1.0f32 / 60.0, 1.0f32),
+            (1.0 / 120.0, 1.0 / 120.0, 1.0),
+            (0.02, 0.02, 1.0),
+            (1.0 / 60.0, 0.4, 24.0),
+        ] {
+            let mut c = clock(16, Overflow::Drop);
+            for k in 0..1_000_000 {
+                let model = frame as f64 * scale as f64;
+                assert_eq!(
+                    c.tick(model, dt, scale),
+                    1,
+                    "frame {k} of {frame} s, dt {dt}"
+                );
+            }
+        }
+        let mut c = clock(16, Overflow::Drop);
+        let steps: u32 = (0..100_000)
+            .map(|_| c.tick((1.0f32 / 59.94) as f64 * 24.0, 0.4, 24.0))
+            .sum();
+        // 100,000 frames of 1/59.94 s are 100,100.1 steps of 1/60 s.
+        assert_eq!(steps, 100_100);
     }
 
     #[test]

@@ -96,8 +96,8 @@ namespace Springwater
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern SwRefraction sw_refraction_default();
 
-        /// <summary>The widest SIMD level this CPU has (what a new surface runs, unless the environment
-        /// variable `SPRINGWATER_SIMD` says otherwise).</summary>
+        /// <summary>The widest SIMD level this CPU has: what a new surface runs until
+        /// `sw_surface_set_simd_level` chooses another (the library never reads the environment).</summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int sw_simd_level_detect();
 

@@ -311,7 +311,6 @@ impl Snapshot {
     }
 
     /// Checks every invariant a surface relies on. See [`Surface::from_snapshot`].
-    /// Checks every invariant a surface relies on. See [`Surface::from_snapshot`].
     pub fn validate(&self) -> Result<()> {
         let scalars = self.scalars();
         Contents {
