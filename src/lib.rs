@@ -127,7 +127,7 @@ mod surface;
 mod view;
 
 pub use error::{Error, IoError, Result};
-pub use floater::{Buoyancy, Floater, FloaterId, Shape};
+pub use floater::{BodyForces, Buoyancy, Floater, FloaterId, Shape};
 /// The `glam` the public API speaks (`Vec3` in floaters and queries), for callers whose own
 /// `glam` is another version.
 pub use glam;

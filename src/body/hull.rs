@@ -186,6 +186,11 @@ impl Hull {
         )
     }
 
+    /// The enclosed volume in `f64`.
+    pub(crate) fn volume_f64(&self) -> f64 {
+        self.volume
+    }
+
     /// The largest side of the mesh's bounding box, world units.
     pub(super) fn extent(&self) -> f64 {
         self.extent

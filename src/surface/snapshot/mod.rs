@@ -323,7 +323,7 @@ impl Snapshot {
             pinned: &self.pinned[..],
             rest: std::array::from_fn(|f| &self.rest[f][..]),
             stiffness: std::array::from_fn(|f| &self.stiffness[f][..]),
-            bodies: self.floaters.iter().map(|&body| Ok(body)),
+            bodies: self.floaters.iter().map(|body| Ok(body.clone())),
         }
         .validate()
     }

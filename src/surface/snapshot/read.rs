@@ -316,15 +316,12 @@ fn body(bytes: &[u8]) -> Result<(FloaterId, Floater)> {
             )))
         }
     };
-    let body = Floater {
-        shape,
-        mass,
-        drag,
-        position,
-        velocity,
-        push,
-        water_force,
-    };
+    let mut body = Floater::sphere(1.0, mass, position);
+    body.shape = shape;
+    body.drag = drag;
+    body.velocity = velocity;
+    body.push = push;
+    body.water_force = water_force;
     Ok((id, body))
 }
 

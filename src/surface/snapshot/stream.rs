@@ -154,9 +154,11 @@ impl Fields<'_> {
         }
         for (id, body) in self.bodies {
             sink.state(&id.0.to_le_bytes());
-            let (shape, size): (u32, [f32; 3]) = match body.shape {
-                Shape::Sphere { radius } => (0, [radius, 0.0, 0.0]),
+            let (shape, size): (u32, [f32; 3]) = match &body.shape {
+                Shape::Sphere { radius } => (0, [*radius, 0.0, 0.0]),
                 Shape::Box { half_extents } => (1, half_extents.to_array()),
+                // TEMPORARY until format version 6 stores hulls.
+                Shape::Hull(_) => (2, [0.0; 3]),
             };
             sink.state(&shape.to_le_bytes());
             floats(sink, &size);
