@@ -52,7 +52,8 @@
 //! Not modelled: added mass, slamming, bodies touching each other or the pool's walls
 //! (a physics engine that owns the bodies does that: [`Surface::body_forces`]).
 
-use crate::body::Hull;
+use crate::body::rigid::{outer, Rigid};
+use crate::body::{tessellate, Hull};
 use crate::error::{Error, Result};
 use crate::params;
 #[cfg(doc)]
@@ -129,9 +130,16 @@ impl Shape {
     }
 }
 
-/// `a bᵀ`.
-pub(crate) fn outer(a: DVec3, b: DVec3) -> DMat3 {
-    DMat3::from_cols(a * b.x, a * b.y, a * b.z)
+/// The mesh the water presses on for `shape`: triangles at most about `cell` across
+/// (the `tessellate` module of [`crate::body`]).
+pub(crate) fn wet_mesh(shape: &Shape, cell: f32) -> Result<Arc<Hull>> {
+    match shape {
+        Shape::Sphere { radius } => tessellate::sphere(*radius as f64, cell as f64).map(Arc::new),
+        Shape::Box { half_extents } => {
+            tessellate::cuboid(half_extents.as_dvec3(), cell as f64).map(Arc::new)
+        }
+        Shape::Hull(hull) => tessellate::cut(hull, cell),
+    }
 }
 
 /// A floating body. Plain data: build one, hand it to [`Surface::add_floater`], read it
@@ -255,7 +263,22 @@ impl Floater {
     /// The inertia tensor in use: [`Floater::inertia`] if set, else the shape's at uniform
     /// density (body axes, about the centre of mass).
     pub fn inertia_tensor(&self) -> Mat3 {
-        self.inertia.unwrap_or_else(|| self.shape.inertia(self.mass))
+        self.inertia
+            .unwrap_or_else(|| self.shape.inertia(self.mass))
+    }
+
+    /// The body's state for the rigid step, in `f64`.
+    pub(crate) fn rigid(&self) -> Rigid {
+        Rigid {
+            mass: self.mass as f64,
+            inertia: self.inertia_tensor().as_dmat3(),
+            position: self.position.as_dvec3(),
+            orientation: self.orientation.as_dquat(),
+            velocity: self.velocity.as_dvec3(),
+            angular_velocity: self.angular_velocity.as_dvec3(),
+            push: self.push.as_dvec3(),
+            push_torque: self.push_torque.as_dvec3(),
+        }
     }
 
     /// The world velocity of the body's point at world `point`: `v + ω × (point − x)`.
@@ -357,7 +380,12 @@ pub(crate) fn check_orientation(q: Quat) -> Result<()> {
     for v in q.to_array() {
         params::finite("floater orientation", v)?;
     }
-    let n = q.to_array().map(f64::from).iter().map(|v| v * v).sum::<f64>();
+    let n = q
+        .to_array()
+        .map(f64::from)
+        .iter()
+        .map(|v| v * v)
+        .sum::<f64>();
     if (n - 1.0).abs() > 1e-3 {
         return Err(Error::InvalidParam {
             name: "floater orientation's squared norm",
@@ -385,11 +413,13 @@ pub struct BodyForces {
 /// definite, and each principal moment at most the sum of the other two: the second
 /// moment of the mass, `tr(I)/2 · 1 − I`, is positive semidefinite.
 fn check_inertia(inertia: Mat3) -> Result<()> {
-    let invalid = |value: f64, expected| Err(Error::InvalidParam {
-        name: "floater inertia",
-        value,
-        expected,
-    });
+    let invalid = |value: f64, expected| {
+        Err(Error::InvalidParam {
+            name: "floater inertia",
+            value,
+            expected,
+        })
+    };
     let i = inertia.as_dmat3();
     let a = i.to_cols_array();
     if a.iter().any(|v| !v.is_finite()) {

@@ -88,8 +88,16 @@ fn a_released_body_settles_where_buoyancy_balances_its_weight() {
         // At rest up and down. Sideways, the pool's last ripples still nudge it, and near
         // the pinned walls its own dent is lopsided: the slope's pressure slides it slowly
         // towards the middle.
-        assert!(f.velocity.y.abs() < 1e-3, "{id:?} still bobs: {:?}", f.velocity);
-        assert!(f.velocity.length() < 0.05, "{id:?} still moves: {:?}", f.velocity);
+        assert!(
+            f.velocity.y.abs() < 1e-3,
+            "{id:?} still bobs: {:?}",
+            f.velocity
+        );
+        assert!(
+            f.velocity.length() < 0.05,
+            "{id:?} still moves: {:?}",
+            f.velocity
+        );
         assert!(
             (f.water_force.y - weight).abs() < 1e-3 * weight,
             "{id:?}: buoyancy {} vs weight {weight}",

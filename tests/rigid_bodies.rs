@@ -30,7 +30,11 @@ fn keel(shape: &Shape) -> f32 {
     match shape {
         Shape::Sphere { radius } => -radius,
         Shape::Box { half_extents } => -half_extents.y,
-        Shape::Hull(hull) => hull.vertices().iter().map(|v| v[1]).fold(f32::MAX, f32::min),
+        Shape::Hull(hull) => hull
+            .vertices()
+            .iter()
+            .map(|v| v[1])
+            .fold(f32::MAX, f32::min),
         _ => unreachable!(),
     }
 }
@@ -61,7 +65,11 @@ fn predicted_draft(shape: &Shape, volume: f32) -> f32 {
     };
     let height = match shape {
         Shape::Hull(hull) => {
-            hull.vertices().iter().map(|v| v[1]).fold(f32::MIN, f32::max) - keel(shape)
+            hull.vertices()
+                .iter()
+                .map(|v| v[1])
+                .fold(f32::MIN, f32::max)
+                - keel(shape)
         }
         _ => -2.0 * keel(shape),
     };
@@ -117,13 +125,24 @@ fn bodies_settle_at_the_draft_their_displacement_predicts() {
                 // its displaced volume is the prediction, and B is under G.
                 let mut scratch = springwater::body::HullScratch::new();
                 let sub = hull
-                    .submerged(b.position, b.orientation, s.buoyancy(), |x, z| {
-                        s.height_at(x, z).unwrap()
-                    }, &mut scratch)
+                    .submerged(
+                        b.position,
+                        b.orientation,
+                        s.buoyancy(),
+                        |x, z| s.height_at(x, z).unwrap(),
+                        &mut scratch,
+                    )
                     .unwrap();
                 let want = ratio * shape.volume();
-                println!("boat at {ratio}: displaces {}, predicted {want}", sub.volume);
-                assert!((sub.volume - want).abs() < 0.01 * want, "{ratio}: {}", sub.volume);
+                println!(
+                    "boat at {ratio}: displaces {}, predicted {want}",
+                    sub.volume
+                );
+                assert!(
+                    (sub.volume - want).abs() < 0.01 * want,
+                    "{ratio}: {}",
+                    sub.volume
+                );
                 let off = (sub.centre_of_buoyancy - b.position) * Vec3::new(1.0, 0.0, 1.0);
                 assert!(off.length() < 0.01, "{ratio}: B off G by {off}");
                 continue;
@@ -131,7 +150,10 @@ fn bodies_settle_at_the_draft_their_displacement_predicts() {
             let under = s.height_at(b.position.x, b.position.z).unwrap();
             let draft = under - (b.position.y + keel(&shape));
             let want = predicted_draft(&shape, ratio * shape.volume());
-            println!("{} at {ratio}: draft {draft}, predicted {want}", name(&shape));
+            println!(
+                "{} at {ratio}: draft {draft}, predicted {want}",
+                name(&shape)
+            );
             assert!(
                 (draft - want).abs() < 0.01 * want,
                 "{ratio}: draft {draft} vs {want} ({:?})",
@@ -256,7 +278,10 @@ fn the_roll_period_on_still_water_is_the_metacentric_one() {
     assert!(crossings.len() >= 5, "{crossings:?}");
     let periods = (crossings.last().unwrap() - crossings[0]) / (crossings.len() - 1) as f32;
     println!("roll period {periods} s, theory {theory} s (GM {gm})");
-    assert!((periods - theory).abs() < 0.03 * theory, "{periods} vs {theory}");
+    assert!(
+        (periods - theory).abs() < 0.03 * theory,
+        "{periods} vs {theory}"
+    );
 }
 
 #[test]
@@ -282,7 +307,10 @@ fn a_step_changes_momentum_by_the_forces_and_the_water_gets_minus_the_force() {
         let after = s.floater(id).unwrap().clone();
         let gained = mass * (after.velocity - before.velocity);
         let impulse = dt * (after.water_force - Vec3::new(0.0, mass * g, 0.0));
-        assert!((gained - impulse).length() < 1e-4 * (mass * g * dt), "{gained} {impulse}");
+        assert!(
+            (gained - impulse).length() < 1e-4 * (mass * g * dt),
+            "{gained} {impulse}"
+        );
         let spun = inertia * (after.angular_velocity - before.angular_velocity);
         let twist = dt * after.water_torque;
         assert!(
@@ -300,7 +328,11 @@ fn a_step_changes_momentum_by_the_forces_and_the_water_gets_minus_the_force() {
         f[1].iter().sum::<f32>(),
         f[2].iter().sum::<f32>(),
     ) * scale2;
-    assert!((sum + push.force).length() < 1e-4 * push.force.length(), "{sum} {}", push.force);
+    assert!(
+        (sum + push.force).length() < 1e-4 * push.force.length(),
+        "{sum} {}",
+        push.force
+    );
 }
 
 #[test]
@@ -314,7 +346,11 @@ fn body_forces_lift_a_half_submerged_box_by_the_weight_of_the_water_it_displaces
     body.drag = 0.0;
     let push = s.body_forces(&body, 1.0 / 60.0).unwrap();
     let want = water.density * water.gravity * displaced;
-    assert!((push.force.y - want).abs() < 0.02 * want, "{} vs {want}", push.force.y);
+    assert!(
+        (push.force.y - want).abs() < 0.02 * want,
+        "{} vs {want}",
+        push.force.y
+    );
     assert!(push.torque.length() < 1e-4 * want);
 
     // Heeled about x by 10°, the torque turns it back upright (about −x).
@@ -347,7 +383,10 @@ fn an_explicit_engine_at_60_hz_floats_a_light_box_with_body_forces() {
         let spin = Quat::from_xyzw(w.x, w.y, w.z, 0.0) * body.orientation;
         body.orientation = (body.orientation + spin * (0.5 * dt)).normalize();
         s.advance(dt).unwrap();
-        assert!(body.position.is_finite() && body.velocity.length() < 100.0, "{body:?}");
+        assert!(
+            body.position.is_finite() && body.velocity.length() < 100.0,
+            "{body:?}"
+        );
     }
     let draft = 0.1 * 2.0 * e.y;
     let under = s.height_at(body.position.x, body.position.z).unwrap();

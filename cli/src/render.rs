@@ -461,7 +461,7 @@ fn animate(
         balls.extend(wake.as_ref().map(|w| boat(&surface, w)));
         balls.extend(surface.floaters().enumerate().map(|(k, (_, f))| Ball {
             centre: f.position,
-            radius: f.shape.half_height(),
+            radius: f.shape.bounding_radius(),
             colours: BUOY_COLOURS[k % BUOY_COLOURS.len()],
         }));
         if wake.is_some() || !balls.is_empty() {

@@ -70,8 +70,29 @@
 //! by the torques, which cannot make a free spin speed up, and a floating body's spin is
 //! slow and damped by the water.
 
-use crate::floater::{outer, Floater};
 use glam::{DMat3, DQuat, DVec3};
+
+/// A rigid body's state for one step, in `f64`: what [`step`] needs of a floating body.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Rigid {
+    pub mass: f64,
+    /// Inertia tensor about the centre of mass, body axes.
+    pub inertia: DMat3,
+    /// Centre of mass, world.
+    pub position: DVec3,
+    /// Body to world.
+    pub orientation: DQuat,
+    pub velocity: DVec3,
+    pub angular_velocity: DVec3,
+    /// External force through the centre of mass, and torque about it.
+    pub push: DVec3,
+    pub push_torque: DVec3,
+}
+
+/// `a bᵀ`.
+pub(crate) fn outer(a: DVec3, b: DVec3) -> DMat3 {
+    DMat3::from_cols(a * b.x, a * b.y, a * b.z)
+}
 
 /// A wet piece of the hull (from the `hydrostatics` module), with the water under it.
 #[derive(Debug, Clone, Copy, Default)]
@@ -144,24 +165,27 @@ pub(crate) fn normalised(q: DQuat) -> DQuat {
 /// Fills `forces` with each force the body feels and the point it acts at (the pieces'
 /// pressure and drag, then the four waterplane forces): the water gets minus each.
 pub(crate) fn step(
-    body: &Floater,
+    body: &Rigid,
     pieces: &[Piece],
     plane: &Waterplane,
     world: World,
     forces: &mut Vec<(DVec3, DVec3)>,
 ) -> Moved {
     let dt = world.dt;
-    let m = body.mass as f64;
-    let c = body.position.as_dvec3();
-    let q = normalised(body.orientation.as_dquat());
+    let m = body.mass;
+    let c = body.position;
+    let q = normalised(body.orientation);
     let r = rotation(q);
-    let inertia = r * body.inertia_tensor().as_dmat3() * r.transpose();
-    let v = body.velocity.as_dvec3();
-    let w = body.angular_velocity.as_dvec3();
+    let inertia = r * body.inertia * r.transpose();
+    let (v, w) = (body.velocity, body.angular_velocity);
 
     // Pressure at the current pose, and the drag's matrix and source.
     let wet: f64 = pieces.iter().map(|p| p.area).sum();
-    let per_area = if wet > 0.0 { world.drag_rate / wet } else { 0.0 };
+    let per_area = if wet > 0.0 {
+        world.drag_rate / wet
+    } else {
+        0.0
+    };
     let (mut f0, mut t0) = (DVec3::ZERO, DVec3::ZERO);
     let (mut rate, mut rate_d, mut rate_dd) = (0.0, DVec3::ZERO, DMat3::ZERO);
     let (mut src_f, mut src_t) = (DVec3::ZERO, DVec3::ZERO);
@@ -203,7 +227,14 @@ pub(crate) fn step(
             sys[3 + i][j] = dt * cross.col(j)[i];
         }
     }
-    let stiff = [(1, 1, k_yy), (1, 3, k_yx), (1, 5, k_yz), (3, 3, k_xx), (3, 5, k_xz), (5, 5, k_zz)];
+    let stiff = [
+        (1, 1, k_yy),
+        (1, 3, k_yx),
+        (1, 5, k_yz),
+        (3, 3, k_xx),
+        (3, 5, k_xz),
+        (5, 5, k_zz),
+    ];
     for (i, j, value) in stiff {
         sys[i][j] += h2 * value;
         if i != j {
@@ -211,8 +242,8 @@ pub(crate) fn step(
         }
     }
     let gravity = DVec3::new(0.0, -m * world.gravity, 0.0);
-    let b_f = v * m + (f0 + src_f + body.push.as_dvec3() + gravity) * dt;
-    let b_t = inertia * w + (t0 + src_t + body.push_torque.as_dvec3()) * dt;
+    let b_f = v * m + (f0 + src_f + body.push + gravity) * dt;
+    let b_t = inertia * w + (t0 + src_t + body.push_torque) * dt;
     for i in 0..3 {
         sys[i][6] = b_f[i];
         sys[3 + i][6] = b_t[i];
@@ -333,7 +364,11 @@ mod tests {
         let mut sys = [[0.0; 7]; 6];
         for i in 0..6 {
             for j in 0..6 {
-                sys[i][j] = if i == j { 10.0 + i as f64 } else { 1.0 / (1.0 + (i + j) as f64) };
+                sys[i][j] = if i == j {
+                    10.0 + i as f64
+                } else {
+                    1.0 / (1.0 + (i + j) as f64)
+                };
             }
             sys[i][6] = (0..6).map(|j| sys[i][j] * x[j]).sum();
         }

@@ -22,37 +22,31 @@
 
 use super::Hull;
 use crate::error::Result;
-use crate::floater::Shape;
 use glam::DVec3;
 use std::collections::HashMap;
 use std::sync::Arc;
 
-/// The mesh the water presses on for `shape`, its triangles at most about `cell` across
-/// (fewer, larger ones if that would pass [`Hull::MAX_TRIANGLES`]).
-pub(crate) fn wet_mesh(shape: &Shape, cell: f32) -> Result<Arc<Hull>> {
+/// `hull` with every triangle cut into `n²`, `n` set by its longest edge, so that the
+/// triangles are at most about `cell` across (fewer cuts if that would pass
+/// [`Hull::MAX_TRIANGLES`]); the same hull when its triangles are small enough.
+pub(crate) fn cut(hull: &Arc<Hull>, cell: f32) -> Result<Arc<Hull>> {
     let cell = cell as f64;
-    match shape {
-        Shape::Sphere { radius } => sphere(*radius as f64, cell).map(Arc::new),
-        Shape::Box { half_extents } => cuboid(half_extents.as_dvec3(), cell).map(Arc::new),
-        Shape::Hull(hull) => {
-            let longest = hull
-                .triangles()
-                .iter()
-                .map(|t| longest_edge(&t.map(|i| corner(hull.vertices(), i))))
-                .fold(0.0, f64::max);
-            let n = pieces(longest, cell, hull.triangles().len());
-            if n == 1 {
-                return Ok(Arc::clone(hull));
-            }
-            let corners: Vec<DVec3> = hull
-                .vertices()
-                .iter()
-                .map(|v| DVec3::from(v.map(f64::from)))
-                .collect();
-            let (vertices, triangles) = subdivide(&corners, hull.triangles(), n, |p| p);
-            Hull::new(&vertices, &triangles).map(Arc::new)
-        }
+    let longest = hull
+        .triangles()
+        .iter()
+        .map(|t| longest_edge(&t.map(|i| corner(hull.vertices(), i))))
+        .fold(0.0, f64::max);
+    let n = pieces(longest, cell, hull.triangles().len());
+    if n == 1 {
+        return Ok(Arc::clone(hull));
     }
+    let corners: Vec<DVec3> = hull
+        .vertices()
+        .iter()
+        .map(|v| DVec3::from(v.map(f64::from)))
+        .collect();
+    let (vertices, triangles) = subdivide(&corners, hull.triangles(), n, |p| p);
+    Hull::new(&vertices, &triangles).map(Arc::new)
 }
 
 /// How many pieces to cut an edge of `length` into for cells of `cell`, with `triangles`
@@ -73,7 +67,10 @@ fn corner(vertices: &[[f32; 3]], i: u32) -> DVec3 {
 
 fn longest_edge([a, b, c]: &[DVec3; 3]) -> f64 {
     let square = |p: DVec3, q: DVec3| (p - q).length_squared();
-    square(*a, *b).max(square(*b, *c)).max(square(*c, *a)).sqrt()
+    square(*a, *b)
+        .max(square(*b, *c))
+        .max(square(*c, *a))
+        .sqrt()
 }
 
 /// Cuts every triangle into `n²`: the points `(i a + j b + k c) / n`, `i + j + k = n`, each
@@ -130,7 +127,7 @@ fn subdivide(
 
 /// An icosphere of `radius` with triangles about `cell` across, scaled to the sphere's
 /// volume.
-fn sphere(radius: f64, cell: f64) -> Result<Hull> {
+pub(crate) fn sphere(radius: f64, cell: f64) -> Result<Hull> {
     // The icosahedron: the corners of three golden rectangles.
     let phi = (1.0 + 5.0f64.sqrt()) / 2.0;
     let corners: Vec<DVec3> = [
@@ -178,8 +175,8 @@ fn sphere(radius: f64, cell: f64) -> Result<Hull> {
     let polyhedron = Hull::new(&vertices, &triangles)?;
     // Scale by the cube root of (sphere's volume / polyhedron's), by Newton's iteration
     // (only + − × ÷: the same bits everywhere).
-    let ratio = 4.0 / 3.0 * std::f64::consts::PI * radius * radius * radius
-        / polyhedron.volume_f64();
+    let ratio =
+        4.0 / 3.0 * std::f64::consts::PI * radius * radius * radius / polyhedron.volume_f64();
     let mut s = 1.0;
     for _ in 0..8 {
         s = (2.0 * s + ratio / (s * s)) / 3.0;
@@ -192,7 +189,7 @@ fn sphere(radius: f64, cell: f64) -> Result<Hull> {
 }
 
 /// A box of `half` extents with a grid of squares at most `cell` wide on every face.
-fn cuboid(half: DVec3, cell: f64) -> Result<Hull> {
+pub(crate) fn cuboid(half: DVec3, cell: f64) -> Result<Hull> {
     let count = |e: f64| ((2.0 * e / cell).ceil().clamp(1.0, 256.0)) as usize;
     let (nx, ny, nz) = (count(half.x), count(half.y), count(half.z));
     // The coordinate of grid line `i` of `n` along an axis of half extent `e`: the same
@@ -238,28 +235,26 @@ fn cuboid(half: DVec3, cell: f64) -> Result<Hull> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use glam::Vec3;
 
     #[test]
     fn a_sphere_keeps_its_volume_and_its_triangles_stay_small() {
-        for (radius, cell) in [(0.5, 1.0), (1.0, 1.0), (3.0, 1.0), (2.0, 0.25)] {
-            let shape = Shape::Sphere { radius };
-            let mesh = wet_mesh(&shape, cell).unwrap();
-            let exact = shape.volume();
-            assert!((mesh.volume() - exact).abs() < 1e-5 * exact, "{radius} {cell}");
-            assert!(mesh.centroid().length() < 1e-5 * radius);
+        for (radius, cell) in [(0.5f64, 1.0f64), (1.0, 1.0), (3.0, 1.0), (2.0, 0.25)] {
+            let mesh = sphere(radius, cell).unwrap();
+            let exact = 4.0 / 3.0 * std::f32::consts::PI * (radius as f32).powi(3);
+            assert!(
+                (mesh.volume() - exact).abs() < 1e-5 * exact,
+                "{radius} {cell}"
+            );
+            assert!(mesh.centroid().length() < 1e-5 * radius as f32);
             let longest = longest_of(&mesh);
-            assert!(longest <= 1.3 * cell as f64, "{radius} {cell}: {longest}");
+            assert!(longest <= 1.3 * cell, "{radius} {cell}: {longest}");
         }
     }
 
     #[test]
     fn a_box_is_cut_into_cells_and_keeps_its_volume() {
-        let shape = Shape::Box {
-            half_extents: Vec3::new(2.5, 0.5, 1.0),
-        };
-        let mesh = wet_mesh(&shape, 1.0).unwrap();
-        assert_eq!(mesh.volume(), 5.0);
+        let mesh = cuboid(DVec3::new(2.5, 0.5, 1.0), 1.0).unwrap();
+        assert_eq!(mesh.volume(), 10.0);
         assert!(longest_of(&mesh) <= 2f64.sqrt() + 1e-9);
         // 5 × 1, 1 × 2 and 5 × 2 squares on opposite faces, two triangles each.
         assert_eq!(mesh.triangles().len(), 2 * 2 * (5 + 2 + 10));
@@ -268,10 +263,10 @@ mod tests {
     #[test]
     fn a_hull_with_long_edges_is_cut_and_one_with_short_ones_is_kept() {
         let hull = Arc::new(Hull::cuboid([3.0, 1.0, 1.0]).unwrap());
-        let cut = wet_mesh(&Shape::Hull(Arc::clone(&hull)), 1.0).unwrap();
+        let cut = cut(&hull, 1.0).unwrap();
         assert!((cut.volume() - hull.volume()).abs() < 1e-5 * hull.volume());
         assert!(longest_of(&cut) <= 1.0 + 1e-9);
-        let kept = wet_mesh(&Shape::Hull(Arc::clone(&hull)), 10.0).unwrap();
+        let kept = super::cut(&hull, 10.0).unwrap();
         assert!(Arc::ptr_eq(&kept, &hull));
     }
 

@@ -3,7 +3,7 @@
 
 use super::Surface;
 use crate::body::rigid::{self, Piece, World};
-use crate::body::{tessellate, Hull, HullScratch};
+use crate::body::{Hull, HullScratch};
 use crate::error::{Error, Result};
 use crate::floater::{self, BodyForces, Buoyancy, Floater, FloaterId};
 use crate::params;
@@ -65,7 +65,7 @@ impl Surface {
     pub fn add_floater(&mut self, body: Floater) -> Result<FloaterId> {
         let body = self.admit(body, Vec3::ZERO, Vec3::ZERO)?;
         params::check_dt(self.params.dt, self.limit_with(self.floaters.buoyancy))?;
-        let mesh = tessellate::wet_mesh(&body.shape, self.params.spacing)?;
+        let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
         let id = FloaterId(self.floaters.next_id);
         self.floaters.next_id = id.0.checked_add(1).ok_or(Error::InvalidParam {
             name: "floater id",
@@ -75,7 +75,10 @@ impl Surface {
         let k = self.floaters.bodies.len();
         self.floaters.scratch.meshes.truncate(k);
         if self.floaters.scratch.meshes.len() == k {
-            self.floaters.scratch.meshes.push((body.shape.clone(), mesh));
+            self.floaters
+                .scratch
+                .meshes
+                .push((body.shape.clone(), mesh));
         }
         self.floaters.bodies.push((id, body));
         Ok(id)
@@ -119,7 +122,7 @@ impl Surface {
         let old = &self.floaters.bodies[k].1;
         let body = self.admit(body, old.water_force, old.water_torque)?;
         if body.shape != self.floaters.bodies[k].1.shape {
-            let mesh = tessellate::wet_mesh(&body.shape, self.params.spacing)?;
+            let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
             if let Some(slot) = self.floaters.scratch.meshes.get_mut(k) {
                 *slot = (body.shape.clone(), mesh);
             }
@@ -274,7 +277,7 @@ impl Surface {
             match scratch.meshes.get(k) {
                 Some((shape, _)) if *shape == body.shape => {}
                 _ => {
-                    let mesh = tessellate::wet_mesh(&body.shape, self.params.spacing)?;
+                    let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
                     let entry = (body.shape.clone(), mesh);
                     if k < scratch.meshes.len() {
                         scratch.meshes[k] = entry;
@@ -302,7 +305,9 @@ impl Surface {
                 step: self.steps(),
                 floater: id.0,
             };
-            let moved = self.hull_forces(body, &mesh, seconds, room, scratch).map_err(fail)?;
+            let moved = self
+                .hull_forces(body, &mesh, seconds, room, scratch)
+                .map_err(fail)?;
             // The body must stay a valid body (finite, and within the ranges a snapshot
             // accepts), or the step is refused.
             let moved = Floater {
@@ -317,10 +322,11 @@ impl Surface {
                 ..body.clone()
             };
             moved.validate().map_err(fail)?;
-            self.push_reactions(1.0, scratch).map_err(|_| Error::FloaterNonFinite {
-                step: self.steps(),
-                floater: id.0,
-            })?;
+            self.push_reactions(1.0, scratch)
+                .map_err(|_| Error::FloaterNonFinite {
+                    step: self.steps(),
+                    floater: id.0,
+                })?;
             scratch.moved.push(moved);
         }
         Ok(())
@@ -370,7 +376,9 @@ impl Surface {
         let mut room = f64::INFINITY;
         let mut seen = 0.0;
         for p in pieces.iter_mut() {
-            if let Some((_, flow, r)) = self.water_under(p.point.x as f32, p.point.z as f32, room_rate) {
+            if let Some((_, flow, r)) =
+                self.water_under(p.point.x as f32, p.point.z as f32, room_rate)
+            {
                 p.flow = (flow * scale).as_dvec3();
                 room = room.min(r.max(0.0) as f64 * scale as f64);
             }
@@ -389,7 +397,13 @@ impl Surface {
             dt: seconds as f64,
             drag_rate: drag.min(0.5 * room * cells.max(1.0)),
         };
-        Ok(rigid::step(body, pieces, &pressure.plane, world, &mut scratch.forces))
+        Ok(rigid::step(
+            &body.rigid(),
+            pieces,
+            &pressure.plane,
+            world,
+            &mut scratch.forces,
+        ))
     }
 
     /// Pushes minus every force in `scratch.forces`, times `factor`, into the water at its
@@ -479,11 +493,13 @@ impl Surface {
                 mesh
             }
             None => {
-                let mesh = tessellate::wet_mesh(&body.shape, self.params.spacing)?;
+                let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
                 if scratch.foreign.len() == FOREIGN_MESHES {
                     scratch.foreign.remove(0);
                 }
-                scratch.foreign.push((body.shape.clone(), Arc::clone(&mesh)));
+                scratch
+                    .foreign
+                    .push((body.shape.clone(), Arc::clone(&mesh)));
                 mesh
             }
         };
@@ -501,7 +517,9 @@ impl Surface {
         // its next step.
         let step_seconds = (self.params.dt / self.params.time_scale) as f64;
         let factor = seconds as f64 / step_seconds;
-        self.logged(scratch, |water, scratch| water.push_reactions(factor, scratch))?;
+        self.logged(scratch, |water, scratch| {
+            water.push_reactions(factor, scratch)
+        })?;
         Ok(BodyForces { force, torque })
     }
 }
