@@ -229,7 +229,28 @@ pub(crate) fn cuboid(half: DVec3, cell: f64) -> Result<Hull> {
             }
         }
     }
+    weld(&mut vertices, &mut triangles);
     Hull::new(&vertices, &triangles)
+}
+
+/// Merges vertices at exactly the same position (the faces' shared edges), so that each
+/// point's water is sampled once.
+fn weld(vertices: &mut Vec<[f32; 3]>, triangles: &mut [[u32; 3]]) {
+    let mut first: HashMap<[u32; 3], u32> = HashMap::new();
+    let mut kept: Vec<[f32; 3]> = Vec::new();
+    let map: Vec<u32> = vertices
+        .iter()
+        .map(|v| {
+            *first.entry(v.map(f32::to_bits)).or_insert_with(|| {
+                kept.push(*v);
+                (kept.len() - 1) as u32
+            })
+        })
+        .collect();
+    for t in triangles.iter_mut() {
+        *t = t.map(|i| map[i as usize]);
+    }
+    *vertices = kept;
 }
 
 #[cfg(test)]
