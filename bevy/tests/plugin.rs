@@ -187,7 +187,7 @@ fn a_buoyant_ball_floats_and_settles() {
         .id();
     run(&mut app, 900); // 15 s
     let y = app.world().get::<Transform>(ball).unwrap().translation.y;
-    let body = *app.world().get::<Buoyant>(ball).unwrap();
+    let body = app.world().get::<Buoyant>(ball).unwrap().clone();
     let mut waters = app.world_mut().query::<&WaterSurface>();
     let ws = waters.single(app.world()).unwrap();
     let surface = ws.surface().height_at(32.0, 32.0).unwrap();
@@ -449,9 +449,12 @@ fn a_buoyant_body_is_the_librarys_floater_and_goes_with_its_entity() {
     run(&mut app, 120);
     let floaters = |app: &App| {
         let ws = app.world().get::<WaterSurface>(water).unwrap();
-        ws.surface().floaters().map(|(_, f)| *f).collect::<Vec<_>>()
+        ws.surface()
+            .floaters()
+            .map(|(_, f)| f.clone())
+            .collect::<Vec<_>>()
     };
-    let [body] = floaters(&app)[..] else {
+    let [body] = &floaters(&app)[..] else {
         panic!("one floater expected");
     };
     let t = app.world().get::<Transform>(crate_).unwrap().translation;
@@ -462,7 +465,7 @@ fn a_buoyant_body_is_the_librarys_floater_and_goes_with_its_entity() {
     );
     // The component holds the library's numbers as they are (seconds on both sides; the
     // water's transform is the identity here).
-    let b = *app.world().get::<Buoyant>(crate_).unwrap();
+    let b = app.world().get::<Buoyant>(crate_).unwrap().clone();
     assert_eq!(b.velocity.to_array(), body.velocity.to_array());
     assert_eq!(b.water_force.to_array(), body.water_force.to_array());
     assert_eq!(b.drag, body.drag);

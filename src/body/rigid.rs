@@ -322,10 +322,12 @@ fn solve(mut sys: [[f64; 7]; 6]) -> [f64; 6] {
     for col in 0..6 {
         let pivot = sys[col][col];
         for row in col + 1..6 {
-            let factor = sys[row][col] / pivot;
+            let (above, below) = sys.split_at_mut(row);
+            let (pivot_row, this) = (&above[col], &mut below[0]);
+            let factor = this[col] / pivot;
             if factor != 0.0 {
-                for k in col..7 {
-                    sys[row][k] -= factor * sys[col][k];
+                for (x, p) in this[col..].iter_mut().zip(&pivot_row[col..]) {
+                    *x -= factor * p;
                 }
             }
         }

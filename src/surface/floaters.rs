@@ -107,7 +107,7 @@ impl Surface {
     /// like every force on a body) for the next step only: an engine, the wind, a player's
     /// push. On error nothing changes.
     pub fn push_floater(&mut self, id: FloaterId, force: impl Into<Vec3>) -> Result<()> {
-        self.push_floater_at_offset(id, force.into(), Vec3::ZERO)
+        self.push_wrench(id, force.into(), Vec3::ZERO)
     }
 
     /// Adds `force` acting at the world point `at` to a body for the next step only: the
@@ -119,19 +119,24 @@ impl Surface {
         force: impl Into<Vec3>,
         at: impl Into<Vec3>,
     ) -> Result<()> {
-        let at = at.into();
+        let (force, at) = (force.into(), at.into());
         for c in at.to_array() {
             params::finite("push point", c)?;
         }
         let k = self.floaters.index(id)?;
         let offset = at - self.floaters.bodies[k].1.position;
-        self.push_floater_at_offset(id, force.into(), offset)
+        self.push_wrench(id, force, offset.cross(force))
     }
 
-    fn push_floater_at_offset(&mut self, id: FloaterId, force: Vec3, offset: Vec3) -> Result<()> {
+    /// Adds `torque` about a body's centre of mass (world axes; mass units × world units²
+    /// per second²) for the next step only. On error nothing changes.
+    pub fn push_floater_torque(&mut self, id: FloaterId, torque: impl Into<Vec3>) -> Result<()> {
+        self.push_wrench(id, Vec3::ZERO, torque.into())
+    }
+
+    fn push_wrench(&mut self, id: FloaterId, force: Vec3, torque: Vec3) -> Result<()> {
         let k = self.floaters.index(id)?;
         let body = &self.floaters.bodies[k].1;
-        let torque = offset.cross(force);
         let push = body.push + force;
         let push_torque = body.push_torque + torque;
         for c in force.to_array().into_iter().chain(push.to_array()) {
