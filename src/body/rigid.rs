@@ -363,20 +363,22 @@ mod tests {
     fn the_solver_solves() {
         // A symmetric positive definite matrix and a known solution.
         let x = [1.0, -2.0, 0.5, 3.0, 0.0, -1.0];
-        let mut sys = [[0.0; 7]; 6];
-        for i in 0..6 {
-            for j in 0..6 {
-                sys[i][j] = if i == j {
-                    10.0 + i as f64
-                } else {
-                    1.0 / (1.0 + (i + j) as f64)
-                };
+        let entry = |i: usize, j: usize| {
+            if i == j {
+                10.0 + i as f64
+            } else {
+                1.0 / (1.0 + (i + j) as f64)
             }
-            sys[i][6] = (0..6).map(|j| sys[i][j] * x[j]).sum();
-        }
+        };
+        let sys: [[f64; 7]; 6] = std::array::from_fn(|i| {
+            std::array::from_fn(|j| match j {
+                6 => (0..6).map(|k| entry(i, k) * x[k]).sum(),
+                j => entry(i, j),
+            })
+        });
         let u = solve(sys);
-        for i in 0..6 {
-            assert!((u[i] - x[i]).abs() < 1e-12);
+        for (got, want) in u.iter().zip(x) {
+            assert!((got - want).abs() < 1e-12);
         }
     }
 }
