@@ -284,11 +284,17 @@ fn roll_period(mut s: Surface) -> (f32, f32) {
 fn the_roll_period_on_still_water_is_the_metacentric_one() {
     let (period, theory) = roll_period(still_water());
     println!("roll period on still water {period} s, theory {theory} s");
-    assert!((period - theory).abs() < 0.03 * theory, "{period} vs {theory}");
+    assert!(
+        (period - theory).abs() < 0.03 * theory,
+        "{period} vs {theory}"
+    );
     // On the springy surface, two-way, the water gives under the heeled side: the righting
     // moment is softer and the roll slower (docs/floating.md quotes the figure).
     let (live, _) = roll_period(Surface::new(Params::with_size(48, 48)).unwrap());
-    println!("on live water {live} s: {:+.1}%", 100.0 * (live / period - 1.0));
+    println!(
+        "on live water {live} s: {:+.1}%",
+        100.0 * (live / period - 1.0)
+    );
     assert!(live > period && live < 1.5 * period, "{live} vs {period}");
 }
 
@@ -415,13 +421,16 @@ fn a_small_box_on_a_long_wave_pitches_in_phase_with_the_slope() {
     for r in 0..rows {
         for c in 0..cols {
             let phase = 2.0 * std::f32::consts::PI * c as f32 / wavelength;
-            s.add_velocity(r * cols + c, [0.0, 0.15 * phase.sin(), 0.0]).unwrap();
+            s.add_velocity(r * cols + c, [0.0, 0.15 * phase.sin(), 0.0])
+                .unwrap();
         }
     }
     let x = 0.5 * wavelength;
     let e = Vec3::new(0.5, 0.1, 0.5);
     let mass = 0.5 * s.buoyancy().density * 8.0 * e.x * e.y * e.z;
-    let id = s.add_floater(Floater::cuboid(e, mass, [x, 0.0, 16.0])).unwrap();
+    let id = s
+        .add_floater(Floater::cuboid(e, mass, [x, 0.0, 16.0]))
+        .unwrap();
     let (mut tilt, mut slope) = (Vec::new(), Vec::new());
     for step in 0..600 {
         s.step().unwrap();
@@ -446,7 +455,10 @@ fn a_small_box_on_a_long_wave_pitches_in_phase_with_the_slope() {
     let correlation = sxy / (sxx * syy).sqrt();
     let gain = (sxx / syy).sqrt();
     println!("tilt against slope: correlation {correlation}, amplitude ratio {gain}");
-    assert!(syy.sqrt() / (slope.len() as f32).sqrt() > 0.02, "the wave is too weak");
+    assert!(
+        syy.sqrt() / (slope.len() as f32).sqrt() > 0.02,
+        "the wave is too weak"
+    );
     assert!(correlation > 0.9, "{correlation}");
     assert!((0.5..1.5).contains(&gain), "{gain}");
 }

@@ -26,27 +26,41 @@ use glam::DVec3;
 use std::collections::HashMap;
 use std::sync::Arc;
 
-/// `hull` with every triangle cut into `n²`, `n` set by its longest edge, so that the
-/// triangles are at most about `cell` across (fewer cuts if that would pass
-/// [`Hull::MAX_TRIANGLES`]); the same hull when its triangles are small enough.
+/// `hull` with each triangle longer than `cell` cut into `n²`, `n` set by its own longest
+/// edge, so that the triangles are at most about `cell` across (fewer cuts if the whole
+/// would pass [`Hull::MAX_TRIANGLES`]); the same hull when its triangles are small enough.
+/// A cut triangle's new corners may lie on a neighbour's uncut edge: the surface covers
+/// the hull exactly (in still water the pressure sums are Archimedes' to rounding), and on
+/// waves the two sides of such an edge may sample the water a little differently.
 pub(crate) fn cut(hull: &Arc<Hull>, cell: f32) -> Result<Arc<Hull>> {
     let cell = cell as f64;
-    let longest = hull
+    let lengths: Vec<f64> = hull
         .triangles()
         .iter()
         .map(|t| longest_edge(&t.map(|i| corner(hull.vertices(), i))))
-        .fold(0.0, f64::max);
-    let n = pieces(longest, cell, hull.triangles().len());
-    if n == 1 {
+        .collect();
+    if lengths.iter().all(|&l| l <= cell) {
         return Ok(Arc::clone(hull));
+    }
+    // The same bound for every triangle, lowered until the whole fits.
+    let mut limit = 1024;
+    let count = |limit: usize| -> usize {
+        lengths
+            .iter()
+            .map(|&l| (pieces(l, cell, 1).min(limit)).pow(2))
+            .sum()
+    };
+    while limit > 1 && count(limit) > Hull::MAX_TRIANGLES {
+        limit -= 1;
     }
     let corners: Vec<DVec3> = hull
         .vertices()
         .iter()
         .map(|v| DVec3::from(v.map(f64::from)))
         .collect();
-    let (vertices, triangles) = subdivide(&corners, hull.triangles(), n, |p| p);
-    Hull::new(&vertices, &triangles).map(Arc::new)
+    let n_of = |t: usize| pieces(lengths[t], cell, 1).min(limit);
+    let (vertices, triangles) = subdivide(&corners, hull.triangles(), n_of, |p| p);
+    Hull::cut_surface(&vertices, &triangles).map(Arc::new)
 }
 
 /// How many pieces to cut an edge of `length` into for cells of `cell`, with `triangles`
@@ -73,18 +87,19 @@ fn longest_edge([a, b, c]: &[DVec3; 3]) -> f64 {
         .sqrt()
 }
 
-/// Cuts every triangle into `n²`: the points `(i a + j b + k c) / n`, `i + j + k = n`, each
+/// Cuts triangle `t` into `n(t)²`: the points `(i a + j b + k c) / n`, `i + j + k = n`, each
 /// computed from its corners in the order of their indices, so that two triangles sharing
-/// an edge make the same points there; `place` maps each point (onto a sphere, say).
+/// an edge and cut alike make the same points there; `place` maps each point (onto a
+/// sphere, say).
 fn subdivide(
     corners: &[DVec3],
     triangles: &[[u32; 3]],
-    n: usize,
+    n_of: impl Fn(usize) -> usize,
     place: impl Fn(DVec3) -> DVec3,
 ) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
-    let mut index: HashMap<[(u32, u32); 3], u32> = HashMap::new();
+    let mut index: HashMap<([(u32, u32); 3], usize), u32> = HashMap::new();
     let mut vertices = Vec::new();
-    let mut point = |weights: [(u32, u32); 3]| -> u32 {
+    let mut point = |weights: [(u32, u32); 3], n: usize| -> u32 {
         // The key: the corners with a non-zero weight, in the order of their indices.
         let mut key = weights;
         key.sort_unstable();
@@ -94,7 +109,7 @@ fn subdivide(
             }
         }
         key.sort_unstable();
-        *index.entry(key).or_insert_with(|| {
+        *index.entry((key, n)).or_insert_with(|| {
             let mut p = DVec3::ZERO;
             for &(i, w) in key.iter().filter(|w| w.1 > 0) {
                 p += corners[i as usize] * w as f64;
@@ -104,19 +119,20 @@ fn subdivide(
             (vertices.len() - 1) as u32
         })
     };
-    let mut out = Vec::with_capacity(triangles.len() * n * n);
-    let m = n as u32;
-    for &[a, b, c] in triangles {
+    let mut out = Vec::new();
+    for (t, &[a, b, c]) in triangles.iter().enumerate() {
+        let n = n_of(t);
+        let m = n as u32;
         // Row j from corner a towards c, column i towards b.
         let at = |i: u32, j: u32| [(a, m - i - j), (b, i), (c, j)];
         for j in 0..m {
             for i in 0..m - j {
-                let p = point(at(i, j));
-                let q = point(at(i + 1, j));
-                let r = point(at(i, j + 1));
+                let p = point(at(i, j), n);
+                let q = point(at(i + 1, j), n);
+                let r = point(at(i, j + 1), n);
                 out.push([p, q, r]);
                 if i + j + 1 < m {
-                    let s = point(at(i + 1, j + 1));
+                    let s = point(at(i + 1, j + 1), n);
                     out.push([q, s, r]);
                 }
             }
@@ -171,7 +187,7 @@ pub(crate) fn sphere(radius: f64, cell: f64) -> Result<Hull> {
     ];
     let edge = (corners[0] - corners[11]).length();
     let n = pieces(edge, cell, faces.len());
-    let (vertices, triangles) = subdivide(&corners, &faces, n, |p| p.normalize() * radius);
+    let (vertices, triangles) = subdivide(&corners, &faces, |_| n, |p| p.normalize() * radius);
     let polyhedron = Hull::new(&vertices, &triangles)?;
     // Scale by the cube root of (sphere's volume / polyhedron's), by Newton's iteration
     // (only + − × ÷: the same bits everywhere).
