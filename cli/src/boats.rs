@@ -116,9 +116,10 @@ impl Fleet {
                 d / 2.0 + (j - (down as f32 - 1.0) / 2.0) * slot,
             ];
             let turn = if k % 2 == 0 { 1.0 } else { -1.0 };
-            // Start somewhere different on each circle (the golden angle apart).
+            // Start somewhere different on each circle (the golden angle apart), the first
+            // on the side nearest the default camera (+z).
             let start = k as f32 * 2.4;
-            let out = Vec3::new(start.cos(), 0.0, start.sin());
+            let out = Vec3::new(start.sin(), 0.0, start.cos());
             let heading = turn * Vec3::Y.cross(out);
             let mut body = Floater::with_hull(
                 hull.clone(),
