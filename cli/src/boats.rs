@@ -260,13 +260,19 @@ impl Painter {
                 let colour = base.map(|c| srgb(c * light));
                 let mut kept = [Vec3::ZERO; 4];
                 let n = above_water([a, b, c], &mut kept);
-                let screen: Option<Vec<Screen>> = kept[..n]
-                    .iter()
-                    .map(|&p| camera.project(p).map(|(x, y, w)| (x, y, 1.0 / w)))
-                    .collect();
-                let Some(screen) = screen else {
+                // A polygon with a corner behind the near plane is left out (a hull that
+                // close to the eye fills the picture anyway).
+                let mut screen = [(0.0, 0.0, 0.0); 4];
+                let mut seen = true;
+                for (s, &p) in screen.iter_mut().zip(&kept[..n]) {
+                    match camera.project(p) {
+                        Some((x, y, w)) => *s = (x, y, 1.0 / w),
+                        None => seen = false,
+                    }
+                }
+                if !seen {
                     continue;
-                };
+                }
                 for i in 1..n.saturating_sub(1) {
                     self.fill(
                         rgb,

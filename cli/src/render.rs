@@ -192,7 +192,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     }
 
     // Validates the model and the drops before anything is opened.
-    let surface = model.surface()?;
+    let mut surface = model.surface()?;
     crate::start::check_rain(o.rain, &surface)?;
     let room = boats::room(&surface);
     if o.boats > room {
@@ -206,6 +206,11 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             count(room as u64, "boat"),
             boats::berth_cells()
         ));
+    }
+    // The boats go on this surface too, so what the library refuses about them (the
+    // timestep the water under them needs) is refused before any output is started.
+    if o.boats > 0 {
+        boats::Fleet::launch(&mut surface, o.boats)?;
     }
     let params = *surface.params();
     let mut camera = Camera::framing(params.cols, params.rows, params.spacing, o.width, o.height);
