@@ -124,28 +124,12 @@ pub struct SwBuoyancy {
     pub density: f32,
 }
 
-/// All zeros but `struct_size`, which is this version's: a struct ready for
-/// `sw_surface_floater` to fill (from Rust; C starts one with `{.struct_size = sizeof f}`).
+/// All zeros but `struct_size`, which is this version's, and the
+/// orientation, upright: a struct ready for `sw_surface_floater` to fill (from Rust; C
+/// starts one with `{.struct_size = sizeof f}`).
 impl Default for SwFloater {
     fn default() -> Self {
-        Self {
-            struct_size: size_of::<Self>() as u32,
-            shape: 0,
-            radius: 0.0,
-            half_extents: [0.0; 3],
-            mass: 0.0,
-            drag: 0.0,
-            position: [0.0; 3],
-            velocity: [0.0; 3],
-            push: [0.0; 3],
-            water_force: [0.0; 3],
-            orientation: [0.0; 4],
-            angular_velocity: [0.0; 3],
-            push_torque: [0.0; 3],
-            water_torque: [0.0; 3],
-            has_inertia: 0,
-            inertia: [0.0; 9],
-        }
+        Self::NEW
     }
 }
 
@@ -454,8 +438,8 @@ pub(crate) fn c_floater(f: &Floater) -> SwFloater {
 }
 
 impl SwFloater {
-    /// What a version 1 struct lacks, for a new body: upright, no spin, no torque, the
-    /// shape's inertia.
+    /// All zeros but `struct_size` and the orientation (upright): what a version 1 struct
+    /// lacks, for a new body (no spin, no torque, the shape's inertia).
     pub(crate) const NEW: SwFloater = SwFloater {
         struct_size: size_of::<SwFloater>() as u32,
         shape: SW_SHAPE_SPHERE,
