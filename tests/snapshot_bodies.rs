@@ -594,3 +594,40 @@ fn an_inertia_off_symmetric_by_rounding_comes_back_bit_for_bit() {
     );
     assert_ne!(entries[1].to_bits(), entries[3].to_bits());
 }
+
+/// Bodies sharing one mesh in runs and apart, after other bodies: one mesh stored, one
+/// `Arc` after loading and after restoring.
+#[test]
+fn a_mesh_shared_in_runs_and_apart_is_stored_once() {
+    let mut p = Params::with_size(40, 32);
+    p.dt = 0.2;
+    let mut s = Surface::new(p).unwrap();
+    let mesh = Arc::new(box_hull());
+    let boat = |x: f32, z: f32| Floater::with_hull(Arc::clone(&mesh), 0.4, [x, 0.0, z]);
+    let bodies = [
+        Floater::sphere(1.0, 1.5, [5.0, 0.0, 5.0]),
+        boat(10.0, 8.0),
+        boat(14.0, 8.0),
+        boat(18.0, 8.0),
+        Floater::cuboid([0.5, 0.5, 0.5], 0.4, [25.0, 0.0, 20.0]),
+        boat(30.0, 24.0),
+    ];
+    let ids: Vec<FloaterId> = bodies
+        .into_iter()
+        .map(|b| s.add_floater(b).unwrap())
+        .collect();
+    s.step_n(3).unwrap();
+    let bytes = s.to_bytes();
+    assert_eq!(
+        bytes.len(),
+        196 + 77 * s.node_count() + 176 * 6 + mesh_len(&mesh)
+    );
+    let mut restored = s.clone();
+    restored.step_n(2).unwrap();
+    restored.restore(&bytes).unwrap();
+    for t in [Surface::from_bytes(&bytes).unwrap(), restored] {
+        assert_eq!(t.to_bytes(), bytes);
+        let boats: Vec<_> = [1, 2, 3, 5].map(|k| hull(&t, ids[k])).into();
+        assert!(boats.iter().all(|b| Arc::ptr_eq(b, &boats[0])));
+    }
+}

@@ -179,16 +179,22 @@ fn rigid_record(record: &[u8]) -> Result<(FloaterId, Floater, Option<Shape>, u32
 fn rigid(records: &[u8], hulls: Hulls<'_>, out: &mut Vec<(FloaterId, Floater)>) -> Result<()> {
     let pool = out.len();
     let mut meshes = Meshes::new(hulls.bytes);
+    // The last mesh looked up and its first body: bodies sharing one often come in runs.
+    let mut last: Option<(u32, usize)> = None;
     for (k, record) in records.chunks_exact(PER_BODY).enumerate() {
         let (id, mut body, shape, index) = rigid_record(record)?;
         body.shape = match shape {
             Some(shape) => shape,
             None if u64::from(index) < meshes.read => {
                 // Not the first body to use the mesh: the first one has it.
-                let first = records
-                    .chunks_exact(PER_BODY)
-                    .position(|r| code_and_hull(r) == (HULL, index))
-                    .expect("an earlier body used the mesh");
+                let first = match last {
+                    Some((i, first)) if i == index => first,
+                    _ => records
+                        .chunks_exact(PER_BODY)
+                        .position(|r| code_and_hull(r) == (HULL, index))
+                        .expect("an earlier body used the mesh"),
+                };
+                last = Some((index, first));
                 out[pool + first].1.shape.clone()
             }
             None if u64::from(index) == meshes.read && meshes.read < hulls.count => {
