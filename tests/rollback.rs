@@ -161,9 +161,17 @@ fn the_hash_of_water_alone_is_golden_on_every_level() {
 }
 
 /// The byte ranges of a saved snapshot that only frame it or keep count: magic and
-/// version, total length, steps and model time, seconds dropped, checksum.
-fn records(len: usize) -> [std::ops::Range<usize>; 5] {
-    [0..12, 16..24, 80..96, len - 12..len - 4, len - 4..len]
+/// version, total length, steps and model time, the hull section's count and length,
+/// seconds dropped, checksum.
+fn records(len: usize) -> [std::ops::Range<usize>; 6] {
+    [
+        0..12,
+        16..24,
+        80..96,
+        136..152,
+        len - 12..len - 4,
+        len - 4..len,
+    ]
 }
 
 #[test]
