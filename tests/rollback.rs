@@ -20,7 +20,7 @@ const DEPTH: usize = 7;
 
 /// XXH3-64 state hash after the straight run of [`pool`] and [`FRAMES`] frames of
 /// [`play`], and after [`water_only`]: the same on every level, thread count and target.
-const GOLDEN_POOL: u64 = 0x432e_9cfc_80a7_3537;
+const GOLDEN_POOL: u64 = 0x71f6_0318_3884_23e0;
 const GOLDEN_WATER: u64 = 0x3de9_fb3f_6657_cd7f;
 
 /// A pinned pool with a heavier patch, a ball and a box floating on it (whose waterlines

@@ -219,7 +219,7 @@ impl Surface {
         let bodies = &self.floaters.bodies;
         c.meshes.truncate(bodies.len());
         for (k, (_, body)) in bodies.iter().enumerate() {
-            let fits = matches!(c.meshes.get(k), Some((shape, _)) if *shape == body.shape);
+            let fits = matches!(c.meshes.get(k), Some((shape, _)) if same(shape, &body.shape));
             if !fits {
                 let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
                 c.keep_mesh(k, &body.shape, mesh);
@@ -393,7 +393,7 @@ impl Surface {
 
     /// The water's forces on `body` over `seconds`, its reactions' shares in `c.shares`.
     fn foreign_forces(&self, body: &Floater, seconds: f32, c: &mut Coupling) -> Result<BodyForces> {
-        let mesh = match c.foreign.iter().position(|(s, _)| *s == body.shape) {
+        let mesh = match c.foreign.iter().position(|(s, _)| same(s, &body.shape)) {
             Some(k) => {
                 let entry = c.foreign.remove(k);
                 let mesh = Arc::clone(&entry.1);
@@ -425,6 +425,15 @@ impl Surface {
         let step_seconds = (self.params.dt / self.params.time_scale) as f64;
         cx.shares(slot, seconds as f64 / step_seconds);
         Ok(BodyForces { force, torque })
+    }
+}
+
+/// Whether two shapes are the same (a hull shared through one `Arc` without comparing
+/// its triangles).
+fn same(a: &Shape, b: &Shape) -> bool {
+    match (a, b) {
+        (Shape::Hull(a), Shape::Hull(b)) => Arc::ptr_eq(a, b) || a == b,
+        _ => a == b,
     }
 }
 
