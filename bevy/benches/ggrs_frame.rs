@@ -3,7 +3,8 @@
 //! no loads). At 60 Hz and the seed's `dt` a session frame is one step, so a sync test
 //! frame is 8 steps (the new frame and 7 simulated again), 8 saves with their state
 //! hashes and one restore; the plain frame is one step. The mesh is written once per
-//! rendered frame in both.
+//! rendered frame in both. Then the parts, on the sync test's water: its step, state
+//! hash, save and restore.
 //!
 //! ```sh
 //! cargo bench -p springwater-bevy --features ggrs --bench ggrs_frame
@@ -14,8 +15,10 @@ mod rollback_game;
 
 use std::time::Duration;
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
-use springwater_bevy::SpringwaterPlugin;
+use bevy::app::App;
+use criterion::measurement::WallTime;
+use criterion::{criterion_group, criterion_main, BenchmarkGroup, BenchmarkId, Criterion};
+use springwater_bevy::{SpringwaterPlugin, WaterSurface};
 
 const SIZE: usize = 256;
 
@@ -37,8 +40,33 @@ fn frame(c: &mut Criterion) {
         group.bench_function(id, |b| b.iter(|| app.update()));
         let counts = app.world().resource::<rollback_game::Counts>();
         assert_eq!(counts.mismatches, 0, "bevy_ggrs reported a mismatch");
+        if check_distance > 0 {
+            parts(&mut group, &mut app);
+        }
     }
     group.finish();
+}
+
+/// What a sync test frame is made of, on the water of that session (its surface steps on
+/// Bevy's compute pool, as in the frame): one frame's step, the checksum, a save and a
+/// restore.
+fn parts(group: &mut BenchmarkGroup<WallTime>, app: &mut App) {
+    let world = app.world_mut();
+    let mut water = world.query::<&mut WaterSurface>();
+    let mut water = water.single_mut(world).expect("one water");
+    let surface = water.surface_mut();
+    let id = |name| BenchmarkId::new(name, format!("{SIZE}x{SIZE}"));
+    group.bench_function(id("state_hash"), |b| b.iter(|| surface.state_hash()));
+    let mut saved = Vec::new();
+    group.bench_function(id("save_into"), |b| {
+        b.iter(|| surface.save_into(&mut saved))
+    });
+    group.bench_function(id("restore"), |b| {
+        b.iter(|| surface.restore(&saved).expect("its own save"))
+    });
+    group.bench_function(id("step"), |b| {
+        b.iter(|| surface.advance(1.0 / 60.0).expect("a step"))
+    });
 }
 
 criterion_group!(benches, frame);

@@ -18,6 +18,7 @@ use std::time::Instant;
 use bevy::prelude::*;
 use rollback_game::Counts;
 use springwater_bevy::prelude::*;
+use springwater_bevy::rollback::WaterSnapshots;
 
 struct Args {
     size: usize,
@@ -89,6 +90,12 @@ fn main() {
             );
         }
     }
+    let snapshots = app.world().resource::<WaterSnapshots>();
+    println!(
+        "saves kept: {}; save buffers allocated or grown: {}",
+        snapshots.frames(),
+        snapshots.buffers_grown()
+    );
     let counts = app.world().resource::<Counts>();
     if counts.mismatches > 0 {
         eprintln!("rollback: {} checksum mismatches", counts.mismatches);

@@ -1,18 +1,15 @@
 //! A small rollback game shared by the `ggrs` test, the `rollback` example and the
 //! `rollback` bench: a square pool with a floating ball, two local players in a bevy_ggrs
 //! `SyncTestSession`, one dropping water and one pushing the ball, their inputs a
-//! function of the frame number. Headless: MinimalPlugins, assets, meshes, transforms
-//! and a manual clock of 1/60 s per update, so that every update is one session frame.
+//! function of the frame number. Headless (`common::bare_app`: a manual clock of 1/60 s
+//! per update), so that every update is one session frame.
 
 #![allow(dead_code)] // each of the three uses part of it
 
-use std::time::Duration;
+#[path = "../common/mod.rs"]
+mod common;
 
-use bevy::asset::AssetPlugin;
-use bevy::mesh::MeshPlugin;
 use bevy::prelude::*;
-use bevy::time::TimeUpdateStrategy;
-use bevy::transform::TransformPlugin;
 use bevy_ggrs::prelude::*;
 use bevy_ggrs::{LoadWorld, LocalInputs, LocalPlayers};
 use springwater_bevy::prelude::*;
@@ -100,24 +97,15 @@ pub fn app(size: usize, check_distance: usize, water: impl FnOnce(&mut App)) -> 
         .expect("player 1")
         .start_synctest_session()
         .expect("a sync test session");
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        AssetPlugin::default(),
-        MeshPlugin,
-        TransformPlugin,
-    ))
-    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f64(
-        1.0 / 60.0,
-    )))
-    .add_plugins(GgrsPlugin::<Config>::default())
-    .insert_resource(Session::SyncTest(session))
-    .insert_resource(Size(size))
-    .add_systems(ReadInputs, read_inputs)
-    .add_systems(GgrsSchedule, play.before(WaterSystems::SyncInputs))
-    .init_resource::<Counts>()
-    .add_systems(LoadWorld, |mut counts: ResMut<Counts>| counts.loads += 1)
-    .add_observer(|_: On<SyncTestMismatch>, mut counts: ResMut<Counts>| counts.mismatches += 1);
+    let mut app = common::bare_app();
+    app.add_plugins(GgrsPlugin::<Config>::default())
+        .insert_resource(Session::SyncTest(session))
+        .insert_resource(Size(size))
+        .add_systems(ReadInputs, read_inputs)
+        .add_systems(GgrsSchedule, play.before(WaterSystems::SyncInputs))
+        .init_resource::<Counts>()
+        .add_systems(LoadWorld, |mut counts: ResMut<Counts>| counts.loads += 1)
+        .add_observer(|_: On<SyncTestMismatch>, mut counts: ResMut<Counts>| counts.mismatches += 1);
     water(&mut app);
     app.add_systems(
         Startup,
