@@ -28,7 +28,7 @@ fn frame(c: &mut Criterion) {
         .sample_size(40)
         .measurement_time(Duration::from_secs(8));
     for (name, check_distance) in [("sync_test_7", 7), ("no_rollback", 0)] {
-        let mut app = rollback_game::app(SIZE, check_distance, |app| {
+        let mut app = rollback_game::app(SIZE, rollback_game::sync_test(check_distance), |app| {
             app.add_plugins(SpringwaterPlugin::default().with_rollback());
         });
         // Past the first frames: the session rolls back every frame and every save

@@ -7,7 +7,7 @@ mod rollback_game;
 
 use bevy::prelude::*;
 use bevy_ggrs::prelude::*;
-use rollback_game::{app, Counts};
+use rollback_game::{app, sync_test, Counts};
 use springwater_bevy::prelude::*;
 use springwater_bevy::rollback::WaterSnapshots;
 
@@ -57,7 +57,7 @@ fn run(app: &mut App, frames: usize) -> End {
 
 #[test]
 fn a_sync_test_of_300_frames_rolling_back_7_every_frame_never_mismatches() {
-    let mut synctest = app(SIZE, 7, with_rollback);
+    let mut synctest = app(SIZE, sync_test(7), with_rollback);
     let after_100 = run(&mut synctest, 100);
     let grown = synctest
         .world()
@@ -71,7 +71,7 @@ fn a_sync_test_of_300_frames_rolling_back_7_every_frame_never_mismatches() {
 
     // The same game without rollback (check distance 0: no saves, no loads) ends on the
     // same bits: simulating the frames again reproduced the straight run.
-    let straight = run(&mut app(SIZE, 0, with_rollback), FRAMES);
+    let straight = run(&mut app(SIZE, sync_test(0), with_rollback), FRAMES);
     assert_eq!(straight.loads, 0);
     assert_eq!(end.hash, straight.hash);
     assert_eq!(end.ball.to_array(), straight.ball.to_array());
@@ -103,6 +103,6 @@ fn a_water_that_is_not_restored_is_reported_as_a_mismatch() {
             .checksum_component::<WaterSurface>(|ws| ws.surface().state_hash())
             .require_rollback::<Water>();
     };
-    let end = run(&mut app(SIZE, 7, not_restored), 30);
+    let end = run(&mut app(SIZE, sync_test(7), not_restored), 30);
     assert!(end.mismatches > 0, "no mismatch reported");
 }

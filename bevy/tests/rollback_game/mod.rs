@@ -1,7 +1,7 @@
 //! A small rollback game shared by the `ggrs` test, the `rollback` example and the
-//! `rollback` bench: a square pool with a floating ball, two local players in a bevy_ggrs
-//! `SyncTestSession`, one dropping water and one pushing the ball, their inputs a
-//! function of the frame number. Headless (`common::bare_app`: a manual clock of 1/60 s
+//! `ggrs_frame` bench: a square pool with a floating ball and two players in a bevy_ggrs
+//! session (a `SyncTestSession` of two local players, or one peer of a P2P session), one
+//! dropping water and one pushing the ball, their inputs a function of the frame number. Headless (`common::bare_app`: a manual clock of 1/60 s
 //! per update), so that every update is one session frame.
 
 #![allow(dead_code)] // each of the three uses part of it
@@ -84,9 +84,9 @@ pub struct Counts {
     pub loads: usize,
 }
 
-/// The game on a `size` × `size` pool in a sync test of `check_distance` (0: no saves, no
-/// rollbacks), the water added by `water` (`SpringwaterPlugin::default().with_rollback()`).
-pub fn app(size: usize, check_distance: usize, water: impl FnOnce(&mut App)) -> App {
+/// A sync test of the two local players with `check_distance` (0: no saves, no
+/// rollbacks).
+pub fn sync_test(check_distance: usize) -> Session<Config> {
     let session = SessionBuilder::<Config>::new()
         .with_num_players(2)
         .expect("two players")
@@ -97,9 +97,15 @@ pub fn app(size: usize, check_distance: usize, water: impl FnOnce(&mut App)) -> 
         .expect("player 1")
         .start_synctest_session()
         .expect("a sync test session");
+    Session::SyncTest(session)
+}
+
+/// The game on a `size` × `size` pool in `session`, the water added by `water`
+/// (`SpringwaterPlugin::default().with_rollback()`).
+pub fn app(size: usize, session: Session<Config>, water: impl FnOnce(&mut App)) -> App {
     let mut app = common::bare_app();
     app.add_plugins(GgrsPlugin::<Config>::default())
-        .insert_resource(Session::SyncTest(session))
+        .insert_resource(session)
         .insert_resource(Size(size))
         .add_systems(ReadInputs, read_inputs)
         .add_systems(GgrsSchedule, play.before(WaterSystems::SyncInputs))
