@@ -71,9 +71,11 @@ fn args() -> Result<Args, String> {
                     .filter(|&p| p > 0 && p < u16::MAX)
                     .ok_or(format!("--port {value}: 1 to 65534"))?;
             }
-            _ => return Err(format!(
+            _ => {
+                return Err(format!(
                 "unknown argument {flag}: use --size, --frames, --check-distance, --p2p or --port"
-            )),
+            ))
+            }
         }
     }
     args.p2p = args.p2p.map(|_| port);

@@ -174,8 +174,10 @@ impl SpringwaterPlugin {
     }
 
     /// Rollback with bevy_ggrs (feature `ggrs`): runs the simulation in
-    /// [`GgrsSchedule`](bevy_ggrs::GgrsSchedule), saves and restores every water and
-    /// [`Buoyant`] body with bevy_ggrs's snapshots and gives bevy_ggrs the surfaces'
+    /// [`GgrsSchedule`](bevy_ggrs::GgrsSchedule), saves every water and [`Buoyant`] body
+    /// when bevy_ggrs saves a frame and puts them back when it loads one (springwater's
+    /// [`save_into`](springwater::Surface::save_into) and
+    /// [`restore`](springwater::Surface::restore)), and gives bevy_ggrs the surfaces'
     /// [`state_hash`](springwater::Surface::state_hash) as their checksum; the mesh is
     /// written in `PostUpdate`, once per rendered frame. See the [`rollback`] module.
     #[cfg(feature = "ggrs")]
