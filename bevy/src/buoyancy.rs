@@ -147,6 +147,25 @@ impl Bodies {
     pub(crate) fn forget_water(&mut self, water: Entity) {
         self.0.retain(|_, link| link.water != water);
     }
+
+    /// Which water and floater `body` is, if any (saved for rollback).
+    #[cfg(feature = "ggrs")]
+    pub(crate) fn link(&self, body: Entity) -> Option<Link> {
+        self.0.get(&body).copied()
+    }
+
+    /// Puts back what [`Bodies::link`] said at a saved frame.
+    #[cfg(feature = "ggrs")]
+    pub(crate) fn set_link(&mut self, body: Entity, link: Option<Link>) {
+        match link {
+            Some(link) => {
+                self.0.insert(body, link);
+            }
+            None => {
+                self.0.remove(&body);
+            }
+        }
+    }
 }
 
 /// Hands every body's state to its water (adding new bodies, putting back those a

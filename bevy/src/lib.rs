@@ -61,6 +61,11 @@
 //! water's `GlobalTransform` are read before this frame's transform propagation (one
 //! frame late if they moved).
 //!
+//! For rollback netcode (feature `ggrs`), [`SpringwaterPlugin::with_rollback`] runs the
+//! first two sets and the bodies' write-back in bevy_ggrs's `GgrsSchedule`, the mesh
+//! write in `PostUpdate`, and registers every water and body for rollback through
+//! springwater's own saves, restores and state hashes: see the `rollback` module.
+//!
 //! Errors (refused parameters, a step that would go non-finite) never panic: they are
 //! logged and sent as [`WaterError`] messages.
 //!
@@ -71,8 +76,8 @@
 //! `report` (the one way errors leave); it uses no other module. `jobs` stands alone.
 //! `buoyancy`, `follow`, `mesh` and `query` use `water` only. `step` (surfaces for new
 //! waters, messages, the step itself, and the plugin's settings) uses `water`, `mesh`,
-//! `buoyancy` and `jobs`. This file uses them all to wire the plugin, and nothing uses
-//! it.
+//! `buoyancy` and `jobs`. `rollback` (feature `ggrs`) uses `water` and `buoyancy`. This
+//! file uses them all to wire the plugin, and nothing uses it.
 
 #![warn(missing_docs)]
 
@@ -81,6 +86,8 @@ mod follow;
 mod jobs;
 mod mesh;
 mod query;
+#[cfg(feature = "ggrs")]
+pub mod rollback;
 mod step;
 mod water;
 
@@ -118,7 +125,8 @@ pub enum WaterSystems {
     SyncInputs,
     /// Advancing every surface by the frame's seconds.
     Step,
-    /// Normals, refraction, LOD, the mesh write and the bodies' transforms.
+    /// Normals, refraction, LOD, the mesh write and the bodies' transforms (under
+    /// rollback, the mesh write is in `PostUpdate` and the bodies' in `GgrsSchedule`).
     Writeback,
 }
 
@@ -136,6 +144,8 @@ pub enum WaterSystems {
 pub struct SpringwaterPlugin {
     schedule: Interned<dyn ScheduleLabel>,
     task_pool: bool,
+    /// Registered for bevy_ggrs's rollback, the mesh written in `PostUpdate`.
+    rollback: bool,
 }
 
 impl Default for SpringwaterPlugin {
@@ -144,6 +154,7 @@ impl Default for SpringwaterPlugin {
         Self {
             schedule: PostUpdate.intern(),
             task_pool: true,
+            rollback: false,
         }
     }
 }
@@ -160,6 +171,19 @@ impl SpringwaterPlugin {
     /// the fixed clock asks (a deterministic clock, independent of the frame rate).
     pub fn in_fixed_schedule(self) -> Self {
         self.in_schedule(FixedPostUpdate)
+    }
+
+    /// Rollback with bevy_ggrs (feature `ggrs`): runs the simulation in
+    /// [`GgrsSchedule`](bevy_ggrs::GgrsSchedule), saves every water and [`Buoyant`] body
+    /// when bevy_ggrs saves a frame and puts them back when it loads one (springwater's
+    /// [`save_into`](springwater::Surface::save_into) and
+    /// [`restore`](springwater::Surface::restore)), and gives bevy_ggrs the surfaces'
+    /// [`state_hash`](springwater::Surface::state_hash) as their checksum; the mesh is
+    /// written in `PostUpdate`, once per rendered frame. See the [`rollback`] module.
+    #[cfg(feature = "ggrs")]
+    pub fn with_rollback(mut self) -> Self {
+        self.rollback = true;
+        self.in_schedule(bevy_ggrs::GgrsSchedule)
     }
 
     /// Whether surfaces step on Bevy's `ComputeTaskPool` ([`TaskPoolJobs`], the default)
@@ -182,6 +206,12 @@ impl Plugin for SpringwaterPlugin {
         .add_message::<WaterError>();
 
         let schedule = self.schedule;
+        // Under rollback the mesh is drawn once per rendered frame, not once per simulated
+        // (or resimulated) frame.
+        let mesh_schedule = match self.rollback {
+            true => PostUpdate.intern(),
+            false => schedule,
+        };
         app.configure_sets(
             schedule,
             (
@@ -191,9 +221,9 @@ impl Plugin for SpringwaterPlugin {
             )
                 .chain(),
         );
-        if schedule == PostUpdate.intern() {
+        if schedule == PostUpdate.intern() || mesh_schedule == PostUpdate.intern() {
             app.configure_sets(
-                schedule,
+                PostUpdate,
                 WaterSystems::Writeback.before(TransformSystems::Propagate),
             );
         }
@@ -214,8 +244,19 @@ impl Plugin for SpringwaterPlugin {
                         .chain()
                         .in_set(WaterSystems::SyncInputs),
                     step::step_surfaces.in_set(WaterSystems::Step),
-                    (mesh::write_meshes, buoyancy::write_bodies).in_set(WaterSystems::Writeback),
+                    buoyancy::write_bodies.in_set(WaterSystems::Writeback),
                 ),
             );
+        // Both read the surface, the mesh write changes its LOD: an order, not an ambiguity.
+        let write_meshes = mesh::write_meshes.in_set(WaterSystems::Writeback);
+        if mesh_schedule == schedule {
+            app.add_systems(schedule, write_meshes.before(buoyancy::write_bodies));
+        } else {
+            app.add_systems(mesh_schedule, write_meshes);
+        }
+        #[cfg(feature = "ggrs")]
+        if self.rollback {
+            rollback::build(app);
+        }
     }
 }

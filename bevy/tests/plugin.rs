@@ -1,16 +1,15 @@
 //! Headless tests of the plugin: MinimalPlugins, assets, meshes, transforms and a manual
 //! clock of 1/60 s per update.
 
-use std::sync::Arc;
-use std::time::Duration;
+mod common;
 
-use bevy::asset::AssetPlugin;
+use std::sync::Arc;
+
 use bevy::camera::primitives::Aabb;
-use bevy::mesh::{Indices, Mesh, Mesh3d, MeshPlugin, VertexAttributeValues};
+use bevy::mesh::{Indices, Mesh, Mesh3d, VertexAttributeValues};
 use bevy::prelude::*;
 use bevy::tasks::{ComputeTaskPool, TaskPoolBuilder};
-use bevy::time::TimeUpdateStrategy;
-use bevy::transform::TransformPlugin;
+use common::bare_app;
 use springwater::{Params, Surface};
 use springwater_bevy::prelude::*;
 use springwater_bevy::TaskPoolJobs;
@@ -18,21 +17,6 @@ use springwater_bevy::TaskPoolJobs;
 fn app(plugin: SpringwaterPlugin) -> App {
     let mut app = bare_app();
     app.add_plugins(plugin);
-    app
-}
-
-/// The app of the tests without the plugin.
-fn bare_app() -> App {
-    let mut app = App::new();
-    app.add_plugins((
-        MinimalPlugins,
-        AssetPlugin::default(),
-        MeshPlugin,
-        TransformPlugin,
-    ))
-    .insert_resource(TimeUpdateStrategy::ManualDuration(Duration::from_secs_f32(
-        1.0 / 60.0,
-    )));
     app
 }
 
