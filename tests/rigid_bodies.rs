@@ -503,3 +503,62 @@ fn with_drag_a_body_on_still_water_never_gains_energy() {
     assert!(worst <= 1e-4 * start.abs(), "{worst}");
     assert!(last < start);
 }
+
+/// The state hash after [`rocking_boats`] (two boats of the shipped hull, one heeled, and a
+/// spinning box, on waves from drops): the same on every level, thread count and target.
+const GOLDEN_ROCKING: u64 = 0x947d_7137_910c_2d03;
+
+/// Two boats of one shared hull and a box, turned and spinning, rocked by drops for 240
+/// steps on `level` and `threads` threads; returns the final state hash and the largest
+/// heel any body reached (degrees).
+fn rocking_boats(level: springwater::SimdLevel, threads: usize) -> (u64, f32) {
+    let mut s = Surface::new(Params::with_size(40, 32)).unwrap();
+    s.set_simd_level(level);
+    #[cfg(feature = "parallel")]
+    {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads);
+        s.set_thread_pool(Some(Arc::new(pool.build().unwrap())));
+    }
+    #[cfg(not(feature = "parallel"))]
+    let _ = threads;
+    let hull = boat();
+    let density = s.buoyancy().density;
+    let mut ids = Vec::new();
+    for (k, at) in [[12.0, 0.0, 10.0], [26.0, 0.0, 20.0]]
+        .into_iter()
+        .enumerate()
+    {
+        let mut b = Floater::with_hull(Arc::clone(&hull), 0.4 * density * hull.volume(), at);
+        b.orientation = Quat::from_rotation_x(0.2 * k as f32) * Quat::from_rotation_y(0.7);
+        ids.push(s.add_floater(b).unwrap());
+    }
+    let mut crate_ = Floater::cuboid([1.0, 0.5, 0.75], 1.2, [30.0, 0.5, 8.0]);
+    crate_.angular_velocity = Vec3::new(0.5, 2.0, -0.3);
+    ids.push(s.add_floater(crate_).unwrap());
+    let mut most = 0.0f32;
+    for step in 0..240 {
+        if step % 40 == 0 {
+            let x = 8.0 + (step / 40) as f32 * 4.5;
+            s.drop_at(x, 16.0, 0.5, 3.0).unwrap();
+        }
+        s.step().unwrap();
+        for id in &ids {
+            most = most.max(heel(s.floater(*id).unwrap()));
+        }
+    }
+    (s.state_hash(), most)
+}
+
+#[test]
+fn rocking_boats_give_the_same_bits_on_every_level_and_thread_count() {
+    let (reference, most) = rocking_boats(springwater::SimdLevel::Scalar, 1);
+    println!("rocking boats: hash {reference:#018x}, largest heel {most}°");
+    assert!(most > 5.0, "the bodies hardly rocked: {most}°");
+    for level in springwater::SimdLevel::ALL {
+        for threads in [1, 2] {
+            let (hash, _) = rocking_boats(level, threads);
+            assert_eq!(hash, reference, "{level} on {threads} threads");
+        }
+    }
+    assert_eq!(reference, GOLDEN_ROCKING, "{reference:#018x}");
+}
