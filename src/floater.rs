@@ -1,77 +1,68 @@
-//! Floating bodies: spheres and boxes that ride the waves and make them, two-way.
+//! Floating bodies: rigid balls, boxes and hulls that pitch, roll and ride the waves, and
+//! make them, two-way.
 //!
-//! A [`Floater`] is a rigid body that translates (it does not rotate) on a [`Surface`]
-//! (added with [`Surface::add_floater`]); the surface steps its bodies with every step and
-//! substep, and keeps them in snapshots. Lengths are world units, masses the lattice's mass
-//! units, and time is **seconds** of the game's clock: velocities are world units per
-//! second, gravity world units per second², the drag rate per second, forces mass × world
-//! units per second² (see `docs/units.md`). A body's state is stored in those units and its
-//! step runs in them, `Δt = dt / time_scale` seconds for a step of model time `dt`
-//! ([`Params::time_scale`](crate::Params::time_scale)); only where a body meets the lattice
-//! are its numbers converted (next section).
+//! A [`Floater`] is a rigid body with six degrees of freedom on a [`Surface`] (added with
+//! [`Surface::add_floater`]): a position and an orientation (a unit quaternion, body to
+//! world), a velocity and an angular velocity. The surface steps its bodies with every
+//! step and substep, and keeps them in snapshots. A body another physics engine owns (Avian,
+//! Rapier, Jolt, a game's own) asks the water for its force and torque instead:
+//! [`Surface::body_forces`].
 //!
-//! # The model, per step of `Δt` seconds
+//! Lengths are world units, masses the lattice's mass units, and time is **seconds** of
+//! the game's clock: velocities are world units per second, angular velocities radians per
+//! second (world axes), gravity world units per second², the drag rate per second, forces
+//! mass × world units per second², torques that times world units (see `docs/units.md`).
+//! A body's step runs in those units, `Δt = dt / time_scale` seconds for a step of model
+//! time `dt` ([`Params::time_scale`](crate::Params::time_scale)).
 //!
-//! **Columns.** The body's footprint is cut into vertical columns at most one grid cell
-//! wide: a square lattice over the box's footprint, or over the sphere's disc keeping the
-//! columns whose centre lies inside it. Bodies are at most [`MAX_CELLS`] cells across. A column at `(x, z)` spans the
-//! body's thickness there, from `y − L/2` to `y + L/2` (`L = 2·sqrt(R² − ρ²)` for a
-//! sphere, `ρ` the column's distance from the centre; the box's height for a box). Column
-//! areas are scaled so that the columns' volume is exactly the body's.
+//! # The model, in short
 //!
-//! **What each column feels**, from the water under its centre (the surface's bilinear
-//! [`height_at`](Surface::height_at) `η` and [`velocity_at`](Surface::velocity_at) `w`):
+//! (The [`body`](crate::body) module computes it and explains every formula.)
 //!
-//! * submerged length `s = clamp(η − (y − L/2), 0, L)`;
-//! * buoyancy `ρ_w g s a` upwards (Archimedes; `ρ_w` and `g` from [`Buoyancy`]);
-//! * drag `κ (w − v)` with `κ = k ρ_w s a`: the body's [`Floater::drag`] rate `k` times the
-//!   mass of water the column displaces, pulling the body towards the water's velocity.
-//!   Horizontal water velocity carries the body along.
+//! * **Shape.** A sphere, a box, or any closed triangle mesh ([`Hull`]), in the body's
+//!   frame with the centre of mass at the origin. On a surface each shape is cut into
+//!   triangles at most about a grid cell across (the volume kept exactly).
+//! * **Buoyancy** is the water's pressure `ρ g d` on each triangle below the water's
+//!   surface, clipped where the waterline crosses it (Kerner's model): a force and a
+//!   torque about the centre of mass. In still water this is Archimedes' law exactly, at
+//!   any heel, so a body floats at the draft its displacement predicts and rights itself
+//!   or capsizes as its metacentric height says (`GM = KB + BM − KG`).
+//! * **Drag** pulls every wet triangle towards the water's velocity there, with the rate
+//!   [`Floater::drag`] `k` times the mass of water the body displaces, shared out by wet
+//!   area: it slows both the body's motion and its spin relative to the water.
+//! * **Integration.** Buoyancy and drag are stiff for a light body (a ping-pong ball on a
+//!   wave, a wide raft), so both are taken implicitly for the new velocity and angular
+//!   velocity (one 6 × 6 linear solve per body and step, with the waterplane's heave,
+//!   roll and pitch stiffness), which is stable for any mass, size and drag; the position
+//!   and orientation then move with the new velocities (symplectic Euler, like the water),
+//!   and the orientation is renormalised every step.
+//! * **Two-way.** Every wet triangle pushes minus its force into the water at its own
+//!   point with [`Surface::add_force_at`], for the same step: the force and the torque the
+//!   water gets are exactly minus the body's (to rounding). A body at rest dents the water
+//!   by its weight; a moving or rocking one makes waves. Water outside the patch is taken
+//!   as calm at height 0 and gets nothing back.
+//! * **The water's stability.** To the water, a body is a spring of stiffness `ρ_w g h²`
+//!   per cell under its waterline and a damper: [`Surface::critical_dt`] counts the spring
+//!   while bodies float (a body whose buoyancy would push the timestep past the limit is
+//!   refused), and a body's drag is capped at half of the damping the water's timestep has
+//!   room for under it (see the `absorb` module), so deep, draggy bodies in an absorbing
+//!   frame drag less there. Bodies stacked on the same cells add up and can exceed the
+//!   budget; the step then reports [`Error::NonFinite`] like any other blow-up.
 //!
-//! **Integration.** Buoyancy and drag are stiff for light bodies (a ping-pong ball on a
-//! wave), so the body's velocity is updated linearly implicitly: with `K = ρ_w g a` for
-//! each column cut by the waterline,
-//!
-//! ```text
-//! M v' = M v + Δt (F_push − M g ŷ + Σ [ρ_w g s a − K Δt v'_y] ŷ + Σ κ (w − v'))
-//! ```
-//!
-//! which is solved for `v'` directly (the horizontal and vertical parts separate), so
-//! any mass, size and drag is stable for the body; then `x ← x + Δt v'` (symplectic
-//! Euler, like the water). The force of each column, `f`, is the bracket evaluated at
-//! `v'`, so that `M (v' − v) = Δt (Σ f + F_push − M g ŷ)` to rounding.
-//!
-//! **Two-way.** Each column pushes `−f` into the water at its own point with
-//! [`Surface::add_force_at`], for the same step: what the water gets is exactly minus what
-//! the body gets (to the rounding of the bilinear spread and of the change of units: the
-//! lattice counts forces per unit of model time², so `−f` goes in divided by
-//! `time_scale²`, and the water velocity `w` a column reads is the lattice's times
-//! `time_scale`). A body at rest dents the
-//! surface by its weight; a moving one pushes a travelling dent, which is what leaves a
-//! wake. Columns over no water (outside the patch) see calm water at rest height `y = 0`
-//! with zero velocity and push nothing back: the patch is taken to sit in open water.
-//!
-//! **The water's stability.** To the water, a column is a spring of stiffness `ρ_w g a` and
-//! a damper `κ` on the nodes under it, which the explicit step must carry:
-//! [`Surface::critical_dt`] adds `ρ_w g h² / time_scale²` (the waterline's stiffness in the
-//! lattice's units) to the lattice's largest node stiffness while
-//! bodies float (a body whose buoyancy would push the timestep past the limit is refused),
-//! and each column's `κ` is capped at half of what the damped limit leaves the four nodes
-//! under it (`m b_lim − γ`, see the `absorb` module). Deep, draggy bodies in an absorbing
-//! frame therefore drag less there. Bodies stacked on the same cells add their columns up
-//! and can exceed the budget; the step then reports [`Error::NonFinite`] like any other
-//! blow-up.
-//!
-//! Not modelled: rotation, added mass, bodies touching each other or the pool's walls.
+//! Not modelled: added mass, slamming, bodies touching each other or the pool's walls
+//! (a physics engine that owns the bodies does that: [`Surface::body_forces`]).
 
+use crate::body::rigid::{outer, Rigid};
+use crate::body::{tessellate, Hull};
 use crate::error::{Error, Result};
 use crate::params;
 #[cfg(doc)]
 use crate::Surface;
-use glam::Vec3;
+use glam::{DMat3, DVec3, Mat3, Quat, Vec3};
+use std::sync::Arc;
 
-/// The shape of a [`Floater`] (`#[non_exhaustive]`: a shape may come).
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// The shape of a [`Floater`], in the body's frame (`#[non_exhaustive]`: a shape may come).
+#[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub enum Shape {
@@ -80,28 +71,74 @@ pub enum Shape {
         /// Radius, world units (> 0).
         radius: f32,
     },
-    /// A box aligned with the water's axes (bodies do not rotate).
+    /// A box with its faces along the body's axes.
     Box {
-        /// Half the box's size along x, y and z, world units (each > 0).
+        /// Half the box's size along the body's x, y and z, world units (each > 0).
         half_extents: Vec3,
     },
+    /// A closed triangle mesh (a boat's hull), validated; the body frame's origin is the
+    /// centre of mass. Shared: many boats of one hull hold one mesh.
+    Hull(Arc<Hull>),
 }
 
 impl Shape {
     /// Volume in cubic world units.
     pub fn volume(&self) -> f32 {
-        match *self {
+        match self {
             Shape::Sphere { radius } => 4.0 / 3.0 * std::f32::consts::PI * radius.powi(3),
             Shape::Box { half_extents: e } => 8.0 * e.x * e.y * e.z,
+            Shape::Hull(hull) => hull.volume(),
         }
     }
 
-    /// Half the body's height: how far it reaches above and below its centre.
-    pub fn half_height(&self) -> f32 {
-        match *self {
-            Shape::Sphere { radius } => radius,
-            Shape::Box { half_extents } => half_extents.y,
+    /// The distance from the body's origin to its farthest point, world units: the radius
+    /// of a ball that holds the body in any orientation.
+    pub fn bounding_radius(&self) -> f32 {
+        match self {
+            Shape::Sphere { radius } => *radius,
+            Shape::Box { half_extents } => half_extents.length(),
+            Shape::Hull(hull) => hull
+                .vertices()
+                .iter()
+                .map(|v| Vec3::from(*v).length())
+                .fold(0.0, f32::max),
         }
+    }
+
+    /// The inertia tensor about the body's origin, in the body's axes, for `mass` spread
+    /// evenly through the volume (mass × world units²). For a hull whose centroid is not
+    /// at the origin (a boat ballasted low), the uniform hull's inertia moved to the origin
+    /// (parallel axes).
+    pub fn inertia(&self, mass: f32) -> Mat3 {
+        let m = mass as f64;
+        match self {
+            Shape::Sphere { radius } => {
+                let r = *radius as f64;
+                Mat3::from_diagonal(Vec3::splat((0.4 * m * r * r) as f32))
+            }
+            Shape::Box { half_extents: e } => {
+                let [x, y, z] = e.to_array().map(|v| v as f64 * v as f64);
+                Mat3::from_diagonal((DVec3::new(y + z, z + x, x + y) * (m / 3.0)).as_vec3())
+            }
+            Shape::Hull(hull) => {
+                let d = hull.centroid().as_dvec3();
+                let about_centroid = hull.inertia(mass).as_dmat3();
+                let shift = (DMat3::IDENTITY * d.length_squared() - outer(d, d)) * m;
+                (about_centroid + shift).as_mat3()
+            }
+        }
+    }
+}
+
+/// The mesh the water presses on for `shape`: triangles at most about `cell` across
+/// (the `tessellate` module of [`crate::body`]).
+pub(crate) fn wet_mesh(shape: &Shape, cell: f32) -> Result<Arc<Hull>> {
+    match shape {
+        Shape::Sphere { radius } => tessellate::sphere(*radius as f64, cell as f64).map(Arc::new),
+        Shape::Box { half_extents } => {
+            tessellate::cuboid(half_extents.as_dvec3(), cell as f64).map(Arc::new)
+        }
+        Shape::Hull(hull) => tessellate::cut(hull, cell),
     }
 }
 
@@ -124,31 +161,50 @@ impl Shape {
 /// ```
 ///
 /// `#[non_exhaustive]` (a field may come): outside the crate, start from
-/// [`Floater::sphere`] or [`Floater::cuboid`] and assign the fields to change.
-#[derive(Debug, Clone, Copy, PartialEq)]
+/// [`Floater::sphere`], [`Floater::cuboid`] or [`Floater::hull`] and assign the fields to
+/// change.
+#[derive(Debug, Clone, PartialEq)]
 #[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
 #[non_exhaustive]
 pub struct Floater {
-    /// Sphere or box.
+    /// Sphere, box or hull mesh, in the body's frame (origin at the centre of mass).
     pub shape: Shape,
     /// Mass, in the lattice's mass units (> 0; a node has [`Params::mass`](crate::Params::mass)).
     pub mass: f32,
+    /// The inertia tensor about the centre of mass in the body's axes (mass × world
+    /// units²), or `None` (the default) for the shape's at uniform density
+    /// ([`Shape::inertia`]). Set one for a body whose mass is not spread evenly; it must be
+    /// symmetric and positive definite, with each principal moment at most the sum of the
+    /// other two (as every real body's is).
+    pub inertia: Option<Mat3>,
     /// Drag rate `k`, per second (≥ 0, at most 1e8): the drag is `k` times the mass of the
     /// displaced water times the velocity relative to the water (default
     /// [`Floater::DEFAULT_DRAG`], 6 per second).
     pub drag: f32,
-    /// Centre, world units in the water's local space (the calm surface is `y = 0`).
+    /// Centre of mass, world units in the water's local space (the calm surface is `y = 0`).
     pub position: Vec3,
-    /// Velocity, world units per second (components at most 1e11; default zero).
+    /// Orientation, body to world: a unit quaternion (its squared norm within 1e-3 of 1;
+    /// the surface keeps it normalised). Default identity.
+    pub orientation: Quat,
+    /// Velocity of the centre of mass, world units per second (components at most 1e11;
+    /// default zero).
     pub velocity: Vec3,
-    /// External force (engine, wind, a player's push) for the next step only, cleared by
-    /// it; [`Surface::push_floater`] adds to it. Mass units × world units per second²
-    /// (default zero).
+    /// Angular velocity, radians per second about the world's axes (components at most
+    /// 1e6; default zero).
+    pub angular_velocity: Vec3,
+    /// External force through the centre of mass (engine, wind, a player's push) for the
+    /// next step only, cleared by it; [`Surface::push_floater`] adds to it. Mass units ×
+    /// world units per second² (default zero).
     pub push: Vec3,
+    /// External torque about the centre of mass (world axes) for the next step only,
+    /// cleared by it; [`Surface::push_floater_at`] adds to it (default zero).
+    pub push_torque: Vec3,
     /// Read only: the force the water exerted on the body during its last step (buoyancy
-    /// and drag, without gravity and push), mass units × world units per second². The
-    /// water got exactly minus this (in the lattice's units, divided by `time_scale²`).
+    /// and drag, without gravity and push). The water got exactly minus this.
     pub water_force: Vec3,
+    /// Read only: the torque about the centre of mass the water exerted on the body during
+    /// its last step. The water got exactly minus this.
+    pub water_torque: Vec3,
 }
 
 impl Floater {
@@ -161,44 +217,90 @@ impl Floater {
         Self::new(Shape::Sphere { radius }, mass, position.into())
     }
 
-    /// A box of `half_extents` and `mass` centred at `position`, at rest.
+    /// A box of `half_extents` and `mass` centred at `position`, at rest, upright.
     pub fn cuboid(half_extents: impl Into<Vec3>, mass: f32, position: impl Into<Vec3>) -> Self {
         let half_extents = half_extents.into();
         Self::new(Shape::Box { half_extents }, mass, position.into())
+    }
+
+    /// A body whose hull is the closed mesh `vertices`, `triangles` (counter-clockwise
+    /// seen from outside, in the body's frame with the centre of mass at the origin), of
+    /// `mass`, with its origin at `position`, at rest, upright. Refused with
+    /// [`Error::InvalidHull`] when the mesh is not a valid hull ([`Hull::new`] says what is
+    /// required).
+    pub fn hull(
+        vertices: &[[f32; 3]],
+        triangles: &[[u32; 3]],
+        mass: f32,
+        position: impl Into<Vec3>,
+    ) -> Result<Self> {
+        let hull = Hull::new(vertices, triangles)?;
+        Ok(Self::with_hull(Arc::new(hull), mass, position))
+    }
+
+    /// [`Floater::hull`] with a hull already validated, shared with other bodies.
+    pub fn with_hull(hull: Arc<Hull>, mass: f32, position: impl Into<Vec3>) -> Self {
+        Self::new(Shape::Hull(hull), mass, position.into())
     }
 
     fn new(shape: Shape, mass: f32, position: Vec3) -> Self {
         Self {
             shape,
             mass,
+            inertia: None,
             drag: Self::DEFAULT_DRAG,
             position,
+            orientation: Quat::IDENTITY,
             velocity: Vec3::ZERO,
+            angular_velocity: Vec3::ZERO,
             push: Vec3::ZERO,
+            push_torque: Vec3::ZERO,
             water_force: Vec3::ZERO,
+            water_torque: Vec3::ZERO,
         }
+    }
+
+    /// The inertia tensor in use: [`Floater::inertia`] if set, else the shape's at uniform
+    /// density (body axes, about the centre of mass).
+    pub fn inertia_tensor(&self) -> Mat3 {
+        self.inertia
+            .unwrap_or_else(|| self.shape.inertia(self.mass))
+    }
+
+    /// The body's state for the rigid step, in `f64`.
+    pub(crate) fn rigid(&self) -> Rigid {
+        Rigid {
+            mass: self.mass as f64,
+            inertia: self.inertia_tensor().as_dmat3(),
+            position: self.position.as_dvec3(),
+            orientation: self.orientation.as_dquat(),
+            velocity: self.velocity.as_dvec3(),
+            angular_velocity: self.angular_velocity.as_dvec3(),
+            push: self.push.as_dvec3(),
+            push_torque: self.push_torque.as_dvec3(),
+        }
+    }
+
+    /// The world velocity of the body's point at world `point`: `v + ω × (point − x)`.
+    pub fn velocity_at(&self, point: impl Into<Vec3>) -> Vec3 {
+        self.velocity + self.angular_velocity.cross(point.into() - self.position)
     }
 
     /// Checks every field: an error names the first that is out of range.
     pub fn validate(&self) -> Result<()> {
         let size = |name, v: f32| {
             params::positive(name, v)?;
-            if v > MAX_SIZE {
-                return Err(Error::InvalidParam {
-                    name,
-                    value: v as f64,
-                    expected: "at most 1e9 world units",
-                });
-            }
-            Ok(())
+            bounded(name, v, MAX_SIZE, "at most 1e9 world units")
         };
-        match self.shape {
-            Shape::Sphere { radius } => size("floater radius", radius)?,
+        match &self.shape {
+            Shape::Sphere { radius } => size("floater radius", *radius)?,
             Shape::Box { half_extents: e } => {
                 for v in e.to_array() {
                     size("floater half extent", v)?;
                 }
             }
+            // A hull was validated when it was made; its coordinates are at most 1e9.
+            Shape::Hull(_) => {}
         }
         let volume = self.shape.volume();
         if volume.is_nan() || volume < f32::MIN_POSITIVE {
@@ -216,6 +318,7 @@ impl Floater {
                 expected: "at least 1.2e-38 (the reciprocal must be finite)",
             });
         }
+        check_inertia(self.inertia_tensor())?;
         params::non_negative("floater drag", self.drag)?;
         bounded(
             "floater drag",
@@ -223,6 +326,7 @@ impl Floater {
             MAX_DRAG,
             "at most 1e8 per second",
         )?;
+        check_orientation(self.orientation)?;
         for (name, v, max, expected) in [
             (
                 "floater position",
@@ -236,10 +340,28 @@ impl Floater {
                 MAX_SPEED,
                 "components of at most 1e11 (world units per second)",
             ),
+            (
+                "floater angular velocity",
+                self.angular_velocity,
+                MAX_SPIN,
+                "components of at most 1e6 (radians per second)",
+            ),
             ("floater push", self.push, f32::MAX, "finite components"),
+            (
+                "floater push torque",
+                self.push_torque,
+                f32::MAX,
+                "finite components",
+            ),
             (
                 "floater water force",
                 self.water_force,
+                f32::MAX,
+                "finite components",
+            ),
+            (
+                "floater water torque",
+                self.water_torque,
                 f32::MAX,
                 "finite components",
             ),
@@ -253,10 +375,97 @@ impl Floater {
     }
 }
 
+/// A unit quaternion within rounding: finite, squared norm within 1e-3 of 1.
+pub(crate) fn check_orientation(q: Quat) -> Result<()> {
+    for v in q.to_array() {
+        params::finite("floater orientation", v)?;
+    }
+    let n = q
+        .to_array()
+        .map(f64::from)
+        .iter()
+        .map(|v| v * v)
+        .sum::<f64>();
+    if (n - 1.0).abs() > 1e-3 {
+        return Err(Error::InvalidParam {
+            name: "floater orientation's squared norm",
+            value: n,
+            expected: "1 within 1e-3: a unit quaternion (normalise it)",
+        });
+    }
+    Ok(())
+}
+
+/// The water's push on a body another physics engine owns, over one tick
+/// ([`Surface::body_forces`]): world frame, mass units × world units per second², the
+/// torque about the body's centre of mass. Apply both for the tick (Avian's
+/// `ExternalForce` and `ExternalTorque`, Rapier's `add_force` and `add_torque`).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+#[cfg_attr(feature = "serde", derive(serde::Serialize, serde::Deserialize))]
+pub struct BodyForces {
+    /// The force through the centre of mass (buoyancy and drag; gravity is the engine's).
+    pub force: Vec3,
+    /// The torque about the centre of mass.
+    pub torque: Vec3,
+}
+
+/// A physical inertia tensor: finite, symmetric (to 1e-6 of its size), positive
+/// definite, and each principal moment at most the sum of the other two: the second
+/// moment of the mass, `tr(I)/2 · 1 − I`, is positive semidefinite.
+fn check_inertia(inertia: Mat3) -> Result<()> {
+    let invalid = |value: f64, expected| {
+        Err(Error::InvalidParam {
+            name: "floater inertia",
+            value,
+            expected,
+        })
+    };
+    let i = inertia.as_dmat3();
+    let a = i.to_cols_array();
+    if a.iter().any(|v| !v.is_finite()) {
+        return invalid(f64::NAN, "finite entries");
+    }
+    let size = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let asym = (i - i.transpose()).to_cols_array();
+    if asym.iter().any(|v| v.abs() > 1e-6 * size) {
+        return invalid(size, "a symmetric tensor");
+    }
+    let i = (i + i.transpose()) * 0.5;
+    let trace = i.x_axis.x + i.y_axis.y + i.z_axis.z;
+    let second = DMat3::IDENTITY * (0.5 * trace) - i;
+    let tolerance = 1e-6 * size;
+    if !positive_definite(i, 0.0) || size < f64::from(f32::MIN_POSITIVE) {
+        return invalid(size, "a positive definite tensor");
+    }
+    if !positive_definite(second, -tolerance) {
+        return invalid(
+            size,
+            "principal moments each at most the sum of the other two",
+        );
+    }
+    Ok(())
+}
+
+/// Sylvester's criterion: every leading minor above `floor` (≥ for a semidefinite test).
+fn positive_definite(m: DMat3, floor: f64) -> bool {
+    let (a, b, c) = (m.x_axis, m.y_axis, m.z_axis);
+    let minor1 = a.x;
+    let minor2 = a.x * b.y - a.y * b.x;
+    let minor3 = m.determinant();
+    let scale = a.x.abs().max(b.y.abs()).max(c.z.abs());
+    if floor < 0.0 {
+        minor1 >= floor && minor2 >= floor * scale && minor3 >= floor * scale * scale
+    } else {
+        minor1 > 0.0 && minor2 > 0.0 && minor3 > 0.0
+    }
+}
+
 /// Largest radius or half extent a floater may have, world units.
 const MAX_SIZE: f32 = 1e9;
 /// Largest speed component, world units per second.
 const MAX_SPEED: f32 = 1e11;
+/// Largest angular velocity component, radians per second.
+const MAX_SPIN: f32 = 1e6;
 /// Largest drag rate, per second.
 const MAX_DRAG: f32 = 1e8;
 /// Largest gravity, world units per second².
@@ -347,136 +556,21 @@ impl From<FloaterId> for u64 {
     }
 }
 
-/// One vertical column of a body: offset of its centre from the body's, area, length.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub(crate) struct Column {
-    pub dx: f32,
-    pub dz: f32,
-    pub area: f32,
-    pub length: f32,
-}
+/// The widest a body may be, in cells of the grid it floats on ([`Surface::add_floater`]
+/// refuses larger ones): a body is at most this many cells across in any orientation (twice
+/// its [`Shape::bounding_radius`]), which bounds the triangles it is cut into.
+pub const MAX_CELLS: f32 = 64.0;
 
-/// Most columns per side of a body's footprint: columns stay at most one cell wide for
-/// bodies up to [`MAX_CELLS`] cells across.
-const MAX_COLUMNS: usize = 64;
-
-/// The widest footprint a body may have, in cells of the grid it floats on
-/// ([`Surface::add_floater`] refuses wider ones): a column wider than a cell would push a
-/// whole cell's buoyancy and drag into one node, which the water's timestep cannot carry.
-pub const MAX_CELLS: f32 = MAX_COLUMNS as f32;
-
-/// Checks that `shape` is at most [`MAX_CELLS`] cells of `spacing` across in x and z.
+/// Checks that `shape` is at most [`MAX_CELLS`] cells of `spacing` across.
 pub(crate) fn check_footprint(shape: &Shape, spacing: f32) -> Result<()> {
-    let (x, z) = match *shape {
-        Shape::Sphere { radius } => (radius, radius),
-        Shape::Box { half_extents: e } => (e.x, e.z),
-    };
-    let widest = 2.0 * x.max(z);
+    let widest = 2.0 * shape.bounding_radius();
     if widest <= MAX_CELLS * spacing {
         Ok(())
     } else {
         Err(Error::InvalidParam {
             name: "floater size",
             value: widest as f64,
-            expected: "a footprint at most 64 grid cells across (in x and z)",
+            expected: "at most 64 grid cells across (twice the bounding radius)",
         })
     }
-}
-
-/// The columns of `shape` for a grid of `spacing`, about one cell wide each.
-pub(crate) fn columns(shape: &Shape, spacing: f32, out: &mut Vec<Column>) {
-    out.clear();
-    let per_side = |extent: f32| ((2.0 * extent / spacing).ceil() as usize).clamp(1, MAX_COLUMNS);
-    match *shape {
-        Shape::Box { half_extents: e } => {
-            let (nx, nz) = (per_side(e.x), per_side(e.z));
-            let (sx, sz) = (2.0 * e.x / nx as f32, 2.0 * e.z / nz as f32);
-            for j in 0..nz {
-                for i in 0..nx {
-                    out.push(Column {
-                        dx: -e.x + sx * (i as f32 + 0.5),
-                        dz: -e.z + sz * (j as f32 + 0.5),
-                        area: sx * sz,
-                        length: 2.0 * e.y,
-                    });
-                }
-            }
-        }
-        Shape::Sphere { radius: r } => {
-            let n = per_side(r);
-            let s = 2.0 * r / n as f32;
-            for j in 0..n {
-                for i in 0..n {
-                    let (dx, dz) = (-r + s * (i as f32 + 0.5), -r + s * (j as f32 + 0.5));
-                    let rho2 = dx * dx + dz * dz;
-                    if rho2 < r * r {
-                        let length = 2.0 * (r * r - rho2).sqrt();
-                        out.push(Column {
-                            dx,
-                            dz,
-                            area: s * s,
-                            length,
-                        });
-                    }
-                }
-            }
-            // n = 1 keeps the centre; n ≥ 2 always keeps the columns nearest the centre.
-            let volume: f32 = out.iter().map(|c| c.area * c.length).sum();
-            let scale = shape.volume() / volume;
-            for c in out.iter_mut() {
-                c.area *= scale;
-            }
-        }
-    }
-}
-
-/// What one column of a body found under it and does this step.
-#[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct ColumnForce {
-    /// World point the column pushes into the water at, if there is water under it.
-    pub at: Option<[f32; 2]>,
-    /// Buoyancy `ρ g s a` (up).
-    pub lift: f32,
-    /// Waterline stiffness `ρ g a` when the waterline cuts the column, else 0.
-    pub stiffness: f32,
-    /// Drag coefficient `κ`.
-    pub drag: f32,
-    /// Water velocity under the column.
-    pub flow: Vec3,
-}
-
-/// The body's implicit velocity update (see the module docs) and each column's force at
-/// it. Returns `v'` and fills `forces` (parallel to `columns`). Everything in seconds:
-/// `gravity` is the body's gravity magnitude (per second²), `dt` the step in seconds, the
-/// columns' drag and flow per second.
-pub(crate) fn solve(
-    body: &Floater,
-    columns: &[ColumnForce],
-    gravity: f32,
-    dt: f32,
-    forces: &mut Vec<Vec3>,
-) -> Vec3 {
-    let m = body.mass;
-    let (mut lift, mut k, mut kappa, mut kappa_w) = (0.0f32, 0.0f32, 0.0f32, Vec3::ZERO);
-    for c in columns {
-        lift += c.lift;
-        k += c.stiffness;
-        kappa += c.drag;
-        kappa_w += c.drag * c.flow;
-    }
-    let base = m * body.velocity + dt * (body.push + kappa_w);
-    let horizontal = m + dt * kappa;
-    let vertical = horizontal + dt * dt * k;
-    let v = Vec3::new(
-        base.x / horizontal,
-        (base.y + dt * (lift - m * gravity)) / vertical,
-        base.z / horizontal,
-    );
-    forces.clear();
-    forces.extend(
-        columns
-            .iter()
-            .map(|c| Vec3::new(0.0, c.lift - c.stiffness * dt * v.y, 0.0) + c.drag * (c.flow - v)),
-    );
-    v
 }

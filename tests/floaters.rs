@@ -79,13 +79,25 @@ fn a_released_body_settles_where_buoyancy_balances_its_weight() {
         Floater::cuboid([2.0, 1.0, 2.5], 12.0, [14.0, 3.0, 48.0]),
     ]
     .into_iter()
-    .map(|f| s.add_floater(f).unwrap())
+    .map(|f| s.add_floater(f.clone()).unwrap())
     .collect();
     s.step_n(3000).unwrap();
     for id in ids {
-        let f = *s.floater(id).unwrap();
+        let f = s.floater(id).unwrap().clone();
         let weight = f.mass * g;
-        assert!(f.velocity.length() < 1e-3, "{id:?} still moves: {f:?}");
+        // At rest up and down. Sideways, the pool's last ripples still nudge it, and near
+        // the pinned walls its own dent is lopsided: the slope's pressure slides it slowly
+        // towards the middle.
+        assert!(
+            f.velocity.y.abs() < 1e-3,
+            "{id:?} still bobs: {:?}",
+            f.velocity
+        );
+        assert!(
+            f.velocity.length() < 0.05,
+            "{id:?} still moves: {:?}",
+            f.velocity
+        );
         assert!(
             (f.water_force.y - weight).abs() < 1e-3 * weight,
             "{id:?}: buoyancy {} vs weight {weight}",
@@ -177,7 +189,7 @@ fn drive(speed: f32) -> (f32, f32) {
     let mut b = ball(&s, 2.0, 0.5, [50.0, 0.0, 60.0]);
     let id = s.add_floater(b).unwrap();
     for _ in 0..300 {
-        b = *s.floater(id).unwrap();
+        b = s.floater(id).unwrap().clone();
         b.velocity = Vec3::new(v, 0.0, 0.0);
         b.position.y = 0.0;
         s.set_floater(id, b).unwrap();
@@ -221,7 +233,7 @@ fn crowded(share: f32) -> Surface {
             f.mass = [0.05, 0.3, 0.7, 0.95, 0.5][k as usize % 5] * f.shape.volume();
             f.velocity = 24.0 * Vec3::new((k % 7) as f32 - 3.0, 0.5, (k % 4) as f32 - 1.5);
             f.drag = [0.0, 6.0, 48.0, 1200.0][k as usize % 4];
-            s.add_floater(f).unwrap();
+            s.add_floater(f.clone()).unwrap();
         }
     };
     let mut probe = Surface::new(base).unwrap();
@@ -300,7 +312,7 @@ fn bodies_are_part_of_snapshots() {
 fn bad_bodies_are_refused_and_change_nothing() {
     let mut s = Surface::new(Params::with_size(32, 32)).unwrap();
     let good = Floater::sphere(1.0, 2.0, [16.0, 0.0, 16.0]);
-    let id = s.add_floater(good).unwrap();
+    let id = s.add_floater(good.clone()).unwrap();
     let before = s.to_bytes();
     let bad = [
         Floater::sphere(0.0, 1.0, [1.0, 0.0, 1.0]),
@@ -311,16 +323,16 @@ fn bad_bodies_are_refused_and_change_nothing() {
         Floater::sphere(1.0, 1e-40, [1.0, 0.0, 1.0]),
         Floater::cuboid([1.0, -1.0, 1.0], 1.0, [1.0, 0.0, 1.0]),
         Floater::sphere(1.0, 1.0, [f32::INFINITY, 0.0, 1.0]),
-        edited(good, |f| f.velocity = Vec3::new(0.0, 2e11, 0.0)),
-        edited(good, |f| f.drag = -1.0),
-        edited(good, |f| f.push = Vec3::new(f32::NAN, 0.0, 0.0)),
+        edited(good.clone(), |f| f.velocity = Vec3::new(0.0, 2e11, 0.0)),
+        edited(good.clone(), |f| f.drag = -1.0),
+        edited(good.clone(), |f| f.push = Vec3::new(f32::NAN, 0.0, 0.0)),
     ];
     for f in bad {
         assert!(
-            matches!(s.add_floater(f), Err(Error::InvalidParam { .. })),
+            matches!(s.add_floater(f.clone()), Err(Error::InvalidParam { .. })),
             "{f:?}"
         );
-        assert!(s.set_floater(id, f).is_err(), "{f:?}");
+        assert!(s.set_floater(id, f.clone()).is_err(), "{f:?}");
     }
     assert!(s.push_floater(id, [f32::NAN, 0.0, 0.0]).is_err());
     assert!(s.push_floater(id, [f32::MAX, 0.0, 0.0]).is_ok());
@@ -399,9 +411,12 @@ fn bodies_wider_than_64_cells_are_refused() {
         ),
         "{err:?}"
     );
-    // Tall is fine: the limit is the footprint.
+    // Tall is as wide once it lies down: the limit is twice the bounding radius.
     assert!(s
         .add_floater(Floater::cuboid([2.0, 500.0, 2.0], 10.0, [50.0, 0.0, 50.0]))
+        .is_err());
+    assert!(s
+        .add_floater(Floater::cuboid([2.0, 30.0, 2.0], 10.0, [50.0, 0.0, 50.0]))
         .is_ok());
 }
 
@@ -439,7 +454,7 @@ fn a_push_that_would_throw_a_body_out_of_range_is_refused() {
     let mut s = Surface::new(Params::with_size(16, 16)).unwrap();
     let mut f = Floater::sphere(1.0, 1.0, [8.0, 0.0, 8.0]);
     f.drag = 0.0;
-    let id = s.add_floater(f).unwrap();
+    let id = s.add_floater(f.clone()).unwrap();
     s.push_floater(id, [f32::MAX, 0.0, 0.0]).unwrap();
     let before = s.to_bytes();
     assert!(matches!(
@@ -480,11 +495,11 @@ fn water_force_is_read_only() {
     let f = edited(Floater::sphere(1.0, 2.0, [8.0, 0.0, 8.0]), |f| {
         f.water_force = Vec3::NAN
     });
-    let id = s.add_floater(f).unwrap();
+    let id = s.add_floater(f.clone()).unwrap();
     assert_eq!(s.floater(id).unwrap().water_force, Vec3::ZERO);
     s.step().unwrap();
     let felt = s.floater(id).unwrap().water_force;
-    s.set_floater(id, edited(f, |f| f.water_force = Vec3::splat(7.0)))
+    s.set_floater(id, edited(f.clone(), |f| f.water_force = Vec3::splat(7.0)))
         .unwrap();
     assert_eq!(s.floater(id).unwrap().water_force, felt);
 }
@@ -500,16 +515,19 @@ fn a_body_set_is_read_back_exactly() {
             .add_floater(Floater::sphere(1.5, 3.0, [16.0, 0.0, 16.0]))
             .unwrap();
         s.step_n(5).unwrap();
-        let mut f = *s.floater(id).unwrap();
+        let mut f = s.floater(id).unwrap().clone();
         f.velocity = Vec3::new(0.1, -1.0 / 3.0, std::f32::consts::E);
         f.drag = 0.3;
         f.push = Vec3::new(1.0 / 7.0, 0.0, -0.2);
         f.position = Vec3::new(15.123_457, 0.1, 16.9);
-        s.set_floater(id, f).unwrap();
-        assert_eq!(*s.floater(id).unwrap(), f);
-        let other = s.add_floater(f).unwrap();
-        let fresh = edited(f, |f| f.water_force = Vec3::ZERO);
-        assert_eq!(*s.floater(other).unwrap(), fresh);
+        s.set_floater(id, f.clone()).unwrap();
+        assert_eq!(s.floater(id).unwrap().clone(), f);
+        let other = s.add_floater(f.clone()).unwrap();
+        let fresh = edited(f.clone(), |f| {
+            f.water_force = Vec3::ZERO;
+            f.water_torque = Vec3::ZERO;
+        });
+        assert_eq!(s.floater(other).unwrap().clone(), fresh);
         // And through a snapshot.
         let back = Surface::from_bytes(&s.to_bytes()).unwrap();
         assert_eq!(*back.floater(id).unwrap(), f);
@@ -540,7 +558,7 @@ fn a_body_released_at_rest_settles_at_archimedes_depth_at_any_time_scale() {
             .add_floater(Floater::cuboid(e, 12.0, [24.0, 0.0, 24.0]))
             .unwrap();
         s.step_n(3000).unwrap();
-        let f = *s.floater(id).unwrap();
+        let f = s.floater(id).unwrap().clone();
         let weight = f.mass * gravity;
         assert!(
             f.velocity.length() < 1e-3 * time_scale,
@@ -561,8 +579,10 @@ fn a_body_released_at_rest_settles_at_archimedes_depth_at_any_time_scale() {
         depths.push(f.position.y);
     }
     println!("centre heights at time scales 24, 10, 60: {depths:?}");
+    // The same physics in seconds: equal to rounding, which the body's slow rocking in
+    // the pool's last ripples carries to a few 1e-5.
     for y in &depths[1..] {
-        assert!((y - depths[0]).abs() < 1e-6, "{depths:?}");
+        assert!((y - depths[0]).abs() < 1e-4, "{depths:?}");
     }
     // At the default gravity (57.6 per second², 0.1 per unit of model time² at the
     // default time scale) the box floats where it did at the first time scale above.
@@ -586,7 +606,7 @@ fn a_bodys_velocity_is_its_change_of_position_per_second() {
     for _ in 0..90 {
         let before = s.floater(id).unwrap().position;
         s.step().unwrap();
-        let after = *s.floater(id).unwrap();
+        let after = s.floater(id).unwrap().clone();
         let rate = (after.position - before) / seconds;
         // Positions of about 20 carry about 2e-6 of rounding, over a 60th of a second.
         assert!(

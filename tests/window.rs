@@ -395,7 +395,8 @@ fn snapshots_keep_the_origin() {
     // A version 3 snapshot (no origin before the checksum) loads as a window that never
     // moved.
     let fresh = Surface::new(Params::with_size(6, 5)).unwrap().to_bytes();
-    let mut v3 = [&fresh[..fresh.len() - 44], &[0u8; 4][..]].concat();
+    let v5 = common::as_version_5(&fresh, 30, 0);
+    let mut v3 = [&v5[..v5.len() - 44], &[0u8; 4][..]].concat();
     v3[8..12].copy_from_slice(&3u32.to_le_bytes());
     let len = v3.len() as u64;
     v3[16..24].copy_from_slice(&len.to_le_bytes());

@@ -2,16 +2,19 @@
 //! ([`springwater::Floater`]) on the water under it; the plugin keeps the two in step.
 
 use std::collections::HashMap;
+use std::sync::Arc;
 
 use bevy::ecs::prelude::*;
-use bevy::math::Vec3;
+use bevy::math::{Quat, Vec3};
 use bevy::transform::components::{GlobalTransform, Transform};
+use springwater::body::Hull;
 use springwater::{Buoyancy, Floater, FloaterId, Shape};
 
 use crate::water::{report, Space, WaterError, WaterSurface};
 
-/// A floating sphere or box (it does not rotate). Needs a `Transform` on a root entity
-/// (its translation is the body's centre in world space); the plugin moves it.
+/// A floating rigid body: a sphere, a box or a hull mesh that pitches and rolls. Needs a
+/// `Transform` on a root entity (its translation is the body's centre of mass in world
+/// space, its rotation the body's orientation); the plugin moves and turns it.
 ///
 /// The body is one of springwater's floating bodies on the water whose footprint holds it
 /// when it appears: the water lifts and drags it from the height and velocity under each
@@ -26,10 +29,11 @@ use crate::water::{report, Space, WaterError, WaterSurface};
 /// height (springwater's open-water assumption); with no water at all it stays where it is.
 /// When a water's parameters change its surface starts over, and its bodies are put back
 /// where their components say.
-#[derive(Component, Debug, Clone, Copy, PartialEq)]
+#[derive(Component, Debug, Clone, PartialEq)]
 #[require(Transform)]
 pub struct Buoyant {
-    /// Sphere or box, in world units (the water's local units if its transform scales).
+    /// Sphere, box or hull, in the body's frame, world units (the water's local units if
+    /// its transform scales).
     pub shape: Shape,
     /// Mass, in the units of [`BuoyancySettings::density`] × volume (> 0).
     pub mass: f32,
@@ -39,12 +43,20 @@ pub struct Buoyant {
     pub drag: f32,
     /// World velocity, per second. Set it to throw the body.
     pub velocity: Vec3,
-    /// External world force held during the next frame (game input, wind, an engine);
-    /// cleared after use.
+    /// World angular velocity, radians per second. Set it to spin the body.
+    pub angular_velocity: Vec3,
+    /// External world force through the centre of mass held during the next frame (game
+    /// input, wind, an engine); cleared after use.
     pub force: Vec3,
+    /// External world torque about the centre of mass held during the next frame; cleared
+    /// after use.
+    pub torque: Vec3,
     /// Read only: the world force the water exerted on the body in the last substep
     /// (buoyancy and drag).
     pub water_force: Vec3,
+    /// Read only: the world torque about the centre of mass the water exerted on the body
+    /// in the last substep.
+    pub water_torque: Vec3,
 }
 
 impl Buoyant {
@@ -59,24 +71,39 @@ impl Buoyant {
         Self::new(Shape::Box { half_extents }, relative_density, settings)
     }
 
+    /// A body whose hull is `hull` (a closed mesh in the body's frame, the centre of mass
+    /// at its origin: [`springwater::body::Hull`]; many bodies may share one) with
+    /// `relative_density`, at rest.
+    pub fn hull(hull: Arc<Hull>, relative_density: f32, settings: &BuoyancySettings) -> Self {
+        Self::new(Shape::Hull(hull), relative_density, settings)
+    }
+
     fn new(shape: Shape, relative_density: f32, settings: &BuoyancySettings) -> Self {
+        let mass = relative_density * settings.density * shape.volume();
         Self {
             shape,
-            mass: relative_density * settings.density * shape.volume(),
+            mass,
             drag: Floater::DEFAULT_DRAG,
             velocity: Vec3::ZERO,
+            angular_velocity: Vec3::ZERO,
             force: Vec3::ZERO,
+            torque: Vec3::ZERO,
             water_force: Vec3::ZERO,
+            water_torque: Vec3::ZERO,
         }
     }
 
-    /// The body in the water's local space.
-    fn floater(&self, centre: Vec3, space: &Space) -> Floater {
+    /// The body in the water's local space, its centre at `centre` and turned by
+    /// `rotation` (world).
+    fn floater(&self, centre: Vec3, rotation: Quat, space: &Space) -> Floater {
         let local = |v: Vec3| springwater::glam::Vec3::from_array(v.to_array());
         let mut body = Floater::sphere(1.0, self.mass, local(space.local_point(centre)));
-        body.shape = self.shape;
+        body.shape = self.shape.clone();
         body.drag = self.drag;
         body.velocity = local(space.local_vector(self.velocity));
+        body.angular_velocity = local(space.local_rotation() * self.angular_velocity);
+        let q = (space.local_rotation() * rotation).normalize();
+        body.orientation = springwater::glam::Quat::from_array(q.to_array());
         body
     }
 }
@@ -108,11 +135,11 @@ impl Default for BuoyancySettings {
 #[derive(Resource, Debug, Default)]
 pub(crate) struct Bodies(HashMap<Entity, Link>);
 
-#[derive(Debug, Clone, Copy)]
+#[derive(Debug, Clone)]
 pub(crate) struct Link {
     water: Entity,
     id: FloaterId,
-    written: Option<(Buoyant, Vec3)>,
+    written: Option<(Buoyant, Vec3, Quat)>,
 }
 
 impl Bodies {
@@ -124,7 +151,7 @@ impl Bodies {
     /// Which water and floater `body` is, if any (saved for rollback).
     #[cfg(feature = "ggrs")]
     pub(crate) fn link(&self, body: Entity) -> Option<Link> {
-        self.0.get(&body).copied()
+        self.0.get(&body).cloned()
     }
 
     /// Puts back what [`Bodies::link`] said at a saved frame.
@@ -172,13 +199,13 @@ pub(crate) fn sync_bodies(
         }
     }
     for (body, buoyant, transform) in &bodies {
-        let centre = transform.translation;
-        let linked = registry.0.get(&body).copied().filter(|link| {
+        let (centre, rotation) = (transform.translation, transform.rotation);
+        let linked = registry.0.get(&body).cloned().filter(|link| {
             waters
                 .get(link.water)
                 .is_ok_and(|(_, ws, _)| ws.surface.floater(link.id).is_ok())
         });
-        let water = match linked {
+        let water = match &linked {
             Some(link) => link.water,
             None => {
                 let under = waters.iter().find(|(_, ws, global)| {
@@ -195,10 +222,15 @@ pub(crate) fn sync_bodies(
             continue;
         };
         let space = Space::new(global);
-        let floater = buoyant.floater(centre, &space);
-        let done = match linked {
+        let floater = buoyant.floater(centre, rotation, &space);
+        let untouched = |link: &Link| {
+            link.written
+                .as_ref()
+                .is_some_and(|(b, c, r)| b == buoyant && *c == centre && *r == rotation)
+        };
+        let done = match &linked {
             // Untouched since the plugin wrote it: the library's state is the exact one.
-            Some(link) if link.written == Some((*buoyant, centre)) => Ok(link.id),
+            Some(link) if untouched(link) => Ok(link.id),
             Some(link) => ws.surface.set_floater(link.id, floater).map(|()| link.id),
             None => ws.surface.add_floater(floater),
         };
@@ -206,10 +238,10 @@ pub(crate) fn sync_bodies(
             Ok(id) => {
                 let written = linked.and_then(|link| link.written);
                 registry.0.insert(body, Link { water, id, written });
-                let push = space.local_vector(buoyant.force);
-                ws.pushes
-                    .0
-                    .push((id, springwater::glam::Vec3::from_array(push.to_array())));
+                let local = |v: Vec3| springwater::glam::Vec3::from_array(v.to_array());
+                let push = local(space.local_vector(buoyant.force));
+                let twist = local(space.local_rotation() * buoyant.torque);
+                ws.pushes.0.push((id, push, twist));
             }
             Err(e) => {
                 registry.0.remove(&body);
@@ -241,10 +273,16 @@ pub(crate) fn write_bodies(
         }
         let space = Space::new(global);
         let world = |v: springwater::glam::Vec3| space.world_vector(Vec3::from_array(v.to_array()));
+        let turn = space.local_rotation().inverse();
+        let turned = |v: springwater::glam::Vec3| turn * Vec3::from_array(v.to_array());
         transform.translation = space.world_point(Vec3::from_array(f.position.to_array()));
+        transform.rotation = (turn * Quat::from_array(f.orientation.to_array())).normalize();
         buoyant.velocity = world(f.velocity);
+        buoyant.angular_velocity = turned(f.angular_velocity);
         buoyant.water_force = world(f.water_force);
+        buoyant.water_torque = turned(f.water_torque);
         buoyant.force = Vec3::ZERO;
-        link.written = Some((*buoyant, transform.translation));
+        buoyant.torque = Vec3::ZERO;
+        link.written = Some((buoyant.clone(), transform.translation, transform.rotation));
     }
 }

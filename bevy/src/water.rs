@@ -218,6 +218,12 @@ impl Space {
         self.to_world.transform_vector3(v)
     }
 
+    /// The rotation from world to the water's local axes (the water's transform's
+    /// rotation, inverted; its scale left out).
+    pub fn local_rotation(&self) -> bevy::math::Quat {
+        self.to_local.to_scale_rotation_translation().1
+    }
+
     /// A world direction (a normal): the inverse transpose, normalised.
     pub fn world_normal(&self, n: Vec3) -> Vec3 {
         self.to_local
@@ -235,12 +241,13 @@ impl Space {
 ///
 /// [`Buoyant`]: crate::Buoyant
 #[derive(Debug, Default)]
-pub(crate) struct Pushes(pub Vec<(FloaterId, springwater::glam::Vec3)>);
+pub(crate) struct Pushes(pub Vec<(FloaterId, springwater::glam::Vec3, springwater::glam::Vec3)>);
 
 impl Disturbance for Pushes {
     fn apply(&mut self, surface: &mut Surface, _dt: f32) -> springwater::Result<()> {
-        for &(id, force) in &self.0 {
+        for &(id, force, torque) in &self.0 {
             surface.push_floater(id, force)?;
+            surface.push_floater_torque(id, torque)?;
         }
         Ok(())
     }

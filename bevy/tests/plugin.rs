@@ -171,7 +171,7 @@ fn a_buoyant_ball_floats_and_settles() {
         .id();
     run(&mut app, 900); // 15 s
     let y = app.world().get::<Transform>(ball).unwrap().translation.y;
-    let body = *app.world().get::<Buoyant>(ball).unwrap();
+    let body = app.world().get::<Buoyant>(ball).unwrap().clone();
     let mut waters = app.world_mut().query::<&WaterSurface>();
     let ws = waters.single(app.world()).unwrap();
     let surface = ws.surface().height_at(32.0, 32.0).unwrap();
@@ -433,9 +433,12 @@ fn a_buoyant_body_is_the_librarys_floater_and_goes_with_its_entity() {
     run(&mut app, 120);
     let floaters = |app: &App| {
         let ws = app.world().get::<WaterSurface>(water).unwrap();
-        ws.surface().floaters().map(|(_, f)| *f).collect::<Vec<_>>()
+        ws.surface()
+            .floaters()
+            .map(|(_, f)| f.clone())
+            .collect::<Vec<_>>()
     };
-    let [body] = floaters(&app)[..] else {
+    let [body] = &floaters(&app)[..] else {
         panic!("one floater expected");
     };
     let t = app.world().get::<Transform>(crate_).unwrap().translation;
@@ -446,7 +449,7 @@ fn a_buoyant_body_is_the_librarys_floater_and_goes_with_its_entity() {
     );
     // The component holds the library's numbers as they are (seconds on both sides; the
     // water's transform is the identity here).
-    let b = *app.world().get::<Buoyant>(crate_).unwrap();
+    let b = app.world().get::<Buoyant>(crate_).unwrap().clone();
     assert_eq!(b.velocity.to_array(), body.velocity.to_array());
     assert_eq!(b.water_force.to_array(), body.water_force.to_array());
     assert_eq!(b.drag, body.drag);
@@ -462,6 +465,39 @@ fn a_buoyant_body_is_the_librarys_floater_and_goes_with_its_entity() {
     app.world_mut().entity_mut(crate_).despawn();
     run(&mut app, 1);
     assert!(floaters(&app).is_empty(), "despawning removes the floater");
+}
+
+#[test]
+fn a_heeled_box_rights_itself_and_its_transform_turns_with_it() {
+    let mut app = app(SpringwaterPlugin::default());
+    let water = app.world_mut().spawn(Water::with_size(65, 65)).id();
+    let settings = BuoyancySettings::default();
+    let heeled = Quat::from_rotation_x(15f32.to_radians());
+    let barge = app
+        .world_mut()
+        .spawn((
+            Buoyant::cuboid(Vec3::new(4.0, 0.75, 3.0), 0.5, &settings),
+            Transform::from_xyz(32.0, 0.0, 32.0).with_rotation(heeled),
+        ))
+        .id();
+    run(&mut app, 1);
+    let tilt = |app: &App| {
+        let up = app.world().get::<Transform>(barge).unwrap().rotation * Vec3::Y;
+        up.y.clamp(-1.0, 1.0).acos().to_degrees()
+    };
+    assert!(tilt(&app) > 10.0, "the plugin read the entity's rotation");
+    run(&mut app, 600);
+    // The Transform is the floater's pose, and the body stands upright again.
+    let ws = app.world().get::<WaterSurface>(water).unwrap();
+    let (_, body) = ws.surface().floaters().next().unwrap();
+    let rotation = app.world().get::<Transform>(barge).unwrap().rotation;
+    assert_eq!(rotation.to_array(), body.orientation.to_array());
+    assert!(tilt(&app) < 1.0, "still heeled {}°", tilt(&app));
+    let b = app.world().get::<Buoyant>(barge).unwrap();
+    assert_eq!(
+        b.angular_velocity.to_array(),
+        body.angular_velocity.to_array()
+    );
 }
 
 #[test]

@@ -12,7 +12,7 @@
 //! state before the first frame (after `--steps` warm-up steps, 0 by default, and the
 //! drops). Vertex order is the nodes' row-major order in every format. Every writer
 //! streams: a frame goes to disk as soon as it is computed, so memory does not grow with
-//! `--frames` (the floaters' paths, 12 bytes per floater and frame, are the exception).
+//! `--frames` (the floaters' paths, 28 bytes per floater and frame, are the exception).
 
 mod glb;
 pub mod obj;
@@ -41,6 +41,9 @@ pub struct Frame<'a> {
     pub uv: &'a Refraction,
     /// Floater centres, in the order given.
     pub floaters: &'a [[f32; 3]],
+    /// Floater orientations, body to world, as unit quaternions `[x, y, z, w]`, in the
+    /// same order.
+    pub orientations: &'a [[f32; 4]],
 }
 
 /// The mesh every frame shares: its triangles and the frame it rests in.
@@ -184,7 +187,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         .set_step_cap(Surface::MAX_SUBSTEPS as u32, Overflow::Drop)
         .map_err(lib_error)?;
     if format == Format::Glb {
-        glb::check_size(&out, &params, frames, start.floaters.len())?;
+        glb::check_size(&out, &params, frames, surface.floaters().len())?;
     }
 
     // Rain and wake sized in cells, as `render` makes them.
@@ -361,6 +364,7 @@ struct Shading {
     normals: Normals,
     uv: Refraction,
     floaters: Vec<[f32; 3]>,
+    orientations: Vec<[f32; 4]>,
 }
 
 impl Shading {
@@ -371,10 +375,11 @@ impl Shading {
             normals: Normals::new(),
             uv: Refraction::default(),
             floaters: Vec::new(),
+            orientations: Vec::new(),
         }
     }
 
-    /// Normals, refraction UVs and floater centres for the surface as it is.
+    /// Normals, refraction UVs and floater poses for the surface as it is.
     fn update(&mut self, s: &Surface) -> CliResult<()> {
         let view = s.mesh_view();
         compute_normals(&view, &mut self.normals);
@@ -383,6 +388,9 @@ impl Shading {
         self.floaters.clear();
         self.floaters
             .extend(s.floaters().map(|(_, f)| f.position.to_array()));
+        self.orientations.clear();
+        self.orientations
+            .extend(s.floaters().map(|(_, f)| f.orientation.to_array()));
         Ok(())
     }
 
@@ -393,6 +401,7 @@ impl Shading {
             normals: &self.normals,
             uv: &self.uv,
             floaters: &self.floaters,
+            orientations: &self.orientations,
         }
     }
 }

@@ -102,6 +102,7 @@ usage: springwater bake [model flags] --out FILE.glb|FILE.mdd|FILE.pc2|DIR [flag
 Runs the model over N frames of 1/F seconds and writes an animation cache chosen by
 --out: .glb (glTF 2.0, morph targets), .mdd or .pc2 (point caches, the rest mesh as an
 OBJ of the same name beside them), or a directory (water_0001.obj … one per frame).
+In a .glb every floating body is a node animated by translation and rotation channels.
 
 flags:
   --out PATH           the cache (required)
@@ -150,6 +151,9 @@ flags:
   --follow             a ball crossing open water in a straight line, the window and the
                        camera following it (use with --boundary absorbing; not with --wake)
   --floaters N         balls floating on the water, 0 to 1000 (0)
+  --boats N            boats (the shipped hull) under way in circles, pitching and
+                       rolling in the rain and leaving wakes; one per square of 15x15
+                       cells of the pool (0; not with --follow)
   --wireframe          overlay the LOD triangles, coloured by level
   --orbit DEGREES      turn the camera about the target over the animation, -3600 to
                        3600 (0)

@@ -13,6 +13,7 @@ macro_rules! say {
 mod args;
 mod bake;
 mod bench;
+mod boats;
 mod export;
 mod help;
 mod image;

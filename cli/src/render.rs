@@ -4,12 +4,13 @@ use crate::args::{
     count, lib_error, list, next_flag, positive, ranged, string, unexpected, value, CliResult,
     Flag, ModelArgs, Short,
 };
+use crate::boats;
 use crate::image::{read_png, write_png, GifWriter, Histogram, Palette};
 use crate::output::{self, Output, Pending};
 use lexopt::Parser;
 use springwater::disturb::{Disturbance, Rain, Wake};
-use springwater::render::{Ball, Camera, Frame, RenderParams, Renderer, StageTimes, Texture};
-use springwater::Surface;
+use springwater::render::{Ball, Camera, RenderParams, Renderer, StageTimes, Texture};
+use springwater::{Shape, Surface};
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -38,6 +39,7 @@ struct Options {
     wake: bool,
     follow: bool,
     floaters: usize,
+    boats: usize,
     wireframe: bool,
     orbit: f32,
     out: Option<PathBuf>,
@@ -65,6 +67,7 @@ impl Default for Options {
             wake: false,
             follow: false,
             floaters: 0,
+            boats: 0,
             wireframe: false,
             orbit: 0.0,
             out: None,
@@ -108,6 +111,11 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             "wake" => o.wake = true,
             "follow" => o.follow = true,
             "floaters" => o.floaters = ranged(value(p, "--floaters")?, 0, 1000, "--floaters")?,
+            "boats" => {
+                let n: i64 = value(p, "--boats")?;
+                o.boats = usize::try_from(n)
+                    .map_err(|_| format!("--boats: {n} is not a number of boats (0 or more)"))?;
+            }
             "wireframe" => o.wireframe = true,
             "orbit" => o.orbit = value(p, "--orbit")?,
             "out" => o.out = Some(string(p, "--out")?.into()),
@@ -175,9 +183,35 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         ));
     }
 
+    if o.follow && o.boats > 0 {
+        return Err(
+            "--follow and --boats cannot be combined: the boats keep to the pool, and \
+             --follow moves the window away from it"
+                .into(),
+        );
+    }
+
     // Validates the model and the drops before anything is opened.
-    let surface = model.surface()?;
+    let mut surface = model.surface()?;
     crate::start::check_rain(o.rain, &surface)?;
+    let room = boats::room(&surface);
+    if o.boats > room {
+        let p = surface.params();
+        return Err(format!(
+            "--boats {}: a {}x{} grid has room for {}; each boat keeps to a square {} \
+             cells wide; use fewer boats or a larger --size",
+            o.boats,
+            p.cols,
+            p.rows,
+            count(room as u64, "boat"),
+            boats::berth_cells()
+        ));
+    }
+    // The boats go on this surface too, so what the library refuses about them (the
+    // timestep the water under them needs) is refused before any output is started.
+    if o.boats > 0 {
+        boats::Fleet::launch(&mut surface, o.boats)?;
+    }
     let params = *surface.params();
     let mut camera = Camera::framing(params.cols, params.rows, params.spacing, o.width, o.height);
     if let Some(e) = o.eye {
@@ -237,32 +271,25 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut frames: Vec<Vec<u8>> = Vec::new();
     let mut histogram = Histogram::new();
     let mut png_time = Duration::ZERO;
-    let (raindrops, window) = model.with_threads(|| {
-        animate(
-            &model,
-            &o,
-            &mut renderer,
-            &camera,
-            &mut clock,
-            |k, frame| {
-                if let Some(seq) = &pngs {
-                    let t = Instant::now();
-                    let shown = seq.path().join(seq.name(k));
-                    let fail = |e: std::io::Error| format!("cannot write {}: {e}", shown.display());
-                    let file = std::fs::File::create(seq.frame_path(k)).map_err(fail)?;
-                    write_png(file, frame.width(), frame.height(), frame.rgb()).map_err(fail)?;
-                    png_time += t.elapsed();
+    let run = model.with_threads(|| {
+        animate(&model, &o, &mut renderer, &camera, &mut clock, |k, rgb| {
+            if let Some(seq) = &pngs {
+                let t = Instant::now();
+                let shown = seq.path().join(seq.name(k));
+                let fail = |e: std::io::Error| format!("cannot write {}: {e}", shown.display());
+                let file = std::fs::File::create(seq.frame_path(k)).map_err(fail)?;
+                write_png(file, o.width as usize, o.height as usize, rgb).map_err(fail)?;
+                png_time += t.elapsed();
+            }
+            if gif_file.is_some() {
+                histogram.add(rgb);
+                if !two_pass {
+                    frames.push(rgb.to_vec());
                 }
-                if gif_file.is_some() {
-                    histogram.add(frame.rgb());
-                    if !two_pass {
-                        frames.push(frame.rgb().to_vec());
-                    }
-                }
-                bar.inc(1);
-                Ok(())
-            },
-        )
+            }
+            bar.inc(1);
+            Ok(())
+        })
     })??;
 
     let mut gif_time = Duration::ZERO;
@@ -279,20 +306,13 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         if two_pass {
             gif_time += t.elapsed();
             model.with_threads(|| {
-                animate(
-                    &model,
-                    &o,
-                    &mut renderer,
-                    &camera,
-                    &mut clock,
-                    |_, frame| {
-                        let t = Instant::now();
-                        gif.frame(frame.rgb()).map_err(fail)?;
-                        gif_time += t.elapsed();
-                        bar.inc(1);
-                        Ok(())
-                    },
-                )
+                animate(&model, &o, &mut renderer, &camera, &mut clock, |_, rgb| {
+                    let t = Instant::now();
+                    gif.frame(rgb).map_err(fail)?;
+                    gif_time += t.elapsed();
+                    bar.inc(1);
+                    Ok(())
+                })
             })??;
         } else {
             bar.set_message("encoding GIF");
@@ -337,7 +357,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     );
     say!(
         "disturbances: {} (rate {}, seed {}){}",
-        count(raindrops, "raindrop"),
+        count(run.raindrops, "raindrop"),
         Short(o.rain),
         o.seed,
         if o.wake { ", a wake" } else { "" }
@@ -345,11 +365,19 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     if o.floaters > 0 {
         say!("floaters     {}", count(o.floaters as u64, "ball"));
     }
+    if let Some((heel, trim)) = run.tilt {
+        say!(
+            "boats        {}, heeling up to {:.1}° and trimming up to {:.1}°",
+            count(o.boats as u64, "boat"),
+            heel,
+            trim
+        );
+    }
     if o.follow {
         say!(
             "window       moved {} columns and {} rows with the ball",
-            window[0],
-            window[1]
+            run.window[0],
+            run.window[1]
         );
     }
     say!(
@@ -392,17 +420,27 @@ struct Clock {
     stages: StageTimes,
 }
 
+/// What a pass over the animation saw.
+#[derive(Debug)]
+struct Run {
+    /// Raindrops that fell.
+    raindrops: u64,
+    /// Whole cells the window travelled (`Surface::origin_cells`).
+    window: [i64; 2],
+    /// With boats, the greatest heel and trim of any boat in any frame, degrees.
+    tilt: Option<(f32, f32)>,
+}
+
 /// Builds the surface and its disturbances, runs the warm-up steps, then simulates and
-/// draws every frame in order, handing each to `each`. Returns the raindrops that fell and
-/// the whole cells the window travelled (`Surface::origin_cells`).
+/// draws every frame in order, handing each (sRGB pixels, row by row) to `each`.
 fn animate(
     model: &ModelArgs,
     o: &Options,
     renderer: &mut Renderer,
     camera: &Camera,
     clock: &mut Clock,
-    mut each: impl FnMut(usize, &Frame) -> CliResult<()>,
-) -> CliResult<(u64, [i64; 2])> {
+    mut each: impl FnMut(usize, &[u8]) -> CliResult<()>,
+) -> CliResult<Run> {
     let mut surface = model.surface()?;
     // Every pass starts from the same LOD state, so passes draw the same frames.
     renderer.reset().map_err(|e| e.to_string())?;
@@ -430,6 +468,12 @@ fn animate(
         wake
     });
     add_balls(&mut surface, o.floaters)?;
+    let mut fleet = match o.boats {
+        0 => None,
+        n => Some(boats::Fleet::launch(&mut surface, n)?),
+    };
+    let mut painter = boats::Painter::default();
+    let mut picture = Vec::new();
     let mut balls = Vec::new();
     for k in 0..o.frames {
         let t = Instant::now();
@@ -454,14 +498,20 @@ fn animate(
             if let Some(w) = wake.as_mut() {
                 disturbances.push(w);
             }
+            if let Some(f) = fleet.as_mut() {
+                disturbances.push(f);
+            }
             run_steps(&mut surface, &mut disturbances, steps)?;
         }
         clock.simulation += t.elapsed();
         balls.clear();
         balls.extend(wake.as_ref().map(|w| boat(&surface, w)));
-        balls.extend(surface.floaters().enumerate().map(|(k, (_, f))| Ball {
+        let floaters = surface
+            .floaters()
+            .filter(|(_, f)| !matches!(f.shape, Shape::Hull(_)));
+        balls.extend(floaters.enumerate().map(|(k, (_, f))| Ball {
             centre: f.position,
-            radius: f.shape.half_height(),
+            radius: f.shape.bounding_radius(),
             colours: BUOY_COLOURS[k % BUOY_COLOURS.len()],
         }));
         if wake.is_some() || !balls.is_empty() {
@@ -483,9 +533,24 @@ fn animate(
             .render(&surface.mesh_view(), &camera)
             .map_err(|e| e.to_string())?;
         clock.stages += renderer.times();
-        each(k, renderer.frame())?;
+        let mut rgb = renderer.frame().rgb();
+        if let Some(fleet) = &mut fleet {
+            fleet.observe(&surface);
+            let t = Instant::now();
+            picture.clear();
+            picture.extend_from_slice(rgb);
+            let sun = renderer.params().look.sun;
+            painter.draw(&mut picture, &camera, sun, &surface, fleet);
+            clock.stages.drawing += t.elapsed();
+            rgb = &picture;
+        }
+        each(k, rgb)?;
     }
-    Ok((rain.fallen(), surface.origin_cells()))
+    Ok(Run {
+        raindrops: rain.fallen(),
+        window: surface.origin_cells(),
+        tilt: fleet.map(|f| f.greatest_tilt()),
+    })
 }
 
 /// Stripe colours of the floating balls, linear RGB.

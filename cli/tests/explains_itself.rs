@@ -38,7 +38,14 @@ fn every_command_answers_help_on_stdout_with_its_flags_and_defaults() {
         ),
         (
             "render",
-            &["--out FILE.gif", "--png DIR", "(72)", "--width W", "pixels"],
+            &[
+                "--out FILE.gif",
+                "--png DIR",
+                "(72)",
+                "--width W",
+                "pixels",
+                "--boats N",
+            ],
         ),
         (
             "export",

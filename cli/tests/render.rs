@@ -194,6 +194,20 @@ fn bad_flags_and_files_get_one_line_errors() {
             "x.gif",
         ),
         (vec!["render", "--dt", "0.6", "--out", gif], "timestep"),
+        (vec!["render", "--boats", "-1", "--out", gif], "--boats"),
+        (vec!["render", "--boats", "two", "--out", gif], "--boats"),
+        (
+            vec!["render", "--size", "32x32", "--boats", "5", "--out", gif],
+            "room for 4 boats",
+        ),
+        (
+            vec!["render", "--boats", "99999999999999999999", "--out", gif],
+            "--boats",
+        ),
+        (
+            vec!["render", "--boats", "2", "--follow", "--out", gif],
+            "--follow",
+        ),
     ];
     for (args, mention) in cases {
         let o = springwater(&args);
@@ -282,4 +296,75 @@ fn rain_falls_per_second() {
         (drops - mean).abs() < 5.0 * sd,
         "{drops} raindrops in 3 s at 60 a second"
     );
+}
+
+#[test]
+fn boats_float_pitch_and_roll_and_are_drawn() {
+    let dir = scratch("boats");
+    let run = |boats: &str| {
+        let (gif, png) = (dir.join(format!("{boats}.gif")), dir.join(boats));
+        let o = springwater(&[
+            "render",
+            "--size",
+            "64x64",
+            "--frames",
+            "4",
+            "--width",
+            "240",
+            "--height",
+            "180",
+            "--rain",
+            "20",
+            "--boats",
+            boats,
+            "--out",
+            gif.to_str().unwrap(),
+            "--png",
+            png.to_str().unwrap(),
+        ]);
+        let stdout = String::from_utf8_lossy(&o.stdout).into_owned();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let bytes = std::fs::read(&gif).unwrap();
+        assert!(bytes.starts_with(b"GIF89a"), "not a GIF");
+        // Every frame's pixels, one after the other.
+        let mut pixels = Vec::new();
+        for k in 0..4 {
+            let file = std::fs::File::open(png.join(format!("frame_{k:04}.png"))).unwrap();
+            let mut reader = png::Decoder::new(std::io::BufReader::new(file))
+                .read_info()
+                .unwrap();
+            let mut frame = vec![0; reader.output_buffer_size().unwrap()];
+            reader.next_frame(&mut frame).unwrap();
+            pixels.extend(frame);
+        }
+        (stdout, pixels)
+    };
+    let (report, with) = run("3");
+    let (_, without) = run("0");
+    // "boats        3 boats, heeling up to H° and trimming up to T°"
+    let line = report
+        .lines()
+        .find(|l| l.starts_with("boats "))
+        .unwrap_or_else(|| panic!("no boats line in {report}"));
+    assert!(line.contains("3 boats"), "{line}");
+    let degrees: Vec<f32> = line
+        .split(' ')
+        .filter_map(|w| w.strip_suffix('°'))
+        .map(|w| w.parse().unwrap())
+        .collect();
+    assert_eq!(degrees.len(), 2, "{line}");
+    // The rain rocks them: more than a degree either way, and not capsized.
+    assert!(
+        degrees.iter().all(|&d| d > 1.0 && d < 60.0),
+        "heel and trim {degrees:?}"
+    );
+    // The hulls are drawn: the first boat's topsides are red, a colour nothing else in
+    // the picture has (water, sky, paving).
+    let red = |rgb: &[u8]| {
+        rgb.chunks_exact(3)
+            .filter(|p| p[0] > 100 && p[0] / 2 > p[1] && p[0] / 2 > p[2])
+            .count()
+    };
+    assert_eq!(red(&without), 0, "red without boats");
+    assert!(red(&with) >= 40, "{} red pixels in 4 frames", red(&with));
 }

@@ -6,6 +6,14 @@
 #include <stddef.h>
 #include <stdint.h>
 
+// `sizeof(SwFloater)` in version 1 of the header (up to `water_force`), which the calls
+// still take: see `SwFloater`.
+#define SW_FLOATER_SIZE_V1 80
+
+// A closed triangle mesh for floating bodies (opaque). Create it with `sw_hull_create`,
+// free it with `sw_hull_destroy`.
+typedef struct SwHull SwHull;
+
 // A water surface (opaque). Create it with `sw_surface_create` or `sw_surface_load`,
 // free it with `sw_surface_destroy`.
 typedef struct SwSurface SwSurface;
@@ -138,43 +146,76 @@ typedef struct SwEnergy {
 // of the C ABI has no code for, which it cannot make, would say -1).
 typedef int32_t SwShape;
 
-// A floating body: `sw_floater_sphere()` and `sw_floater_box()` make one at rest with the
-// default drag. Plain data: hand it to `sw_surface_add_floater`, read it back with
-// `sw_surface_floater`.
+// A floating body, a rigid body with six degrees of freedom: `sw_floater_sphere()`,
+// `sw_floater_box()` and `sw_floater_hull()` make one at rest, upright, with the default
+// drag. Plain data: hand it to `sw_surface_add_floater` (`sw_surface_add_hull_floater`),
+// read it back with `sw_surface_floater`; or keep it in your own engine and ask
+// `sw_surface_body_forces` for the water's push.
+//
+// The struct grows at its end between versions. `struct_size` says which one the caller
+// has: this version's, or `SW_FLOATER_SIZE_V1` (80 bytes: up to `water_force`, the
+// bodies that did not rotate). A version 1 struct is still taken: the fields it lacks are
+// the defaults for a new body (upright, no spin, no torque, the shape's inertia) and the
+// body's current values for `sw_surface_set_floater`; reading one back fills only the
+// fields it has.
 typedef struct SwFloater {
-  // `sizeof(SwFloater)`, set by `sw_floater_sphere()`, `sw_floater_box()` and
-  // `sw_surface_floater()`: calls that read or fill the struct refuse any other value (a
-  // struct not started from one of them, or built with a header of another version than
-  // the library's).
+  // `sizeof(SwFloater)`, set by `sw_floater_sphere()`, `sw_floater_box()`,
+  // `sw_floater_hull()` and `sw_surface_floater()`: calls that read or fill the struct
+  // refuse any other value but `SW_FLOATER_SIZE_V1` (a struct not started from one of
+  // them, or built with a header of another version than the library's).
   uint32_t struct_size;
-  // `SW_SHAPE_SPHERE` or `SW_SHAPE_BOX`.
+  // `SW_SHAPE_SPHERE`, `SW_SHAPE_BOX` or `SW_SHAPE_HULL`.
   SwShape shape;
-  // The sphere's radius, world units (> 0, at most 1e9). Ignored for a box, read back as
-  // 0.
+  // The sphere's radius, world units (> 0, at most 1e9). Ignored for other shapes, read
+  // back as 0.
   float radius;
-  // The box's half size along x, y and z, world units (each > 0, at most 1e9). Ignored
-  // for a sphere, read back as 0.
+  // The box's half size along its x, y and z, world units (each > 0, at most 1e9).
+  // Ignored for other shapes, read back as 0.
   float half_extents[3];
   // Mass, in the lattice's mass units (> 0; a node has `SwParams::mass`).
   float mass;
   // Drag rate, per second (0 to 1e8; default 6): the drag is this times the mass of the
   // displaced water times the velocity relative to the water.
   float drag;
-  // Centre in the water's local space (the calm surface is y = 0), world units (each
-  // component at most 1e15 in magnitude).
+  // Centre of mass in the water's local space (the calm surface is y = 0), world units
+  // (each component at most 1e15 in magnitude); a hull's origin.
   float position[3];
-  // Velocity, world units per second (each component at most 1e11 in magnitude; default
-  // 0).
+  // Velocity of the centre of mass, world units per second (each component at most 1e11
+  // in magnitude; default 0).
   float velocity[3];
-  // External force (an engine, the wind, a player's push) for the next step only, cleared
-  // by it; `sw_surface_push_floater` adds to it. Mass units × world units per second²,
-  // finite (default 0).
+  // External force through the centre of mass (an engine, the wind, a player's push) for
+  // the next step only, cleared by it; `sw_surface_push_floater` and
+  // `sw_surface_push_floater_at` add to it. Mass units × world units per second², finite
+  // (default 0).
   float push[3];
   // Read only: the force the water exerted on the body during its last step (buoyancy and
   // drag, without gravity and push), mass units × world units per second²; the water got
   // exactly minus this (in its own units, divided by `time_scale²`). Ignored on input:
   // a body added starts at 0, a body set keeps its current value.
   float water_force[3];
+  // Orientation, body to world, as a unit quaternion `(x, y, z, w)` (its squared norm
+  // within 1e-3 of 1; the surface keeps it normalised). Default `(0, 0, 0, 1)`, upright.
+  float orientation[4];
+  // Angular velocity, radians per second about the world's axes (each component at most
+  // 1e6 in magnitude; default 0).
+  float angular_velocity[3];
+  // External torque about the centre of mass, world axes, for the next step only,
+  // cleared by it; `sw_surface_push_floater_at` adds to it. Finite (default 0).
+  float push_torque[3];
+  // Read only: the torque about the centre of mass the water exerted on the body during
+  // its last step; the water got exactly minus this. Ignored on input, like
+  // `water_force`.
+  float water_torque[3];
+  // 1: `inertia` is the body's inertia tensor; 0 (the default): the shape's at uniform
+  // density. Any other value is refused.
+  SwBool has_inertia;
+  // The inertia tensor about the centre of mass in the body's axes, mass × world units²,
+  // column by column (`inertia[3 * col + row]`; it is symmetric). Read only when
+  // `has_inertia` is 1: symmetric, positive definite, each principal moment at
+  // most the sum of the other two. Read back, it is the tensor in use (the shape's for
+  // the body's mass when `has_inertia` is 0): what an engine integrating the
+  // body itself must use.
+  float inertia[9];
 } SwFloater;
 
 // The world the bodies of a surface float in; `sw_buoyancy_default()` gives the defaults.
@@ -194,6 +235,19 @@ typedef struct SwBuoyancy {
 // A floating body's id on its surface, never reused by that surface (also not after the
 // body is removed, or across a snapshot).
 typedef uint64_t SwFloaterId;
+
+// The water's push on a body over one tick (`sw_surface_body_forces`), in the world frame:
+// mass units × world units per second², the torque about the body's centre of mass
+// (`SwFloater::position`). `sw_body_forces_default()` makes one to fill.
+typedef struct SwBodyForces {
+  // `sizeof(SwBodyForces)`, set by `sw_body_forces_default()`: the calls that fill the
+  // struct refuse any other value.
+  uint32_t struct_size;
+  // The force through the centre of mass: buoyancy and drag (gravity is the engine's).
+  float force[3];
+  // The torque about the centre of mass, world axes.
+  float torque[3];
+} SwBodyForces;
 
 // Runs items `start` to `end − 1` of a task. `task_context` is the pointer the library
 // passed to `enqueue_task`; pass it back unchanged.
@@ -277,8 +331,13 @@ typedef struct SwJobSystem {
 // A ball of `SwFloater::radius`.
 #define SW_SHAPE_SPHERE 0
 
-// A box aligned with the water's axes (bodies do not rotate) of `SwFloater::half_extents`.
+// A box of `SwFloater::half_extents`, its faces along the body's axes.
 #define SW_SHAPE_BOX 1
+
+// A closed triangle mesh (`SwHull`): added with `sw_surface_add_hull_floater`, which
+// keeps the mesh with the surface; a hull body read back says this code, and
+// `sw_surface_set_floater` with it keeps the body's mesh.
+#define SW_SHAPE_HULL 2
 
 // Success.
 #define SW_OK 0
@@ -660,13 +719,13 @@ SwStatus sw_surface_simd_level(const struct SwSurface *surface, SwSimdLevel *out
 // `ran` is NULL or a valid pointer.
 SwStatus sw_surface_set_simd_level(struct SwSurface *surface, SwSimdLevel level, SwSimdLevel *ran);
 
-// A sphere of `radius` and `mass` centred at `(x, y, z)`, at rest, with the default drag
-// (0.25). Not checked here: `sw_surface_add_floater` checks it.
+// A sphere of `radius` and `mass` centred at `(x, y, z)`, at rest, upright, with the
+// default drag (6 per second). Not checked here: `sw_surface_add_floater` checks it.
 struct SwFloater sw_floater_sphere(float radius, float mass, float x, float y, float z);
 
 // A box of half extents `(half_x, half_y, half_z)` and `mass` centred at `(x, y, z)`, at
-// rest, with the default drag (0.25). Not checked here: `sw_surface_add_floater` checks
-// it.
+// rest, upright, with the default drag (6 per second). Not checked here:
+// `sw_surface_add_floater` checks it.
 struct SwFloater sw_floater_box(float half_x,
                                 float half_y,
                                 float half_z,
@@ -680,9 +739,10 @@ struct SwBuoyancy sw_buoyancy_default(void);
 
 // Adds a floating body and writes its id to `id`. The body steps with every step and
 // substep of the surface and is part of its snapshots. Refused (nothing changes) when a
-// field is out of range or the shape code is unknown, or when the water under the bodies
-// would need a smaller timestep than the surface's `dt` (a stiff waterline: large gravity
-// times density).
+// field is out of range, the shape code is unknown or `SW_SHAPE_HULL` (a hull body is
+// added with `sw_surface_add_hull_floater`), or when the water under the bodies would need
+// a smaller timestep than the surface's `dt` (a stiff waterline: large gravity times
+// density).
 //
 // # Safety
 //
@@ -696,8 +756,9 @@ SwStatus sw_surface_add_floater(struct SwSurface *surface,
 SwStatus sw_surface_remove_floater(struct SwSurface *surface, SwFloaterId id);
 
 // Writes a floating body's current state to `out`, whose `struct_size` must be
-// `sizeof(SwFloater)` (or the call is `SW_ERROR_INVALID_ARGUMENT` and writes nothing). An
-// unknown id is `SW_ERROR_NO_SUCH_FLOATER`.
+// `sizeof(SwFloater)` or `SW_FLOATER_SIZE_V1` (or the call is `SW_ERROR_INVALID_ARGUMENT`
+// and writes nothing). A hull body says `SW_SHAPE_HULL`; its mesh stays with the surface.
+// An unknown id is `SW_ERROR_NO_SUCH_FLOATER`.
 //
 // # Safety
 //
@@ -716,10 +777,13 @@ SwStatus sw_surface_get_floater(const struct SwSurface *surface,
                                 SwFloaterId id,
                                 struct SwFloater *out);
 
-// Replaces a floating body's state (teleport it, change its velocity, mass, drag or
-// shape), checked like `sw_surface_add_floater`; `water_force` is ignored and keeps the
-// body's current value. An unknown id is `SW_ERROR_NO_SUCH_FLOATER`. On error nothing
-// changes.
+// Replaces a floating body's state (teleport it, turn it, change its velocities, mass,
+// drag, inertia or shape), checked like `sw_surface_add_floater`; `water_force` and
+// `water_torque` are ignored and keep the body's current values. `SW_SHAPE_HULL` keeps a
+// hull body's mesh (and is refused for a sphere or a box: a new hull body is added with
+// `sw_surface_add_hull_floater`). A `SW_FLOATER_SIZE_V1` struct leaves the fields it has
+// not (orientation, angular velocity, push torque, inertia) as they are. An unknown id is
+// `SW_ERROR_NO_SUCH_FLOATER`. On error nothing changes.
 //
 // # Safety
 //
@@ -728,10 +792,10 @@ SwStatus sw_surface_set_floater(struct SwSurface *surface,
                                 SwFloaterId id,
                                 const struct SwFloater *floater);
 
-// Adds the force `(fx, fy, fz)` to a floating body for the next step only (an engine, the
-// wind, a player's push), in mass units × world units per second²; pushes add up until
-// that step. Refused (nothing changes) when a
-// component, or the sum with what was pushed before, is not finite. An unknown id is
+// Adds the force `(fx, fy, fz)` through a floating body's centre of mass for the next step
+// only (an engine, the wind, a player's push), in mass units × world units per second²;
+// pushes add up until that step. Refused (nothing changes) when a component, or the sum
+// with what was pushed before, is not finite. An unknown id is
 // `SW_ERROR_NO_SUCH_FLOATER`.
 SwStatus sw_surface_push_floater(struct SwSurface *surface,
                                  SwFloaterId id,
@@ -786,6 +850,122 @@ SwStatus sw_surface_get_buoyancy(const struct SwSurface *surface, struct SwBuoya
 //
 // `buoyancy` is NULL or a valid pointer.
 SwStatus sw_surface_set_buoyancy(struct SwSurface *surface, const struct SwBuoyancy *buoyancy);
+
+// An empty `SwBodyForces` with its size set, for `sw_surface_body_forces` to fill.
+struct SwBodyForces sw_body_forces_default(void);
+
+// Validates a closed triangle mesh and writes a new hull handle to `out`. `xyz` holds
+// `vertex_count` vertices, three floats each, in the body's frame (world units, the body's
+// centre of mass at the origin); `triangles` holds `triangle_count` triangles, three
+// vertex indices each, counter-clockwise seen from outside. Refused with the defect named
+// (`SW_ERROR_INVALID_ARGUMENT`): 4 to 65,536 triangles, finite coordinates of at most 1e9,
+// indices in range, no degenerate triangle, closed (every edge shared by two triangles
+// running along it in opposite directions; vertices at the same position count as one),
+// wound outward (positive volume), a positive definite inertia.
+//
+// # Safety
+//
+// `xyz` is NULL or points to `3 * vertex_count` floats, `triangles` NULL or to
+// `3 * triangle_count` indices; `out` is NULL or a valid pointer.
+SwStatus sw_hull_create(const float *xyz,
+                        size_t vertex_count,
+                        const uint32_t *triangles,
+                        size_t triangle_count,
+                        struct SwHull **out);
+
+// Destroys a hull handle. The bodies made of it keep their mesh. NULL, and a handle
+// already destroyed, are no-ops.
+void sw_hull_destroy(struct SwHull *hull);
+
+// Writes the hull's volume, in cubic world units, to `out`: a body of the hull at
+// `fraction` of the water's density has mass `fraction * density * volume`.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_hull_volume(const struct SwHull *hull, float *out);
+
+// Writes a body of the hull's shape, of `mass`, with its origin at `(x, y, z)`, at rest,
+// upright, with the default drag, to `out` (whose `struct_size` must be
+// `sizeof(SwFloater)`): shape `SW_SHAPE_HULL`, and `inertia` the hull's at uniform density
+// for `mass`. Not checked here but the handle: `sw_surface_add_hull_floater` checks it.
+//
+// # Safety
+//
+// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+// initialised.
+SwStatus sw_floater_hull(const struct SwHull *hull,
+                         float mass,
+                         float x,
+                         float y,
+                         float z,
+                         struct SwFloater *out);
+
+// Adds a floating body whose shape is `hull` and writes its id to `id`; `floater` says
+// the rest (its shape must be `SW_SHAPE_HULL`: start it from `sw_floater_hull`). The
+// surface keeps the mesh for the body: the hull handle may be destroyed afterwards.
+// Refused (nothing changes) as `sw_surface_add_floater` is, and when the hull is more
+// than 64 cells across.
+//
+// # Safety
+//
+// `floater` and `id` are NULL or valid pointers.
+SwStatus sw_surface_add_hull_floater(struct SwSurface *surface,
+                                     const struct SwHull *hull,
+                                     const struct SwFloater *floater,
+                                     SwFloaterId *id);
+
+// Adds the force `(fx, fy, fz)` acting at the world point `(x, y, z)` to a floating body
+// for the next step only: the force through its centre of mass and the torque
+// `(point − position) × force` (a push on the bow turns the boat). Refused (nothing
+// changes) when a number, or a sum with what was pushed before, is not finite. An unknown
+// id is `SW_ERROR_NO_SUCH_FLOATER`.
+SwStatus sw_surface_push_floater_at(struct SwSurface *surface,
+                                    SwFloaterId id,
+                                    float fx,
+                                    float fy,
+                                    float fz,
+                                    float x,
+                                    float y,
+                                    float z);
+
+// The water's force and torque on a sphere or box body another physics engine owns
+// (`floater`, which the surface does not keep), over the engine's coming tick of
+// `seconds`, written to `out` (whose `struct_size` must be `sizeof(SwBodyForces)`). The
+// body's shape, mass, inertia, drag, pose and velocities count; its pushes and read-only
+// fields are ignored. The water gets the opposite of both, where each part of the hull
+// meets it, in its next step: call this once per tick and body.
+//
+// The forces are taken implicitly over the tick for the velocities the body will have at
+// its end, so an engine that applies them with an explicit step of the same `seconds`,
+// mass and inertia (`SwFloater::inertia` as read back) gets the stable step of a built-in
+// body, however light the body: keep `seconds` equal to the engine's tick, and the
+// surface's `SwBuoyancy::gravity` equal to the engine's. Refused (nothing changes): an
+// invalid body (as `sw_surface_add_floater`; `SW_SHAPE_HULL` goes through
+// `sw_surface_hull_body_forces`), `seconds` not above 0 and at most 1, or reactions the
+// water cannot hold.
+//
+// # Safety
+//
+// `floater` is NULL or a valid pointer; `out` is NULL or points to a writable struct
+// whose `struct_size` (its first field) is initialised.
+SwStatus sw_surface_body_forces(struct SwSurface *surface,
+                                const struct SwFloater *floater,
+                                float seconds,
+                                struct SwBodyForces *out);
+
+// `sw_surface_body_forces` for a body whose shape is `hull` (`floater`'s shape must be
+// `SW_SHAPE_HULL`).
+//
+// # Safety
+//
+// `floater` is NULL or a valid pointer; `out` is NULL or points to a writable struct
+// whose `struct_size` (its first field) is initialised.
+SwStatus sw_surface_hull_body_forces(struct SwSurface *surface,
+                                     const struct SwHull *hull,
+                                     const struct SwFloater *floater,
+                                     float seconds,
+                                     struct SwBodyForces *out);
 
 // An empty job system with its size set: fill in `worker_count`, the two callbacks and
 // `user_context`, then hand it to `sw_surface_set_job_system`.

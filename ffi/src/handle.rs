@@ -51,27 +51,55 @@ impl Water {
     }
 }
 
-type Entry = Arc<Mutex<Water>>;
+/// The live handles of one kind: each key is a handle's value, the entry what it owns.
+pub(crate) struct Registry<T> {
+    map: RwLock<Option<HashMap<usize, Arc<T>>>>,
+}
 
-static REGISTRY: RwLock<Option<HashMap<usize, Entry>>> = RwLock::new(None);
-/// Handles are never reused: a destroyed handle stays invalid.
+/// Handles of every kind count up from one counter and are never reused: a destroyed
+/// handle stays invalid, and a handle of one kind is never a live handle of another.
 static NEXT: AtomicUsize = AtomicUsize::new(1);
+
+impl<T> Registry<T> {
+    pub(crate) const fn new() -> Self {
+        Self {
+            map: RwLock::new(None),
+        }
+    }
+
+    /// Registers `value` and returns its new handle's value.
+    pub(crate) fn insert(&self, value: T) -> usize {
+        let key = NEXT.fetch_add(1, Ordering::Relaxed);
+        let mut map = self.map.write().unwrap_or_else(|e| e.into_inner());
+        map.get_or_insert_with(HashMap::new)
+            .insert(key, Arc::new(value));
+        key
+    }
+
+    /// Removes the handle `key`; whether it was live. A call still using it finishes
+    /// first (it holds its own reference).
+    pub(crate) fn remove(&self, key: usize) -> bool {
+        let mut map = self.map.write().unwrap_or_else(|e| e.into_inner());
+        map.as_mut().and_then(|m| m.remove(&key)).is_some()
+    }
+
+    /// What the handle `key` owns, if it is live.
+    pub(crate) fn get(&self, key: usize) -> Option<Arc<T>> {
+        let map = self.map.read().unwrap_or_else(|e| e.into_inner());
+        map.as_ref().and_then(|m| m.get(&key).cloned())
+    }
+}
+
+static SURFACES: Registry<Mutex<Water>> = Registry::new();
 
 /// Registers `water` and returns its new handle.
 pub(crate) fn insert(water: Water) -> *mut SwSurface {
-    let key = NEXT.fetch_add(1, Ordering::Relaxed);
-    let mut map = REGISTRY.write().unwrap_or_else(|e| e.into_inner());
-    map.get_or_insert_with(HashMap::new)
-        .insert(key, Arc::new(Mutex::new(water)));
-    key as *mut SwSurface
+    SURFACES.insert(Mutex::new(water)) as *mut SwSurface
 }
 
 /// Removes `handle`; whether it was live. A call still running on it finishes first.
 pub(crate) fn remove(handle: *const SwSurface) -> bool {
-    let mut map = REGISTRY.write().unwrap_or_else(|e| e.into_inner());
-    map.as_mut()
-        .and_then(|m| m.remove(&(handle as usize)))
-        .is_some()
+    SURFACES.remove(handle as usize)
 }
 
 /// The body of a call that only needs the surface: `f` on it, in the guard.
@@ -87,12 +115,7 @@ pub(crate) fn with<T>(
     if handle.is_null() {
         return Err(Failure::null("surface"));
     }
-    let entry = {
-        let map = REGISTRY.read().unwrap_or_else(|e| e.into_inner());
-        map.as_ref()
-            .and_then(|m| m.get(&(handle as usize)).cloned())
-    };
-    let Some(entry) = entry else {
+    let Some(entry) = SURFACES.get(handle as usize) else {
         return Err(Failure::new(
             SW_ERROR_INVALID_HANDLE,
             format!(

@@ -12,9 +12,10 @@
 //!
 //! ## Conventions
 //!
-//! * **Handles.** A `SwSurface *` is opaque and never dereferenced by the library: it is a
-//!   key into a table of live surfaces. NULL, destroyed and made-up handles give
-//!   `SW_ERROR_INVALID_HANDLE` (or `SW_ERROR_NULL_POINTER`), never a crash. Different
+//! * **Handles.** A `SwSurface *` (and a hull's `SwHull *`) is opaque and never
+//!   dereferenced by the library: it is a key into a table of live surfaces (hulls).
+//!   NULL, destroyed and made-up handles give `SW_ERROR_INVALID_HANDLE` (or
+//!   `SW_ERROR_NULL_POINTER`), never a crash. Different
 //!   surfaces may be used from different threads at once; calls on one surface must not
 //!   overlap (an overlapping call returns `SW_ERROR_BUSY` and changes nothing).
 //! * **Status codes.** Every function that can fail returns an `SwStatus` (`int32_t`):
@@ -67,6 +68,9 @@ mod engine;
 // Floating bodies.
 mod floaters;
 
+// Hull meshes, pushes at a point, and the forces on bodies another engine owns.
+mod bodies;
+
 // The host's job system.
 mod jobs;
 
@@ -80,6 +84,7 @@ mod handle;
 mod ptr;
 mod status;
 
+pub use bodies::*;
 pub use buffers::*;
 pub use engine::*;
 pub use errors::*;

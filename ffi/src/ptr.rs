@@ -22,8 +22,9 @@
 //! * length: the caller's length must hold what the call writes
 //!   (`SW_ERROR_BUFFER_TOO_SMALL`), and no slice spans more than `isize::MAX` bytes;
 //! * a struct the caller fills ([`Input`]) must first say, in its `struct_size`, that it is
-//!   this version's size, and only that field is read before: a struct from an older,
-//!   smaller header is never read or written past its end.
+//!   this version's size or the size of an earlier version's struct that the call still
+//!   takes ([`Input::EARLIER`]), and only that field is read before: a struct from an
+//!   older, smaller header is never read or written past the size it says.
 //!
 //! What cannot be checked (that memory behind a pointer is really there and nothing else
 //! uses it during the call) is the caller's promise. The references and slices these
@@ -39,80 +40,115 @@ use std::borrow::Cow;
 use std::ffi::c_char;
 
 /// A struct the caller fills and hands to the library. Its first field is `struct_size`,
-/// which must be `sizeof` the struct of this library's version.
+/// which must be `sizeof` the struct of this library's version, or one of
+/// [`Input::EARLIER`].
 pub(crate) trait Input: Copy {
     /// The function that makes one with its size set.
     const MAKER: &'static str;
+    /// The sizes of this struct in earlier versions of the header that calls taking it
+    /// with [`input_over`] and [`read_sized_into`] still accept: each is the struct cut
+    /// after one of its fields (fields are only ever added at the end; the struct's module
+    /// asserts the offsets), so the caller's bytes are a prefix of this version's struct.
+    const EARLIER: &'static [usize] = &[];
 }
 
 /// Copies the struct the caller passed at `ptr` after checking it: not NULL, aligned, and
 /// its `struct_size` this version's.
 pub(crate) fn input<T: Input>(ptr: *const T, what: &str) -> Outcome<T> {
-    sized(ptr, what)?;
+    sized(ptr, what, &[])?;
     // SAFETY: non-NULL and aligned (checked), and the caller's struct is as large as this
     // version's (its size says so).
     Ok(unsafe { ptr.read() })
 }
 
+/// The struct the caller passed at `ptr`, which may be an earlier version's
+/// ([`Input::EARLIER`]): the fields the caller's struct has are the caller's, the fields
+/// added since are `base`'s (the defaults of a new value, or the current value a call
+/// replaces), and `struct_size` is this version's.
+pub(crate) fn input_over<T: Input>(ptr: *const T, what: &str, base: T) -> Outcome<T> {
+    let size = sized(ptr, what, T::EARLIER)?;
+    let mut value = base;
+    // SAFETY: non-NULL and aligned (checked); the caller's struct holds `size` bytes (its
+    // size says so), and `size` is at most `size_of::<T>()` and ends at a field of `T`
+    // (`Input::EARLIER`), so the bytes copied are whole fields of a valid `T`. The first
+    // four, the caller's `struct_size`, stay `base`'s.
+    unsafe {
+        let from = ptr.cast::<u8>().add(SIZE_FIELD);
+        let to = std::ptr::from_mut(&mut value).cast::<u8>().add(SIZE_FIELD);
+        std::ptr::copy_nonoverlapping(from, to, size - SIZE_FIELD);
+    }
+    Ok(value)
+}
+
+/// The bytes of `struct_size`, every `Input` struct's first field.
+const SIZE_FIELD: usize = size_of::<u32>();
+
 /// Checks that the struct at `ptr` is not NULL, is aligned, and says in its `struct_size`
-/// that it is as large as this version's. The size is read alone, so that a smaller
-/// struct (from an older header) is never read or written past its end.
-fn sized<T: Input>(ptr: *const T, what: &str) -> Outcome {
+/// that it is as large as this version's or one of `earlier`; returns that size. The size
+/// is read alone, so that a smaller struct (from an older header) is never read or written
+/// past its end.
+fn sized<T: Input>(ptr: *const T, what: &str, earlier: &[usize]) -> Outcome<usize> {
     aligned(ptr, what)?;
     if ptr.is_null() {
         return Err(Failure::null(what));
     }
     // SAFETY: non-NULL and aligned; every `Input` struct starts with its `u32` size.
-    let size = unsafe { ptr.cast::<u32>().read() };
+    let size = unsafe { ptr.cast::<u32>().read() } as usize;
     let want = size_of::<T>();
-    if size as usize != want {
+    let known = size == want || (earlier.contains(&size) && (SIZE_FIELD..want).contains(&size));
+    if !known {
+        let also = match earlier {
+            [] => String::new(),
+            sizes => format!(" (or an earlier version's {sizes:?})"),
+        };
         return Err(Failure::invalid(format!(
-            "{what}->struct_size is {size}, this library's struct is {want} bytes: start it \
-             from {} or set it to sizeof the struct (a header of another version than the \
-             library's gives another size)",
+            "{what}->struct_size is {size}, this library's struct is {want} bytes{also}: \
+             start it from {} or set it to sizeof the struct (a header of another version \
+             than the library's gives another size)",
             T::MAKER
         )));
     }
-    Ok(())
-}
-
-/// The body of every call that reads one value of a surface into `out`: the guard, the
-/// out-pointer check, the handle lookup.
-pub(crate) fn read_into<T>(
-    surface: *const SwSurface,
-    out: *mut T,
-    read: impl FnOnce(&mut Water) -> Outcome<T>,
-) -> SwStatus {
-    deliver(surface, || out_ref(out, "out"), read)
+    Ok(size)
 }
 
 /// The body of every call that writes a sized struct (one with `struct_size` first) to
 /// `out`: like [`read_into`], and the caller's struct must first say it is this version's
-/// size, so that a caller built against another header is never written past its end.
+/// size or an earlier version's ([`Input::EARLIER`]), so that a caller built against
+/// another header is never written past its end: an earlier version's struct gets the
+/// fields it has, and keeps its `struct_size`.
 pub(crate) fn read_sized_into<T: Input>(
     surface: *const SwSurface,
     out: *mut T,
     read: impl FnOnce(&mut Water) -> Outcome<T>,
 ) -> SwStatus {
-    deliver(
-        surface,
-        || {
-            sized(out.cast_const(), "out")?;
-            out_ref(out, "out")
-        },
-        read,
-    )
+    guard(|| sized_out(out, || handle::with(surface, read)))
 }
 
-/// Checks the out-pointer, then writes what `read` gives: nothing is looked up before the
-/// pointer is known to be good.
-fn deliver<'a, T: 'a>(
+/// Writes what `make` gives to the caller's sized struct at `out`, checked as for
+/// [`read_sized_into`] before `make` runs.
+pub(crate) fn sized_out<T: Input>(out: *mut T, make: impl FnOnce() -> Outcome<T>) -> Outcome {
+    let size = sized(out.cast_const(), "out", T::EARLIER)?;
+    let value = make()?;
+    // SAFETY: non-NULL and aligned (checked), and the caller's struct holds `size` bytes,
+    // at most `size_of::<T>()` and ending at a field (`Input::EARLIER`): whole fields of
+    // `value` are written over the caller's, all but `struct_size`.
+    unsafe {
+        let from = std::ptr::from_ref(&value).cast::<u8>().add(SIZE_FIELD);
+        let to = out.cast::<u8>().add(SIZE_FIELD);
+        std::ptr::copy_nonoverlapping(from, to, size - SIZE_FIELD);
+    }
+    Ok(())
+}
+
+/// The body of every call that reads one value of a surface into `out`: the guard, the
+/// out-pointer check (before anything is looked up), the handle lookup.
+pub(crate) fn read_into<T>(
     surface: *const SwSurface,
-    out: impl FnOnce() -> Outcome<&'a mut T>,
+    out: *mut T,
     read: impl FnOnce(&mut Water) -> Outcome<T>,
 ) -> SwStatus {
     guard(|| {
-        let out = out()?;
+        let out = out_ref(out, "out")?;
         *out = handle::with(surface, read)?;
         Ok(())
     })

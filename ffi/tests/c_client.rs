@@ -3,17 +3,21 @@
 //!
 //! * `tests/c/client.c`: a frame loop over the whole API, a job system on the host's own
 //!   threads, floating bodies on an absorbing (open water) surface, and every kind of bad
-//!   input; its printed values must equal what the Rust API computes for the same frames. It runs plainly, under AddressSanitizer, and under
-//!   Valgrind's memcheck where those are installed.
+//!   input; its printed values must equal what the Rust API computes for the same frames.
+//! * `tests/c/rigid.c`: rigid bodies: a heeled box rights itself as a built-in body and
+//!   in the client's own explicit integrator driven by `sw_surface_body_forces`, a hull
+//!   mesh, a client of the version 1 `SwFloater`, bad input.
+//! * Both run plainly, under AddressSanitizer, and under Valgrind's memcheck where it is
+//!   installed (`tests/c/check.h` holds their shared checks).
 //! * ffi/README.md's C example, linked against the dynamic library;
-//! * the header compiled as C++.
+//! * the header compiled as C++ (`tests/c/header.cpp`), linked and run.
 //!
 //! Needs `cc` (and `c++`) on the PATH: the test fails without them, unless
 //! `SPRINGWATER_SKIP_C=1` says to skip.
 
 mod common;
 
-use common::{assert_ok, build_release, floater_floats, fnv};
+use common::{assert_ok, build_release, floater_floats, fnv, righted_box};
 use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use springwater::refraction::{refract, Refraction, RefractionParams};
 use springwater::{Boundary, Buoyancy, Floater, FloaterId, Params, Surface};
@@ -155,7 +159,7 @@ fn expected_floaters() -> Vec<(&'static str, String)> {
         }
         s.advance(1.0 / 60.0).unwrap();
     }
-    let mut boxy = *s.floater(b).unwrap();
+    let mut boxy = s.floater(b).unwrap().clone();
     boxy.velocity.x = 2.4;
     boxy.drag = 24.0;
     s.set_floater(b, boxy).unwrap();
@@ -266,14 +270,65 @@ fn check_client_output(out: &Output, how: &str, ignore: &[&str]) {
     }
 }
 
+/// How a client program runs: plainly, under AddressSanitizer (with UndefinedBehavior-
+/// Sanitizer), or under Valgrind's memcheck.
+#[derive(Clone, Copy, PartialEq)]
+enum Run {
+    Plain,
+    Sanitized,
+    Valgrind,
+}
+
+/// Compiles `tests/c/{name}.c` against the static library and runs it as `run` says; None
+/// (after saying why) when Valgrind is not installed.
+fn run_client(name: &str, run: Run) -> Option<Output> {
+    if run == Run::Valgrind && !have("valgrind") {
+        eprintln!("skipped: valgrind is not installed");
+        return None;
+    }
+    let source = crate_dir().join("tests/c").join(format!("{name}.c"));
+    let suffix = match run {
+        Run::Plain => "",
+        Run::Sanitized => "-asan",
+        Run::Valgrind => "-valgrind",
+    };
+    let exe = out_dir().join(format!("{name}{suffix}"));
+    let sanitize: &[&str] = match run {
+        Run::Sanitized => &["-fsanitize=address,undefined", "-fno-omit-frame-pointer"],
+        _ => &[],
+    };
+    compile_static(&source, &exe, sanitize);
+    let mut command = match run {
+        Run::Valgrind => {
+            let mut valgrind = Command::new("valgrind");
+            valgrind.args([
+                "--quiet",
+                "--error-exitcode=99",
+                "--leak-check=full",
+                "--errors-for-leak-kinds=definite",
+            ]);
+            valgrind.arg(&exe);
+            valgrind
+        }
+        _ => Command::new(&exe),
+    };
+    if run == Run::Sanitized {
+        command
+            .env(
+                "ASAN_OPTIONS",
+                "detect_leaks=1:abort_on_error=0:exitcode=97",
+            )
+            .env("UBSAN_OPTIONS", "halt_on_error=1:exitcode=98");
+    }
+    Some(command.output().unwrap())
+}
+
 #[test]
 fn the_c_client_runs_its_frame_loop_and_refuses_every_bad_input() {
     if skip() {
         return;
     }
-    let exe = out_dir().join("client");
-    compile_static(&crate_dir().join("tests/c/client.c"), &exe, &[]);
-    let out = Command::new(&exe).output().unwrap();
+    let out = run_client("client", Run::Plain).unwrap();
     check_client_output(&out, "the C client", &[]);
 }
 
@@ -282,20 +337,7 @@ fn the_c_client_is_clean_under_address_sanitizer() {
     if skip() {
         return;
     }
-    let exe = out_dir().join("client-asan");
-    compile_static(
-        &crate_dir().join("tests/c/client.c"),
-        &exe,
-        &["-fsanitize=address,undefined", "-fno-omit-frame-pointer"],
-    );
-    let out = Command::new(&exe)
-        .env(
-            "ASAN_OPTIONS",
-            "detect_leaks=1:abort_on_error=0:exitcode=97",
-        )
-        .env("UBSAN_OPTIONS", "halt_on_error=1:exitcode=98")
-        .output()
-        .unwrap();
+    let out = run_client("client", Run::Sanitized).unwrap();
     check_client_output(&out, "the C client under AddressSanitizer", &[]);
 }
 
@@ -304,24 +346,55 @@ fn the_c_client_is_clean_under_valgrind() {
     if skip() {
         return;
     }
-    if !have("valgrind") {
-        eprintln!("skipped: valgrind is not installed");
+    // Valgrind's CPU has no AVX-512: the level that ran may differ, the bits may not.
+    if let Some(out) = run_client("client", Run::Valgrind) {
+        check_client_output(&out, "the C client under valgrind", &["simd"]);
+    }
+}
+
+/// Checks the rigid-body client's values against the Rust API's.
+fn check_rigid_output(out: &Output, how: &str) {
+    assert_ok(out, how);
+    let got = values(out);
+    let passed = ("rigid_checks", "passed".to_string());
+    for (key, want) in righted_box().into_iter().chain([passed]) {
+        assert_eq!(
+            got.get(key),
+            Some(&want),
+            "{how}: the rigid-body client's `{key}` differs from the Rust API's"
+        );
+    }
+}
+
+/// `tests/c/rigid.c` floats a box heeled 15° and rights it, as a built-in body and in its
+/// own explicit 60 Hz integrator driven by `sw_surface_body_forces`, as a hull mesh, and
+/// through a version 1 `SwFloater`; its built-in box ends in the Rust API's bits.
+#[test]
+fn the_rigid_body_client_rights_its_boxes() {
+    if skip() {
         return;
     }
-    let exe = out_dir().join("client-valgrind");
-    compile_static(&crate_dir().join("tests/c/client.c"), &exe, &[]);
-    let out = Command::new("valgrind")
-        .args([
-            "--quiet",
-            "--error-exitcode=99",
-            "--leak-check=full",
-            "--errors-for-leak-kinds=definite",
-        ])
-        .arg(&exe)
-        .output()
-        .unwrap();
-    // Valgrind's CPU has no AVX-512: the level that ran may differ, the bits may not.
-    check_client_output(&out, "the C client under valgrind", &["simd"]);
+    let out = run_client("rigid", Run::Plain).unwrap();
+    check_rigid_output(&out, "the rigid-body client");
+}
+
+#[test]
+fn the_rigid_body_client_is_clean_under_address_sanitizer() {
+    if skip() {
+        return;
+    }
+    let out = run_client("rigid", Run::Sanitized).unwrap();
+    check_rigid_output(&out, "the rigid-body client under AddressSanitizer");
+}
+
+#[test]
+fn the_rigid_body_client_is_clean_under_valgrind() {
+    if skip() {
+        return;
+    }
+    if let Some(out) = run_client("rigid", Run::Valgrind) {
+        check_rigid_output(&out, "the rigid-body client under valgrind");
+    }
 }
 
 /// The C client built for another architecture, run under its emulator, prints what the
@@ -407,29 +480,26 @@ fn the_readme_c_example_builds_against_the_dynamic_library_and_runs() {
     assert!(!run.stdout.is_empty());
 }
 
+/// `tests/c/header.cpp` includes the header as C++ and uses every kind of declaration
+/// (the rigid bodies' structs, handles and calls among them): compiled, linked against
+/// the static library and run.
 #[test]
 fn the_header_compiles_as_cpp() {
     if skip() {
         return;
     }
-    let source = out_dir().join("header.cpp");
-    std::fs::write(
-        &source,
-        "#include \"springwater.h\"\nint main() { SwParams p = sw_params_default(); return p.cols == 128 ? 0 : 1; }\n",
-    )
-    .unwrap();
+    let exe = out_dir().join("header-cpp");
     let out = Command::new("c++")
-        .args([
-            "-std=c++11",
-            "-Wall",
-            "-Wextra",
-            "-Werror",
-            "-fsyntax-only",
-            "-I",
-        ])
+        .args(["-std=c++11", "-Wall", "-Wextra", "-Werror", "-I"])
         .arg(crate_dir().join("include"))
-        .arg(&source)
+        .arg(crate_dir().join("tests/c/header.cpp"))
+        .arg(lib_dir().join("libspringwater_ffi.a"))
+        .args(NATIVE_LIBS)
+        .arg("-o")
+        .arg(&exe)
         .output()
         .expect("c++ runs");
     assert_ok(&out, "compiling the header as C++");
+    let run = Command::new(&exe).output().unwrap();
+    assert_ok(&run, "the C++ program");
 }

@@ -5,6 +5,9 @@
 //!   command line's CSV bit for bit, no allocation in the frame loop, every refusal with the
 //!   library's message, `Dispose`, the finalizer, floating bodies and the moving window (their
 //!   values recomputed here through the Rust API), snapshots and state hashes, two threads;
+//!   `Tests~/RigidBodies.cs`: a box heeled 15° rights itself as a built-in body (its
+//!   orientation the Rust API's bits), in an engine's own integrator driven by
+//!   `BodyForces`, and as a `Hull`;
 //! * the declarations against `include/springwater.h`: every function, constant, struct,
 //!   field, size and offset of the header (the C compiler's `sizeof` and `offsetof`) must be
 //!   in `Native` and the structs with the same types (`Tests~/Layout.cs` prints them);
@@ -16,7 +19,7 @@
 
 mod common;
 
-use common::{assert_ok, build_release, floater_floats, fnv};
+use common::{assert_ok, build_release, floater_floats, fnv, righted_box};
 use springwater::{Boundary, Floater, FloaterId, Params, Surface};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
@@ -142,7 +145,7 @@ fn floaters() -> Vec<(&'static str, String)> {
         }
         s.advance(FRAME).unwrap();
     }
-    let mut moved = *s.floater(boxy).unwrap();
+    let mut moved = s.floater(boxy).unwrap().clone();
     moved.position.x = 24.0;
     moved.position.z = 18.0;
     moved.drag = 12.0;
@@ -200,6 +203,7 @@ const RUNNER_TESTS: &[&str] = &[
     "snapshots_round_trip_and_state_hashes_follow_the_state",
     "two_threads_each_owning_a_surface_get_the_same_bits",
     "queries_agree_with_the_buffers",
+    "a_heeled_box_rights_itself",
 ];
 
 #[test]
@@ -209,7 +213,11 @@ fn the_csharp_tests_pass_under_mono_with_the_command_lines_bits() {
     }
     let dir = scratch("runner");
     let exe = dir.join("runner.exe");
-    mcs(&exe, &[], &[test_source("Runner.cs")]);
+    mcs(
+        &exe,
+        &[],
+        &[test_source("Runner.cs"), test_source("RigidBodies.cs")],
+    );
     let out = mono(&exe, &[&dir]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_ok(&out, "the C# tests");
@@ -224,7 +232,7 @@ fn the_csharp_tests_pass_under_mono_with_the_command_lines_bits() {
         .filter_map(|l| l.strip_prefix("value "))
         .filter_map(|l| l.split_once(' '))
         .collect();
-    for (key, want) in floaters().into_iter().chain(window()) {
+    for (key, want) in floaters().into_iter().chain(window()).chain(righted_box()) {
         assert_eq!(
             values.get(key).copied(),
             Some(want.as_str()),
@@ -363,12 +371,12 @@ fn csharp_type(c_type: &str, aliases: &HashMap<String, String>, returned: bool) 
         }
         _ => {}
     }
-    // A `void *` and a returned string are addresses; a surface is a handle.
+    // A `void *` and a returned string are addresses; a surface or a hull is a handle.
     if stars == 1 && (base == "void" || (base == "char" && returned)) {
         return "IntPtr".into();
     }
     let primitive = match base {
-        "SwSurface" => return format!("IntPtr{}", pointers(stars - 1)),
+        "SwSurface" | "SwHull" => return format!("IntPtr{}", pointers(stars - 1)),
         "char" | "uint8_t" => "byte",
         "uint32_t" => "uint",
         "int32_t" => "int",
@@ -512,7 +520,7 @@ fn the_csharp_declarations_match_the_header() {
     let include = crate_dir().join("include");
     let header = parse_header(&std::fs::read_to_string(include.join("springwater.h")).unwrap());
     assert!(
-        header.functions.len() > 50 && header.structs.len() >= 9 && header.constants.len() > 20
+        header.functions.len() > 60 && header.structs.len() >= 10 && header.constants.len() > 20
     );
     let dir = scratch("header");
     let c = c_layout(&header, &include, &dir);
@@ -536,7 +544,7 @@ fn the_header_comparison_finds_a_missing_function_field_and_constant() {
     let grown = text
         .replace(
             "size_t sw_last_error(",
-            "SwStatus sw_surface_body_forces(const struct SwSurface *surface, uint64_t *out);\n\
+            "SwStatus sw_surface_wave_forces(const struct SwSurface *surface, uint64_t *out);\n\
              size_t sw_last_error(",
         )
         .replace(
@@ -544,8 +552,8 @@ fn the_header_comparison_finds_a_missing_function_field_and_constant() {
             "  float density;\n  float surface_tension;\n} SwBuoyancy;",
         )
         .replace(
-            "#define SW_SHAPE_BOX 1",
-            "#define SW_SHAPE_BOX 1\n#define SW_SHAPE_HULL 2",
+            "#define SW_SHAPE_HULL 2",
+            "#define SW_SHAPE_HULL 2\n#define SW_SHAPE_CAPSULE 3",
         );
     assert_ne!(grown, text);
     let dir = scratch("grown");
@@ -554,9 +562,9 @@ fn the_header_comparison_finds_a_missing_function_field_and_constant() {
     let c = c_layout(&header, &dir, &dir);
     let problems = drift(&header, &c, csharp_layout());
     for expected in [
-        "Native has no sw_surface_body_forces",
+        "Native has no sw_surface_wave_forces",
         "the C# SwBuoyancy has no field surface_tension",
-        "the C# has no const SW_SHAPE_HULL",
+        "the C# has no const SW_SHAPE_CAPSULE",
         "struct SwBuoyancy: C# 12, C 16",
     ] {
         assert!(

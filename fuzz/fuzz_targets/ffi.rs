@@ -41,6 +41,8 @@ struct Body {
     velocity: [f32; 3],
     push: [f32; 3],
     water_force: [f32; 3],
+    orientation: [f32; 4],
+    angular_velocity: [f32; 3],
     /// Start from `sw_floater_sphere` / `sw_floater_box` with small sane values instead.
     sane: Option<(bool, u8, [u8; 3])>,
 }
@@ -69,6 +71,9 @@ impl Body {
             velocity: self.velocity,
             push: self.push,
             water_force: self.water_force,
+            orientation: self.orientation,
+            angular_velocity: self.angular_velocity,
+            ..SwFloater::default()
         }
     }
 }

@@ -1,8 +1,10 @@
 //! Arbitrary bytes and mutated valid snapshots to the loader: an error, never a panic.
 //!
 //! Raw bytes almost never get past the magic and the checksum, so half the inputs start
-//! from a valid snapshot of a small surface, flip bytes chosen by the fuzzer and then
-//! (optionally) repair the checksum, which sends the damage on to the content checks.
+//! from a valid snapshot of a small surface (half of those with floating bodies: two
+//! boxes sharing one hull mesh, one turned and spinning, and a ball), flip bytes chosen by
+//! the fuzzer and then (optionally) repair the checksum, which sends the damage on to the
+//! content checks.
 //! Whatever is accepted must be a surface that re-encodes to the same bytes (an older
 //! version: to bytes that load and re-encode to themselves) and steps
 //! without producing non-finite values, the engine bitwise equal to the scalar reference;
@@ -12,8 +14,11 @@
 #![no_main]
 
 use arbitrary::{Arbitrary, Unstructured};
+use glam::{Quat, Vec3};
 use libfuzzer_sys::fuzz_target;
-use springwater::{Params, SimdLevel, Snapshot, Surface};
+use springwater::body::Hull;
+use springwater::{Floater, Params, SimdLevel, Snapshot, Surface};
+use std::sync::Arc;
 
 #[derive(Debug, Arbitrary)]
 struct Edit {
@@ -31,9 +36,25 @@ fuzz_target!(|data: &[u8]| {
         let mut u = Unstructured::new(rest);
         let cols = 2 + u.int_in_range(0..=6u8).unwrap_or(0) as usize;
         let rows = 2 + u.int_in_range(0..=6u8).unwrap_or(0) as usize;
-        let mut s = Surface::new(Params::with_size(cols, rows)).expect("valid");
-        s.drop_at(cols as f32 / 2.0, rows as f32 / 2.0, 1.0, 1.5)
-            .expect("valid drop");
+        let mut p = Params::with_size(cols, rows);
+        let bodies = mode & 8 != 0;
+        if bodies {
+            p.dt = 0.2; // room for the waterlines' stiffness
+        }
+        let mut s = Surface::new(p).expect("valid");
+        let (x, z) = (cols as f32 / 2.0, rows as f32 / 2.0);
+        if bodies {
+            let hull = Arc::new(Hull::cuboid([0.5, 0.25, 0.4]).expect("valid hull"));
+            let mut turned = Floater::with_hull(Arc::clone(&hull), 0.15, [x, 0.0, z]);
+            turned.orientation = Quat::from_rotation_y(0.5);
+            turned.angular_velocity = Vec3::new(0.2, 1.0, 0.0);
+            let upright = Floater::with_hull(hull, 0.15, [x - 0.5, 0.0, z]);
+            let ball = Floater::sphere(0.3, 0.05, [x, 0.0, z - 0.5]);
+            for body in [upright, turned, ball] {
+                s.add_floater(body).expect("valid body");
+            }
+        }
+        s.drop_at(x, z, 1.0, 1.5).expect("valid drop");
         let _ = s.add_force(0, [1.0, 2.0, 3.0]);
         s.step().expect("stable");
         let mut b = s.to_bytes();
@@ -84,7 +105,11 @@ fuzz_target!(|data: &[u8]| {
             assert_eq!(target.state_hash(), s.state_hash());
             let mut saved = before.clone();
             target.save_into(&mut saved);
-            assert_eq!(saved, s.to_bytes(), "save_into equals to_bytes after a restore");
+            assert_eq!(
+                saved,
+                s.to_bytes(),
+                "save_into equals to_bytes after a restore"
+            );
             // The engine and the scalar reference agree bitwise on any valid state, so a
             // loader that leaves a derived table stale shows up here.
             let mut reference = s.clone();

@@ -106,6 +106,16 @@ impl Hull {
         Ok(hull)
     }
 
+    /// The surface of a closed hull cut into smaller triangles, each on its own (a cut
+    /// triangle's edge may meet a neighbour's corner: the surface is closed only to
+    /// rounding, so the closedness test is skipped); the other checks and the mass
+    /// properties as for [`Hull::new`].
+    pub(crate) fn cut_surface(vertices: &[[f32; 3]], triangles: &[[u32; 3]]) -> Result<Self> {
+        check_vertices(vertices)?;
+        check_triangles(vertices, triangles)?;
+        MassSums::of(vertices, triangles).into_hull(vertices, triangles)
+    }
+
     /// A box of `half_extents` centred on the origin: 8 vertices, 12 triangles.
     pub fn cuboid(half_extents: impl Into<Vec3>) -> Result<Self> {
         let e = half_extents.into();
@@ -184,6 +194,11 @@ impl Hull {
             col(-rho * xy, rho * (trace - yy), -rho * yz),
             col(-rho * zx, -rho * yz, rho * (trace - zz)),
         )
+    }
+
+    /// The enclosed volume in `f64`.
+    pub(crate) fn volume_f64(&self) -> f64 {
+        self.volume
     }
 
     /// The largest side of the mesh's bounding box, world units.

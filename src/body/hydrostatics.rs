@@ -62,7 +62,7 @@
 //! still gives a rotation), and every sum runs in `f64` in the mesh's order, so every
 //! platform gets the same bits.
 
-use super::Hull;
+use super::{rigid, Hull};
 use crate::error::{Error, Result};
 use crate::{params, Buoyancy};
 use glam::{DVec3, Quat, Vec2, Vec3};
@@ -186,7 +186,7 @@ impl Hull {
         position: Vec3,
         orientation: Quat,
         buoyancy: Buoyancy,
-        mut water_height: impl FnMut(f32, f32) -> f32,
+        water_height: impl FnMut(f32, f32) -> f32,
         scratch: &mut HullScratch,
         mut part: impl FnMut(Vec3, Vec3),
     ) -> Result<Submerged> {
@@ -194,6 +194,29 @@ impl Hull {
             params::finite("body position", v)?;
         }
         buoyancy.validate()?;
+        let rho_g = buoyancy.density as f64 * buoyancy.gravity as f64;
+        let pressure = self.pressed(
+            position,
+            orientation,
+            rho_g,
+            water_height,
+            scratch,
+            |point, force, _| part(point.as_vec3(), force.as_vec3()),
+        )?;
+        pressure.submerged()
+    }
+
+    /// The pressure pass behind [`submerged_parts`](Self::submerged_parts), in `f64`:
+    /// `part(point, force, area)` for each wet (clipped) triangle, and the totals.
+    pub(crate) fn pressed(
+        &self,
+        position: Vec3,
+        orientation: Quat,
+        rho_g: f64,
+        mut water_height: impl FnMut(f32, f32) -> f32,
+        scratch: &mut HullScratch,
+        mut part: impl FnMut(DVec3, DVec3, f64),
+    ) -> Result<Pressure> {
         let rotate = rotation(orientation)?;
         let origin = position.as_dvec3();
 
@@ -215,7 +238,6 @@ impl Hull {
             });
         }
 
-        let rho_g = buoyancy.density as f64 * buoyancy.gravity as f64;
         let mut sums = Sums::default();
         let corners = &scratch.corners;
         for &[i, j, k] in self.triangles() {
@@ -254,8 +276,7 @@ impl Hull {
                 sums.waterline(bk.r, ak.r);
             }
         }
-        let extent = self.extent();
-        sums.finish(origin, rho_g, extent)
+        Ok(sums.finish(origin, rho_g, self.extent()))
     }
 }
 
@@ -330,7 +351,7 @@ impl Sums {
         c2: Corner,
         rho_g: f64,
         origin: DVec3,
-        part: &mut impl FnMut(Vec3, Vec3),
+        part: &mut impl FnMut(DVec3, DVec3, f64),
     ) {
         let (Corner { r: r0, d: d0 }, Corner { r: r1, d: d1 }) = (c0, c1);
         let Corner { r: r2, d: d2 } = c2;
@@ -346,7 +367,7 @@ impl Sums {
         // The centre of pressure ∫ d r dA / ∫ d dA = M / (4 D) carries this triangle's
         // force; its moment is then exactly this triangle's share of the torque.
         let force = s * (-rho_g * depth / 6.0);
-        part((origin + m / (4.0 * depth)).as_vec3(), force.as_vec3());
+        part(origin + m / (4.0 * depth), force, 0.5 * s.length());
     }
 
     /// Adds a piece `p → q` of the waterline, in the direction the wet triangle's edges
@@ -366,7 +387,7 @@ impl Sums {
         self.lid[5] += c * (zp * zp + zp * zq + zq * zq);
     }
 
-    fn finish(self, origin: DVec3, rho_g: f64, extent: f64) -> Result<Submerged> {
+    fn finish(self, origin: DVec3, rho_g: f64, extent: f64) -> Pressure {
         let force = self.pressure * (-rho_g / 6.0);
         let torque = self.moment * (-rho_g / 24.0);
         let volume = -self.pressure.y / 6.0;
@@ -377,38 +398,69 @@ impl Sums {
             (0.0, origin)
         };
         let area = 0.5 * self.lid[0];
-        let waterplane = if area > 1e-9 * extent * extent {
+        let plane = if area > 1e-9 * extent * extent {
             let cx = self.lid[1] / (6.0 * area);
             let cz = self.lid[2] / (6.0 * area);
             let (xx, xz, zz) = (self.lid[3] / 12.0, self.lid[4] / 24.0, self.lid[5] / 12.0);
-            Waterplane {
-                area: area as f32,
-                centre: Vec2::new((origin.x + cx) as f32, (origin.z + cz) as f32),
-                second_moments: [
-                    (xx - area * cx * cx) as f32,
-                    (xz - area * cx * cz) as f32,
-                    (zz - area * cz * cz) as f32,
+            rigid::Waterplane {
+                area,
+                centre: [origin.x + cx, origin.z + cz],
+                second: [
+                    xx - area * cx * cx,
+                    xz - area * cx * cz,
+                    zz - area * cz * cz,
                 ],
             }
         } else {
-            Waterplane {
+            rigid::Waterplane {
                 area: 0.0,
-                centre: Vec2::new(origin.x as f32, origin.z as f32),
-                second_moments: [0.0; 3],
+                centre: [origin.x, origin.z],
+                second: [0.0; 3],
             }
         };
+        Pressure {
+            volume,
+            centre,
+            force,
+            torque,
+            plane,
+        }
+    }
+}
+
+/// The totals of the pressure pass, in `f64`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Pressure {
+    /// Submerged volume.
+    pub volume: f64,
+    /// Centre of buoyancy, world.
+    pub centre: DVec3,
+    pub force: DVec3,
+    /// About the body's origin.
+    pub torque: DVec3,
+    pub plane: rigid::Waterplane,
+}
+
+impl Pressure {
+    /// In `f32`, for [`Hull::submerged`]; refused when a result is too large for `f32`.
+    fn submerged(&self) -> Result<Submerged> {
+        let p = &self.plane;
         let out = Submerged {
-            volume: volume as f32,
-            centre_of_buoyancy: centre.as_vec3(),
-            force: force.as_vec3(),
-            torque: torque.as_vec3(),
-            waterplane,
+            volume: self.volume as f32,
+            centre_of_buoyancy: self.centre.as_vec3(),
+            force: self.force.as_vec3(),
+            torque: self.torque.as_vec3(),
+            waterplane: Waterplane {
+                area: p.area as f32,
+                centre: Vec2::new(p.centre[0] as f32, p.centre[1] as f32),
+                second_moments: p.second.map(|v| v as f32),
+            },
         };
         let finite = out.force.is_finite() && out.torque.is_finite() && out.volume.is_finite();
         if !finite {
             return Err(Error::InvalidParam {
                 name: "buoyancy force",
-                value: force.length(),
+                value: self.force.length(),
                 expected: "finite in f32: the hull is too large, deep or dense for f32",
             });
         }

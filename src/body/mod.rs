@@ -45,6 +45,8 @@
 mod boat;
 mod hull;
 mod hydrostatics;
+pub(crate) mod rigid;
+pub(crate) mod tessellate;
 
 pub use boat::BoatShape;
 pub use hull::Hull;

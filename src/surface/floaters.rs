@@ -1,9 +1,11 @@
 //! The floating bodies of a [`Surface`]: adding, reading and pushing them, and the coupled
 //! step that moves them with the water (the model is explained in [`crate::floater`]).
 
+use super::coupling::Coupling;
 use super::Surface;
+use crate::body::rigid;
 use crate::error::{Error, Result};
-use crate::floater::{self, Buoyancy, Column, ColumnForce, Floater, FloaterId};
+use crate::floater::{self, Buoyancy, Floater, FloaterId};
 use crate::params;
 use glam::Vec3;
 
@@ -15,19 +17,7 @@ pub(crate) struct Floaters {
     /// The id the next added body gets.
     pub next_id: u64,
     pub buoyancy: Buoyancy,
-    scratch: Scratch,
-}
-
-/// Buffers the coupled step reuses; not state.
-#[derive(Debug, Clone, Default)]
-struct Scratch {
-    columns: Vec<Column>,
-    under: Vec<ColumnForce>,
-    forces: Vec<Vec3>,
-    /// Each body's `(position, velocity, water force)` after the step, until it commits.
-    moved: Vec<(Vec3, Vec3, Vec3)>,
-    /// External forces of the nodes the reactions touched, before they did.
-    log: Vec<(usize, [f32; 3])>,
+    pub scratch: Coupling,
 }
 
 impl Floaters {
@@ -40,34 +30,50 @@ impl Floaters {
 
 /// # Floating bodies
 ///
-/// Spheres and boxes that float on the water, are carried and lifted by it, and push back
-/// into it (see [`crate::floater`] for the model). They step with every step and substep
-/// of the surface, in the order they were added, and are part of snapshots.
+/// Rigid balls, boxes and hulls that float on the water, pitch and roll with it, are
+/// carried and lifted by it, and push back into it (see [`crate::floater`] for the model).
+/// They step with every step and substep of the surface, in the order they were added, and
+/// are part of snapshots.
 impl Surface {
     /// Adds a floating body and returns its id. Refused (nothing changes) when a field is
-    /// out of range ([`Floater::validate`]) or when the water under the bodies would need
-    /// a smaller timestep than `params().dt` ([`Surface::critical_dt`]).
+    /// out of range ([`Floater::validate`]), the body is more than
+    /// [`MAX_CELLS`](crate::floater::MAX_CELLS) cells across, or the water under the
+    /// bodies would need a smaller timestep than `params().dt` ([`Surface::critical_dt`]).
+    /// The orientation is stored normalised.
     pub fn add_floater(&mut self, body: Floater) -> Result<FloaterId> {
-        let body = Floater {
-            water_force: Vec3::ZERO,
-            ..body
-        };
-        body.validate()?;
-        floater::check_footprint(&body.shape, self.params.spacing)?;
+        let body = self.admit(body, Vec3::ZERO, Vec3::ZERO)?;
         params::check_dt(self.params.dt, self.limit_with(self.floaters.buoyancy))?;
+        let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
         let id = FloaterId(self.floaters.next_id);
         self.floaters.next_id = id.0.checked_add(1).ok_or(Error::InvalidParam {
             name: "floater id",
             value: id.0 as f64,
             expected: "fewer than 2^64 − 1 floaters ever added to one surface",
         })?;
+        let k = self.floaters.bodies.len();
+        self.floaters.scratch.keep_mesh(k, &body.shape, mesh);
         self.floaters.bodies.push((id, body));
         Ok(id)
+    }
+
+    /// `body` validated and fit for this surface, with its read-only fields set and its
+    /// orientation normalised.
+    pub(super) fn admit(&self, body: Floater, force: Vec3, torque: Vec3) -> Result<Floater> {
+        let mut body = Floater {
+            water_force: force,
+            water_torque: torque,
+            ..body
+        };
+        body.validate()?;
+        floater::check_footprint(&body.shape, self.params.spacing)?;
+        body.orientation = rigid::normalised(body.orientation.as_dquat()).as_quat();
+        Ok(body)
     }
 
     /// Removes a body and returns it.
     pub fn remove_floater(&mut self, id: FloaterId) -> Result<Floater> {
         let k = self.floaters.index(id)?;
+        self.floaters.scratch.forget_mesh(k);
         Ok(self.floaters.bodies.remove(k).1)
     }
 
@@ -77,17 +83,17 @@ impl Surface {
         Ok(&self.floaters.bodies[k].1)
     }
 
-    /// Replaces a body's state (teleport it, change its mass or shape); its read-only
-    /// [`Floater::water_force`] is kept. Validated like [`Surface::add_floater`]; on error
-    /// nothing changes.
+    /// Replaces a body's state (teleport it, turn it, change its mass or shape); its
+    /// read-only [`Floater::water_force`] and [`Floater::water_torque`] are kept.
+    /// Validated like [`Surface::add_floater`]; on error nothing changes.
     pub fn set_floater(&mut self, id: FloaterId, body: Floater) -> Result<()> {
         let k = self.floaters.index(id)?;
-        let body = Floater {
-            water_force: self.floaters.bodies[k].1.water_force,
-            ..body
-        };
-        body.validate()?;
-        floater::check_footprint(&body.shape, self.params.spacing)?;
+        let old = &self.floaters.bodies[k].1;
+        let body = self.admit(body, old.water_force, old.water_torque)?;
+        if body.shape != self.floaters.bodies[k].1.shape {
+            let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
+            self.floaters.scratch.keep_mesh(k, &body.shape, mesh);
+        }
         self.floaters.bodies[k].1 = body;
         Ok(())
     }
@@ -97,17 +103,51 @@ impl Surface {
         self.floaters.bodies.iter().map(|(id, f)| (*id, f))
     }
 
-    /// Adds `force` (mass units × world units per second², like every force on a body) to
-    /// a body for the next step only: an engine, the wind, a player's push. On error nothing
-    /// changes.
+    /// Adds `force` through a body's centre of mass (mass units × world units per second²,
+    /// like every force on a body) for the next step only: an engine, the wind, a player's
+    /// push. On error nothing changes.
     pub fn push_floater(&mut self, id: FloaterId, force: impl Into<Vec3>) -> Result<()> {
-        let force = force.into();
+        self.push_wrench(id, force.into(), Vec3::ZERO)
+    }
+
+    /// Adds `force` acting at the world point `at` to a body for the next step only: the
+    /// force through its centre of mass and the torque `(at − position) × force` (a push
+    /// on the bow turns the boat). On error nothing changes.
+    pub fn push_floater_at(
+        &mut self,
+        id: FloaterId,
+        force: impl Into<Vec3>,
+        at: impl Into<Vec3>,
+    ) -> Result<()> {
+        let (force, at) = (force.into(), at.into());
+        for c in at.to_array() {
+            params::finite("push point", c)?;
+        }
         let k = self.floaters.index(id)?;
-        let push = self.floaters.bodies[k].1.push + force;
+        let offset = at - self.floaters.bodies[k].1.position;
+        self.push_wrench(id, force, offset.cross(force))
+    }
+
+    /// Adds `torque` about a body's centre of mass (world axes; mass units × world units²
+    /// per second²) for the next step only. On error nothing changes.
+    pub fn push_floater_torque(&mut self, id: FloaterId, torque: impl Into<Vec3>) -> Result<()> {
+        self.push_wrench(id, Vec3::ZERO, torque.into())
+    }
+
+    fn push_wrench(&mut self, id: FloaterId, force: Vec3, torque: Vec3) -> Result<()> {
+        let k = self.floaters.index(id)?;
+        let body = &self.floaters.bodies[k].1;
+        let push = body.push + force;
+        let push_torque = body.push_torque + torque;
         for c in force.to_array().into_iter().chain(push.to_array()) {
             params::finite("floater push", c)?;
         }
-        self.floaters.bodies[k].1.push = push;
+        for c in torque.to_array().into_iter().chain(push_torque.to_array()) {
+            params::finite("floater push torque", c)?;
+        }
+        let body = &mut self.floaters.bodies[k].1;
+        body.push = push;
+        body.push_torque = push_torque;
         Ok(())
     }
 
@@ -147,128 +187,5 @@ impl Surface {
                 .buoyancy
                 .node_stiffness(self.params.spacing, self.params.time_scale)
         }
-    }
-
-    /// One step of model time `dt` with the bodies: their reactions go into the external forces,
-    /// the water takes its step, and the bodies move only if it succeeded. On any error
-    /// the surface is unchanged, bodies and pending forces included.
-    pub(crate) fn floating_step(&mut self, dt: f32) -> Result<()> {
-        let pending = self.state.ext_pending;
-        let listed = self.state.ext_nodes.as_ref().map(Vec::len);
-        let mut scratch = std::mem::take(&mut self.floaters.scratch);
-        scratch.log.clear();
-        let coupled = self
-            .couple(dt, &mut scratch)
-            .and_then(|()| self.water(1, dt));
-        match coupled {
-            Ok(()) => {
-                for ((_, body), &(position, velocity, force)) in
-                    self.floaters.bodies.iter_mut().zip(&scratch.moved)
-                {
-                    body.position = position;
-                    body.velocity = velocity;
-                    body.water_force = force;
-                    body.push = Vec3::ZERO;
-                }
-            }
-            Err(_) => {
-                // Undo the reactions, newest first, so every touched node gets its old bits.
-                for &(i, f) in scratch.log.iter().rev() {
-                    for (c, v) in f.into_iter().enumerate() {
-                        self.state.ext[c][i] = v;
-                    }
-                }
-                self.state.ext_pending = pending;
-                // The list of pushed nodes goes back too, unless the reactions overflowed
-                // it; `None` (clear every force) is then still correct.
-                if let (Some(len), Some(nodes)) = (listed, &mut self.state.ext_nodes) {
-                    nodes.truncate(len);
-                }
-            }
-        }
-        self.floaters.scratch = scratch;
-        coupled
-    }
-
-    /// Reads the water under every body, solves each body's step (kept in
-    /// `scratch.moved`) and pushes the reactions into the external forces (logged).
-    ///
-    /// The bodies live in seconds, the lattice in model time (`dt` is model time): the body
-    /// steps `dt / time_scale` seconds, the water velocity it reads is the lattice's times
-    /// `time_scale`, and the forces it pushes into the water are divided by `time_scale²`.
-    fn couple(&mut self, dt: f32, scratch: &mut Scratch) -> Result<()> {
-        let Buoyancy { gravity, density } = self.floaters.buoyancy;
-        let h = self.params.spacing;
-        let scale = self.params.time_scale;
-        let seconds = dt / scale;
-        // Damping room: `b_lim` of the stiffest node with the waterline springs (see the
-        // `absorb` module), shared out as half of what it leaves the four nodes under a
-        // column, per cell of area. `rate` is per unit of model time, the body's drag per
-        // second: the cap is `rate × time_scale`.
-        let omega2 = (12.0 * self.max_stiffness + self.floater_stiffness()) / self.min_mass;
-        let rate = ((4.0 - omega2 * dt * dt) / (2.0 * dt)).max(0.0);
-        scratch.moved.clear();
-        for k in 0..self.floaters.bodies.len() {
-            let (id, body) = self.floaters.bodies[k];
-            floater::columns(&body.shape, h, &mut scratch.columns);
-            scratch.under.clear();
-            for col in &scratch.columns {
-                let (x, z) = (body.position.x + col.dx, body.position.z + col.dz);
-                let (height, flow, room, at) = match self.water_under(x, z, rate) {
-                    Some((height, flow, room)) => {
-                        (height, flow * scale, room.max(0.0), Some([x, z]))
-                    }
-                    None => (0.0, Vec3::ZERO, f32::INFINITY, None),
-                };
-                let bottom = body.position.y - 0.5 * col.length;
-                let wet = (height - bottom).clamp(0.0, col.length);
-                let cap = 0.5 * room * (col.area / (h * h)).min(1.0) * scale;
-                scratch.under.push(ColumnForce {
-                    at,
-                    lift: density * gravity * wet * col.area,
-                    stiffness: if wet > 0.0 && wet < col.length {
-                        density * gravity * col.area
-                    } else {
-                        0.0
-                    },
-                    drag: (body.drag * density * wet * col.area).min(cap),
-                    flow,
-                });
-            }
-            let velocity =
-                floater::solve(&body, &scratch.under, gravity, seconds, &mut scratch.forces);
-            let force: Vec3 = scratch.forces.iter().sum();
-            let position = body.position + seconds * velocity;
-            // The body must stay a valid body (finite, and within the ranges a snapshot
-            // accepts), or the step is refused.
-            let moved = Floater {
-                position,
-                velocity,
-                push: Vec3::ZERO,
-                water_force: force,
-                ..body
-            };
-            if moved.validate().is_err() {
-                return Err(Error::FloaterNonFinite {
-                    step: self.steps(),
-                    floater: id.0,
-                });
-            }
-            // The lattice's forces are per unit of model time²: a body's force in seconds
-            // goes in divided by `time_scale²`.
-            let to_lattice = scale * scale;
-            for (c, f) in scratch.under.iter().zip(&scratch.forces) {
-                if let Some([x, z]) = c.at {
-                    let reaction = (-*f / to_lattice).to_array();
-                    self.add_force_at_logged(x, z, reaction, Some(&mut scratch.log))
-                        .map_err(|_| Error::FloaterNonFinite {
-                            step: self.steps(),
-                            floater: id.0,
-                        })?;
-                }
-            }
-            scratch.moved.push((position, velocity, force));
-        }
-        Ok(())
     }
 }

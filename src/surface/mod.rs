@@ -13,6 +13,7 @@
 //! | `tuning.rs` | the engine's schedule knobs for tests and benchmarks (`internals`) |
 
 mod clock;
+mod coupling;
 mod disturbance;
 mod edit;
 mod floaters;

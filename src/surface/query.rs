@@ -5,6 +5,18 @@ use crate::error::{Error, Result};
 use crate::view::MeshView;
 use glam::Vec3;
 
+/// `x.floor()` for finite `|x| < 2⁶³` (every query point, in cells, is within 1e15), without
+/// the library call that `floor` is on x86-64 CPUs before SSE4.1: the same bits.
+#[inline]
+fn floor(x: f32) -> f32 {
+    let t = x as i64 as f32;
+    if t > x {
+        t - 1.0
+    } else {
+        t
+    }
+}
+
 /// The cell and the bilinear weights of one query point.
 #[derive(Debug, Clone, Copy)]
 struct Sample {
@@ -41,7 +53,7 @@ impl Sample {
         // counted from the window's origin, and the far edge belongs to the last cell.
         let cell = |p: f32, origin: i64, cells: usize| {
             let w = p / h;
-            let whole = w.floor();
+            let whole = floor(w);
             match whole as i64 - origin {
                 c if c < 0 => (0, 0.0),
                 c if c as usize >= cells => (cells - 1, 1.0),
@@ -101,6 +113,72 @@ impl Sample {
             + w[2] * view.node_normal(c, r + 1)
             + w[3] * view.node_normal(c + 1, r + 1);
         n.try_normalize().unwrap_or(Vec3::Y)
+    }
+}
+
+/// The four nodes a force at a point spreads onto, and their weights.
+pub(crate) type Spread = ([usize; 4], [f32; 4]);
+
+/// The last cell [`Waters::flow`] computed the damping room of, and that room: points of
+/// one body fall in few cells, one after the other.
+pub(crate) type RoomCache = Option<(usize, f32)>;
+
+/// The water as the floating bodies read it (see [`Surface::waters`]).
+pub(crate) struct Waters<'a> {
+    view: MeshView<'a>,
+    origin: [i64; 2],
+    velocities: [&'a [f32]; 3],
+    mass: &'a crate::state::table::NodeTable,
+    viscosity: &'a crate::state::table::NodeTable,
+}
+
+impl Waters<'_> {
+    fn sample(&self, x: f32, z: f32) -> Option<Sample> {
+        Sample::at(&self.view, self.origin, x, z).ok()
+    }
+
+    /// The height at world `(x, z)`, or `None` off the window's footprint.
+    pub fn height(&self, x: f32, z: f32) -> Option<f32> {
+        let s = self.sample(x, z)?;
+        Some(s.blend(self.view.cols(), self.view.y()))
+    }
+
+    /// The water under `(x, z)`, or `None` off the footprint: its velocity (the
+    /// lattice's, per unit of model time), and the least `mass × rate − viscosity` over the
+    /// four nodes the point blends (the damping room `rate` leaves them).
+    pub fn flow(
+        &self,
+        x: f32,
+        z: f32,
+        rate: f32,
+        cache: &mut RoomCache,
+    ) -> Option<(Vec3, f32, Spread)> {
+        let s = self.sample(x, z)?;
+        let cols = self.view.cols();
+        let corners = s.corners(cols);
+        let room = match *cache {
+            Some((cell, room)) if cell == corners[0] => room,
+            _ => {
+                let room = corners
+                    .map(|i| self.mass.get(i) * rate - self.viscosity.get(i))
+                    .into_iter()
+                    .fold(f32::INFINITY, f32::min);
+                *cache = Some((corners[0], room));
+                room
+            }
+        };
+        Some((
+            s.blend3(cols, self.velocities),
+            room,
+            (corners, s.weights()),
+        ))
+    }
+
+    /// The four nodes a force at `(x, z)` spreads onto and their bilinear weights (those
+    /// [`Surface::add_force_at`] uses), or `None` off the footprint.
+    pub fn spread(&self, x: f32, z: f32) -> Option<Spread> {
+        let s = self.sample(x, z)?;
+        Some((s.corners(self.view.cols()), s.weights()))
     }
 }
 
@@ -251,23 +329,16 @@ impl Surface {
         Ok(())
     }
 
-    /// The water under `(x, z)` for a floating body's column, or `None` outside the
-    /// footprint: height, velocity (the lattice's, per unit of model time), and the least `mass × rate − viscosity` over the four
-    /// nodes the point blends (the damping room `rate` leaves them).
-    pub(crate) fn water_under(&self, x: f32, z: f32, rate: f32) -> Option<(f32, Vec3, f32)> {
-        let view = self.mesh_view();
-        let sample = Sample::at(&view, self.window_origin, x, z).ok()?;
-        let cols = view.cols();
-        let room = sample
-            .corners(cols)
-            .map(|i| self.state.mass.get(i) * rate - self.state.viscosity.get(i))
-            .into_iter()
-            .fold(f32::INFINITY, f32::min);
-        Some((
-            sample.blend(cols, view.y()),
-            sample.blend3(cols, self.velocities()),
-            room,
-        ))
+    /// A reader of the water for the floating bodies' step: one view of the surface for
+    /// the many points they sample.
+    pub(crate) fn waters(&self) -> Waters<'_> {
+        Waters {
+            view: self.mesh_view(),
+            origin: self.window_origin,
+            velocities: self.velocities(),
+            mass: &self.state.mass,
+            viscosity: &self.state.viscosity,
+        }
     }
 
     /// Unit normal of the water at world `(x, z)`: node normals blended bilinearly and

@@ -104,6 +104,26 @@ pub fn same_bits_everywhere(build: impl Fn() -> Surface + Sync, run: impl Fn(&mu
 }
 
 /// Rewrites the checksum so that content checks are reached.
+/// The snapshot of version 6 `v6` (of a surface with `n` nodes and `bodies` bodies, none
+/// with a hull) in version 5's layout, what the version 5 encoder wrote for the same
+/// state but the bodies' rotation: a header of 136 bytes (without the hull section's
+/// count and length), and of each body's 176 bytes the first 80 (the fields before the
+/// orientation), no hull section; length and checksum fixed.
+pub fn as_version_5(v6: &[u8], n: usize, bodies: usize) -> Vec<u8> {
+    assert_eq!(v6[136..152], [0; 16], "no hull meshes");
+    let at = 152 + 77 * n;
+    let mut b = [&v6[..136], &v6[152..at]].concat();
+    for k in 0..bodies {
+        b.extend_from_slice(&v6[at + 176 * k..][..80]);
+    }
+    b.extend_from_slice(&v6[v6.len() - 44..]);
+    b[8..12].copy_from_slice(&5u32.to_le_bytes());
+    let len = b.len() as u64;
+    b[16..24].copy_from_slice(&len.to_le_bytes());
+    fix_crc(&mut b);
+    b
+}
+
 pub fn fix_crc(b: &mut [u8]) {
     let end = b.len() - 4;
     let crc = crc32(&b[..end]);

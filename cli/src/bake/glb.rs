@@ -2,7 +2,8 @@
 //! refraction UVs as `TEXCOORD_0`, the triangles), one morph target per frame (the
 //! position and normal offsets from the rest frame) and an animation that weighs frame k's
 //! target 1 at time k/fps and the others 0; each floater is a node with a translation
-//! animation on the same clock.
+//! and a rotation animation on the same clock (its centre of mass and its orientation, a
+//! unit quaternion `[x, y, z, w]` from the body's frame to the water's).
 //!
 //! **Interpolation: LINEAR.** At the keys the two are the same (one weight is 1); between
 //! keys, linear weights blend two neighbouring frames' offsets, which is the linear
@@ -10,6 +11,9 @@
 //! Blender scene plays at another rate than the bake's; STEP would hold each frame and
 //! stutter. The weights output (frames+1 keys of `frames` weights each, all 0 but one)
 //! is a sparse accessor, so it costs 8 bytes a frame instead of growing as frames².
+//! Rotations interpolate by spherical linear interpolation (glTF's LINEAR for rotations),
+//! and each key is the quaternion, or its negative (the same rotation), on the side of the
+//! key before, so no importer turns a body the long way round between two keys.
 //!
 //! **Streaming.** A GLB puts its JSON chunk (which needs every accessor's length and
 //! `min`/`max`) before its binary chunk, so the binary data is written frame by frame to
@@ -45,11 +49,12 @@ pub fn check_size(path: &Path, p: &Params, frames: usize, floaters: usize) -> Cl
     let n = (p.cols * p.rows) as u64;
     let triangles = 2 * (p.cols as u64 - 1) * (p.rows as u64 - 1);
     let frames = frames as u64;
+    // Per floater and key: a translation (12 bytes) and a rotation (16).
     let bytes =
-        n * 32 + triangles * 12 + frames * (n * 24 + 12 + 12 * floaters as u64) + frames * 200;
+        n * 32 + triangles * 12 + frames * (n * 24 + 12 + 28 * floaters as u64) + frames * 200;
     let limit = u32::MAX as u64 - (1 << 20);
     if bytes > limit {
-        let per_frame = n * 24 + 12 + 12 * floaters as u64 + 200;
+        let per_frame = n * 24 + 12 + 28 * floaters as u64 + 200;
         let most = limit.saturating_sub(n * 32 + triangles * 12) / per_frame;
         return Err(format!(
             "--out {}: a .glb holds at most 4 GiB and this bake needs about {:.1} GiB; \
@@ -83,6 +88,8 @@ pub struct Glb {
     targets: Vec<[usize; 2]>,
     /// Per floater, its centre at every key.
     tracks: Vec<Vec<[f32; 3]>>,
+    /// Per floater, its orientation at every key, each on the side of the one before.
+    turns: Vec<Vec<[f32; 4]>>,
 }
 
 impl Glb {
@@ -121,6 +128,7 @@ impl Glb {
             accessors: Vec::new(),
             targets: Vec::with_capacity(frames),
             tracks: first.floaters.iter().map(|&c| vec![c]).collect(),
+            turns: first.orientations.iter().map(|&q| vec![q]).collect(),
         };
         let result = (|| {
             let [x, y, z, nx, ny, nz] = glb.base.clone();
@@ -240,26 +248,38 @@ impl Glb {
             keys * frames
         ));
         let tracks = std::mem::take(&mut self.tracks);
+        let turns = std::mem::take(&mut self.turns);
+        // Per floater, its translation and rotation accessors.
         let mut paths = Vec::new();
-        for track in &tracks {
+        for (track, turn) in tracks.iter().zip(&turns) {
             let view = self.view(keys as u64 * 12, None, |w| {
                 track
                     .iter()
                     .flatten()
                     .try_for_each(|c| w.write_all(&c.to_le_bytes()))
             })?;
-            paths.push(self.accessor(format!(
+            let moves = self.accessor(format!(
                 r#"{{"bufferView":{view},"componentType":{FLOAT},"count":{keys},"type":"VEC3"}}"#
-            )));
+            ));
+            let view = self.view(keys as u64 * 16, None, |w| {
+                turn.iter()
+                    .flatten()
+                    .try_for_each(|c| w.write_all(&c.to_le_bytes()))
+            })?;
+            let rotations = self.accessor(format!(
+                r#"{{"bufferView":{view},"componentType":{FLOAT},"count":{keys},"type":"VEC4"}}"#
+            ));
+            paths.push([moves, rotations]);
         }
 
         let list = |items: &mut dyn Iterator<Item = String>| items.collect::<Vec<_>>().join(",");
         let nodes = 1 + tracks.len();
         let mut node_json = vec![r#"{"name":"water","mesh":0}"#.to_owned()];
-        for (k, track) in tracks.iter().enumerate() {
+        for (k, (track, turn)) in tracks.iter().zip(&turns).enumerate() {
             let [x, y, z] = track[0];
+            let [qx, qy, qz, qw] = turn[0];
             node_json.push(format!(
-                r#"{{"name":"floater {k}","translation":[{x},{y},{z}]}}"#
+                r#"{{"name":"floater {k}","translation":[{x},{y},{z}],"rotation":[{qx},{qy},{qz},{qw}]}}"#
             ));
         }
         let targets = list(
@@ -274,15 +294,17 @@ impl Glb {
             r#"{{"input":{times},"output":{weights},"interpolation":"LINEAR"}}"#
         )];
         let mut channels = vec![r#"{"sampler":0,"target":{"node":0,"path":"weights"}}"#.to_owned()];
-        for (k, path) in paths.iter().enumerate() {
-            samplers.push(format!(
-                r#"{{"input":{times},"output":{path},"interpolation":"LINEAR"}}"#
-            ));
-            channels.push(format!(
-                r#"{{"sampler":{},"target":{{"node":{},"path":"translation"}}}}"#,
-                k + 1,
-                k + 1
-            ));
+        for (k, outputs) in paths.iter().enumerate() {
+            for (output, path) in outputs.iter().zip(["translation", "rotation"]) {
+                channels.push(format!(
+                    r#"{{"sampler":{},"target":{{"node":{},"path":"{path}"}}}}"#,
+                    samplers.len(),
+                    k + 1
+                ));
+                samplers.push(format!(
+                    r#"{{"input":{times},"output":{output},"interpolation":"LINEAR"}}"#
+                ));
+            }
         }
         Ok(format!(
             concat!(
@@ -305,6 +327,17 @@ impl Glb {
             views = self.views.join(","),
             length = self.offset,
         ))
+    }
+}
+
+/// `q`, or `−q` (the same rotation) when that is nearer `before`: consecutive keys on the
+/// same side of the quaternion sphere, so interpolating between them takes the short way.
+fn same_side(before: [f32; 4], q: [f32; 4]) -> [f32; 4] {
+    let dot: f32 = before.iter().zip(&q).map(|(a, b)| a * b).sum();
+    if dot < 0.0 {
+        q.map(|c| -c)
+    } else {
+        q
     }
 }
 
@@ -334,6 +367,9 @@ impl Writer for Glb {
         self.base = base;
         for (track, &c) in self.tracks.iter_mut().zip(frame.floaters) {
             track.push(c);
+        }
+        for (turn, &q) in self.turns.iter_mut().zip(frame.orientations) {
+            turn.push(same_side(*turn.last().unwrap_or(&q), q));
         }
         result.map_err(|e| named(&self.part_path, e))
     }
@@ -369,5 +405,247 @@ impl Writer for Glb {
         })();
         result.map_err(|e| named(&self.path, e))?;
         Ok(vec![Pending::File(self.out)])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::output::commit_all;
+    use glam::{Quat, Vec3};
+    use springwater::mesh::Normals;
+    use springwater::refraction::Refraction;
+
+    /// A JSON value, read just far enough to follow a glTF's indices.
+    #[derive(Debug, Clone, PartialEq)]
+    enum Json {
+        Number(f64),
+        Text(String),
+        List(Vec<Json>),
+        Object(Vec<(String, Json)>),
+        Other,
+    }
+
+    impl Json {
+        fn get(&self, key: &str) -> &Json {
+            match self {
+                Json::Object(fields) => fields
+                    .iter()
+                    .find(|(k, _)| k == key)
+                    .map(|(_, v)| v)
+                    .unwrap_or_else(|| panic!("no {key} in {self:?}")),
+                _ => panic!("{self:?} is not an object"),
+            }
+        }
+
+        fn at(&self, i: usize) -> &Json {
+            match self {
+                Json::List(items) => &items[i],
+                _ => panic!("{self:?} is not a list"),
+            }
+        }
+
+        fn list(&self) -> &[Json] {
+            match self {
+                Json::List(items) => items,
+                _ => panic!("{self:?} is not a list"),
+            }
+        }
+
+        fn number(&self) -> f64 {
+            match self {
+                Json::Number(n) => *n,
+                _ => panic!("{self:?} is not a number"),
+            }
+        }
+
+        fn index(&self) -> usize {
+            self.number() as usize
+        }
+    }
+
+    /// Parses the JSON at the start of `s`; returns it and the rest of `s`.
+    fn parse(s: &str) -> (Json, &str) {
+        fn rest(s: &str, n: usize) -> &str {
+            s[n..].trim_start()
+        }
+        let s = s.trim_start();
+        match s.as_bytes()[0] {
+            b'{' | b'[' => {
+                let object = s.starts_with('{');
+                let (mut s, mut fields, mut items) = (rest(s, 1), Vec::new(), Vec::new());
+                while !s.starts_with(['}', ']']) {
+                    if object {
+                        let (Json::Text(key), after) = parse(s) else {
+                            panic!("a key expected at {s:.20}")
+                        };
+                        let (value, after) = parse(rest(after, 1));
+                        fields.push((key, value));
+                        s = after;
+                    } else {
+                        let (value, after) = parse(s);
+                        items.push(value);
+                        s = after;
+                    }
+                    s = s.strip_prefix(',').unwrap_or(s).trim_start();
+                }
+                let value = if object {
+                    Json::Object(fields)
+                } else {
+                    Json::List(items)
+                };
+                (value, rest(s, 1))
+            }
+            b'"' => {
+                let end = s[1..].find('"').expect("a closed string") + 1;
+                (Json::Text(s[1..end].to_owned()), &s[end + 1..])
+            }
+            b'-' | b'0'..=b'9' => {
+                let end = s
+                    .find(|c: char| !(c.is_ascii_digit() || "+-.eE".contains(c)))
+                    .unwrap_or(s.len());
+                (Json::Number(s[..end].parse().unwrap()), &s[end..])
+            }
+            _ => {
+                let end = s.find([',', '}', ']']).unwrap_or(s.len());
+                (Json::Other, &s[end..])
+            }
+        }
+    }
+
+    /// Writes a .glb of a 2 × 2 grid and one floater taking `turns` (one orientation per
+    /// key, the first the rest frame's) and returns its JSON and binary chunk.
+    fn bake(name: &str, turns: &[Quat]) -> (Json, Vec<u8>) {
+        let dir = std::env::temp_dir().join(format!("springwater-glb-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        let (xs, ys, zs) = (
+            vec![0.0, 1.0, 0.0, 1.0],
+            vec![0.0; 4],
+            vec![0.0, 0.0, 1.0, 1.0],
+        );
+        let normals = Normals {
+            x: vec![0.0; 4],
+            y: vec![1.0; 4],
+            z: vec![0.0; 4],
+        };
+        let uv = Refraction {
+            u: xs.clone(),
+            v: zs.clone(),
+            fresnel: vec![0.0; 4],
+        };
+        let rest = Rest {
+            indices: vec![0, 2, 1, 1, 2, 3],
+            cols: 2,
+            rows: 2,
+        };
+        let frame = |k: usize| -> ([[f32; 3]; 1], [[f32; 4]; 1]) {
+            ([[0.5, 0.1 * k as f32, 0.5]], [turns[k].to_array()])
+        };
+        let (c, q) = frame(0);
+        let first = Frame {
+            positions: [&xs, &ys, &zs],
+            normals: &normals,
+            uv: &uv,
+            floaters: &c,
+            orientations: &q,
+        };
+        let out = Output::create(&path, "--out").unwrap();
+        let frames = turns.len() - 1;
+        let mut glb = Box::new(Glb::create(out, &rest, &first, frames, 24.0).unwrap());
+        for k in 1..=frames {
+            let (c, q) = frame(k);
+            let f = Frame {
+                floaters: &c,
+                orientations: &q,
+                ..first
+            };
+            glb.frame(k, &f).unwrap();
+        }
+        commit_all(glb.finish().unwrap()).unwrap();
+        let bytes = std::fs::read(&path).unwrap();
+        let u32_at = |at: usize| u32::from_le_bytes(bytes[at..at + 4].try_into().unwrap()) as usize;
+        let json_len = u32_at(12);
+        let json = std::str::from_utf8(&bytes[20..20 + json_len]).unwrap();
+        let bin = 20 + json_len + 8;
+        (parse(json).0, bytes[bin..].to_vec())
+    }
+
+    /// The keys of the channel animating `path` of node `node`.
+    fn keys(json: &Json, bin: &[u8], node: usize, path: &str) -> Vec<Vec<f32>> {
+        let animation = json.get("animations").at(0);
+        let channel = animation
+            .get("channels")
+            .list()
+            .iter()
+            .find(|c| {
+                let t = c.get("target");
+                t.get("node").index() == node && t.get("path") == &Json::Text(path.into())
+            })
+            .unwrap_or_else(|| panic!("no {path} channel for node {node}"));
+        let sampler = animation.get("samplers").at(channel.get("sampler").index());
+        assert_eq!(sampler.get("interpolation"), &Json::Text("LINEAR".into()));
+        let accessor = json.get("accessors").at(sampler.get("output").index());
+        let view = json
+            .get("bufferViews")
+            .at(accessor.get("bufferView").index());
+        let width = match accessor.get("type") {
+            Json::Text(t) if t == "VEC3" => 3,
+            Json::Text(t) if t == "VEC4" => 4,
+            other => panic!("{other:?}"),
+        };
+        let at = view.get("byteOffset").index();
+        let count = accessor.get("count").index();
+        let floats: Vec<f32> = bin[at..at + count * width * 4]
+            .chunks_exact(4)
+            .map(|b| f32::from_le_bytes(b.try_into().unwrap()))
+            .collect();
+        floats.chunks_exact(width).map(<[f32]>::to_vec).collect()
+    }
+
+    #[test]
+    fn a_heeled_body_keeps_its_orientation_in_its_rotation_channel() {
+        // Heeled 20° to starboard, then rolling back while it yaws and pitches.
+        let heel = |deg: f32| Quat::from_rotation_x(deg.to_radians());
+        let turns = [
+            heel(20.0),
+            heel(12.0) * Quat::from_rotation_y(0.3),
+            Quat::from_rotation_z(0.2) * heel(-5.0),
+        ];
+        let (json, bin) = bake("heeled.glb", &turns);
+        let node = json.get("nodes").at(1);
+        assert_eq!(node.get("name"), &Json::Text("floater 0".into()));
+        let rotation: Vec<f32> = node
+            .get("rotation")
+            .list()
+            .iter()
+            .map(|c| c.number() as f32)
+            .collect();
+        assert_eq!(rotation, turns[0].to_array(), "the node rests in its pose");
+        let rotations = keys(&json, &bin, 1, "rotation");
+        let want: Vec<Vec<f32>> = turns.iter().map(|q| q.to_array().to_vec()).collect();
+        assert_eq!(
+            rotations, want,
+            "one key per frame, the orientation bit for bit"
+        );
+        let moves = keys(&json, &bin, 1, "translation");
+        assert_eq!(moves[2], vec![0.5, 0.2, 0.5], "the translation beside it");
+    }
+
+    #[test]
+    fn rotation_keys_stay_on_one_side_of_the_quaternion_sphere() {
+        // −q is the same turn as q: written as given, the interpolation between keys 1
+        // and 2 would go the long way round (nearly a full turn for a body barely moving).
+        let q = Quat::from_rotation_x(0.4);
+        let flipped = Quat::from_xyzw(-q.x, -q.y, -q.z, -q.w) * Quat::from_rotation_y(0.01);
+        let (json, bin) = bake("flipped.glb", &[Quat::IDENTITY, q, flipped]);
+        let rotations = keys(&json, &bin, 1, "rotation");
+        let dot = |a: &[f32], b: &[f32]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f32>();
+        assert!(dot(&rotations[1], &rotations[2]) > 0.99, "{rotations:?}");
+        // The same rotation: the key is the negated quaternion.
+        let back = Quat::from_slice(&rotations[2]);
+        let turned = back * Vec3::Z;
+        assert!((turned - flipped * Vec3::Z).length() < 1e-6);
+        assert_eq!(rotations[2], flipped.to_array().map(|c| -c).to_vec());
     }
 }

@@ -9,7 +9,8 @@ Run by cli/tests/bake_blender.rs:
 The CSV is `springwater simulate --csv` after the same steps (col,row,x,y,z per node,
 row-major). springwater is y-up, Blender z-up: both importers turn a point (x, y, z) into
 (x, -z, y), so the check compares world positions against that. With `--floater` the
-first floater's node (glb) is checked too.
+first floater's node (glb) is checked too: its position, and its orientation against the
+rotation key the file holds for the frame.
 """
 import argparse
 import sys
@@ -20,6 +21,7 @@ import numpy
 numpy.bool = bool
 
 import bpy  # noqa: E402
+import mathutils  # noqa: E402
 
 argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
 ap = argparse.ArgumentParser()
@@ -31,6 +33,27 @@ ap.add_argument("--frame", type=int, required=True)
 ap.add_argument("--csv", required=True)
 ap.add_argument("--floater")
 args = ap.parse_args(argv)
+
+
+
+def rotation_key(path, name, key):
+    """The rotation key `key` of node `name` in the .glb at `path`, [x, y, z, w]."""
+    import json
+    import struct
+
+    data = open(path, "rb").read()
+    (length,) = struct.unpack_from("<I", data, 12)
+    doc = json.loads(data[20:20 + length])
+    binary = 20 + length + 8
+    node = [n["name"] for n in doc["nodes"]].index(name)
+    animation = doc["animations"][0]
+    channel = [c for c in animation["channels"]
+               if c["target"] == {"node": node, "path": "rotation"}][0]
+    accessor = doc["accessors"][animation["samplers"][channel["sampler"]]["output"]]
+    view = doc["bufferViews"][accessor["bufferView"]]
+    at = binary + view.get("byteOffset", 0) + accessor.get("byteOffset", 0) + 16 * key
+    return list(struct.unpack_from("<4f", data, at))
+
 
 bpy.ops.wm.read_factory_settings(use_empty=True)
 scene = bpy.context.scene
@@ -99,6 +122,19 @@ if args.floater:
     if not (close(got[0], x) and close(got[1], -z) and close(got[2], y)):
         sys.exit(f"floater 0 at {tuple(got)}, expected {(x, -z, y)}")
     print(f"floater 0 at {tuple(got)}")
+    # Its orientation: the rotation key of this frame as the file holds it, turned from
+    # y-up to z-up (M ↦ C M Cᵀ with C: (x, y, z) ↦ (x, −z, y)), against Blender's pose.
+    want = rotation_key(args.glb, "floater 0", args.frame)
+    c = mathutils.Matrix(((1, 0, 0), (0, 0, -1), (0, 1, 0)))
+    w, qx, qy, qz = want[3], want[0], want[1], want[2]
+    expected = c @ mathutils.Quaternion((w, qx, qy, qz)).to_matrix() @ c.transposed()
+    pose = body.matrix_world.to_3x3()
+    off = max(abs(pose[i][j] - expected[i][j]) for i in range(3) for j in range(3))
+    if off > 1e-5:
+        sys.exit(f"floater 0 turned {pose}, the file says {expected} (key {want})")
+    if want == [0.0, 0.0, 0.0, 1.0]:
+        sys.exit("floater 0 has not turned at this frame: its rotation was not checked")
+    print(f"floater 0 turned as its rotation key {want} says (largest difference {off:g})")
 
 print(f"BAKE OK: {len(rows)} vertices at frame {args.frame} (largest difference {worst:g}), "
       f"{moving} of them off the rest plane")

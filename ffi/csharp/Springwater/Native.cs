@@ -51,8 +51,12 @@ namespace Springwater
 
         /// <summary>A ball of <c>SwFloater.radius</c>.</summary>
         public const int SW_SHAPE_SPHERE = 0;
-        /// <summary>A box aligned with the water's axes, of <c>SwFloater.half_extents</c>.</summary>
+        /// <summary>A box of <c>SwFloater.half_extents</c>, its faces along the body's axes.</summary>
         public const int SW_SHAPE_BOX = 1;
+        /// <summary>A closed triangle mesh (a hull handle), kept by the surface.</summary>
+        public const int SW_SHAPE_HULL = 2;
+        /// <summary><c>sizeof(SwFloater)</c> in version 1 of the header, which the calls still take.</summary>
+        public const int SW_FLOATER_SIZE_V1 = 80;
 
         /// <summary>Success.</summary>
         public const int SW_OK = 0;
@@ -490,6 +494,81 @@ namespace Springwater
         /// need a smaller timestep than the surface's `dt`.</summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int sw_surface_set_buoyancy(IntPtr surface, SwBuoyancy* buoyancy);
+
+        /// <summary>An empty `SwBodyForces` with its size set, for `sw_surface_body_forces` to fill.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern SwBodyForces sw_body_forces_default();
+
+        /// <summary>Validates a closed triangle mesh (`vertex_count` vertices of three floats,
+        /// `triangle_count` triangles of three indices, counter-clockwise from outside) and writes a
+        /// new hull handle to `out`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_hull_create(
+            float* xyz,
+            UIntPtr vertex_count,
+            uint* triangles,
+            UIntPtr triangle_count,
+            IntPtr* @out);
+
+        /// <summary>Destroys a hull handle; the bodies made of it keep their mesh. NULL and a
+        /// destroyed handle are no-ops.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern void sw_hull_destroy(IntPtr hull);
+
+        /// <summary>Writes the hull's volume, cubic world units, to `out`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_hull_volume(IntPtr hull, float* @out);
+
+        /// <summary>Writes a body of the hull's shape, of `mass`, at `(x, y, z)`, at rest, upright,
+        /// to `out` (whose `struct_size` must be set); its inertia is the hull's.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_floater_hull(
+            IntPtr hull,
+            float mass,
+            float x,
+            float y,
+            float z,
+            SwFloater* @out);
+
+        /// <summary>Adds a body whose shape is `hull` (`floater->shape` is `SW_SHAPE_HULL`) and
+        /// writes its id to `id`; the surface keeps the mesh.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_add_hull_floater(
+            IntPtr surface,
+            IntPtr hull,
+            SwFloater* floater,
+            ulong* id);
+
+        /// <summary>Adds the force `(fx, fy, fz)` acting at the world point `(x, y, z)` to a body for
+        /// the next step only: a force and a torque about its centre of mass.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_push_floater_at(
+            IntPtr surface,
+            ulong id,
+            float fx,
+            float fy,
+            float fz,
+            float x,
+            float y,
+            float z);
+
+        /// <summary>The water's force and torque on a sphere or box body another engine owns, over
+        /// its coming tick of `seconds`, written to `out`; the water gets the opposite.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_body_forces(
+            IntPtr surface,
+            SwFloater* floater,
+            float seconds,
+            SwBodyForces* @out);
+
+        /// <summary>`sw_surface_body_forces` for a body whose shape is `hull`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_hull_body_forces(
+            IntPtr surface,
+            IntPtr hull,
+            SwFloater* floater,
+            float seconds,
+            SwBodyForces* @out);
 
         /// <summary>An empty job system with its size set: fill in `worker_count`, the two callbacks
         /// and `user_context`, then hand it to `sw_surface_set_job_system`.</summary>

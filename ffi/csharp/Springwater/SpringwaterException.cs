@@ -46,19 +46,26 @@ namespace Springwater
         }
     }
 
-    /// <summary>Owns a live surface handle; releasing it destroys the surface.</summary>
-    internal sealed class SurfaceHandle : SafeHandle
+    /// <summary>Owns a live native handle (a surface's or a hull's).</summary>
+    internal abstract class OwnedHandle : SafeHandle
     {
-        internal SurfaceHandle(IntPtr surface)
+        protected OwnedHandle(IntPtr owned)
             : base(IntPtr.Zero, true)
         {
-            SetHandle(surface);
+            SetHandle(owned);
         }
 
         public override bool IsInvalid
         {
             get { return handle == IntPtr.Zero; }
         }
+    }
+
+    /// <summary>Owns a live surface handle; releasing it destroys the surface.</summary>
+    internal sealed class SurfaceHandle : OwnedHandle
+    {
+        internal SurfaceHandle(IntPtr surface)
+            : base(surface) { }
 
         protected override bool ReleaseHandle()
         {
@@ -67,19 +74,32 @@ namespace Springwater
         }
     }
 
+    /// <summary>Owns a live hull handle; releasing it destroys the hull (its bodies keep their mesh).</summary>
+    internal sealed class HullHandle : OwnedHandle
+    {
+        internal HullHandle(IntPtr hull)
+            : base(hull) { }
+
+        protected override bool ReleaseHandle()
+        {
+            Native.sw_hull_destroy(handle);
+            return true;
+        }
+    }
+
     /// <summary>
     /// A native call in progress: holds a reference on the handle so that a Dispose on
-    /// another thread cannot destroy the surface under the call. After Dispose it hands the
+    /// another thread cannot destroy the surface (or hull) under the call. After Dispose it hands the
     /// destroyed handle's value to the library, which refuses it (handles are never reused)
     /// with SW_ERROR_INVALID_HANDLE and its own message.
     /// </summary>
     internal struct Borrow : IDisposable
     {
-        readonly SurfaceHandle owner;
+        readonly OwnedHandle owner;
         readonly bool held;
         public readonly IntPtr Ptr;
 
-        internal Borrow(SurfaceHandle owner, IntPtr raw)
+        internal Borrow(OwnedHandle owner, IntPtr raw)
         {
             this.owner = owner;
             held = false;

@@ -38,6 +38,76 @@ namespace Springwater
         }
     }
 
+    /// <summary>
+    /// A rotation as a unit quaternion (x, y, z, w), body to world: a floating body's
+    /// orientation. <see cref="Identity"/> is upright.
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct Rotation
+    {
+        public float x, y, z, w;
+
+        public Rotation(float x, float y, float z, float w)
+        {
+            this.x = x;
+            this.y = y;
+            this.z = z;
+            this.w = w;
+        }
+
+        /// <summary>No rotation: (0, 0, 0, 1).</summary>
+        public static Rotation Identity
+        {
+            get { return new Rotation(0, 0, 0, 1); }
+        }
+
+        /// <summary>A turn of <paramref name="radians"/> about the unit axis (ax, ay, az).</summary>
+        public static Rotation AboutAxis(float ax, float ay, float az, float radians)
+        {
+            float s = (float)Math.Sin(0.5 * radians);
+            return new Rotation(ax * s, ay * s, az * s, (float)Math.Cos(0.5 * radians));
+        }
+
+        /// <summary>The vector v turned by this rotation.</summary>
+        public Float3 Rotate(Float3 v)
+        {
+            // v + 2w (q × v) + 2 q × (q × v), with q the vector part.
+            float tx = 2 * (y * v.z - z * v.y), ty = 2 * (z * v.x - x * v.z), tz = 2 * (x * v.y - y * v.x);
+            return new Float3(
+                v.x + w * tx + (y * tz - z * ty),
+                v.y + w * ty + (z * tx - x * tz),
+                v.z + w * tz + (x * ty - y * tx));
+        }
+
+        /// <summary>The angle in degrees between the body's up axis and the world's (its heel).</summary>
+        public float HeelDegrees
+        {
+            get
+            {
+                double up = Math.Max(-1.0, Math.Min(1.0, 1.0 - 2.0 * (x * x + z * z)));
+                return (float)(Math.Acos(up) * 180.0 / Math.PI);
+            }
+        }
+
+        public override string ToString()
+        {
+            return "(" + x + ", " + y + ", " + z + ", " + w + ")";
+        }
+
+        internal static unsafe Rotation Read(float* p)
+        {
+            return new Rotation(p[0], p[1], p[2], p[3]);
+        }
+
+        internal unsafe void Write(float* p)
+        {
+            p[0] = x;
+            p[1] = y;
+            p[2] = z;
+            p[3] = w;
+        }
+    }
+
     /// <summary>The model's parameters (seed defaults from <see cref="Default"/>).</summary>
     [StructLayout(LayoutKind.Sequential)]
     public struct SwParams
@@ -169,15 +239,17 @@ namespace Springwater
     }
 
     /// <summary>
-    /// A floating body, plain data: make it with <see cref="Sphere"/> or <see cref="Box"/>,
-    /// add it with <see cref="WaterSurface.AddFloater"/>, read it back with
-    /// <see cref="WaterSurface.Floater"/>. Velocities and forces are per second.
+    /// A floating body, a rigid body, plain data: make it with <see cref="Sphere"/>,
+    /// <see cref="Box"/> or <see cref="Hull.Floater"/>, add it with
+    /// <see cref="WaterSurface.AddFloater"/> (<see cref="WaterSurface.AddHullFloater"/>),
+    /// read it back with <see cref="WaterSurface.Floater"/>, or keep it in your own engine
+    /// and ask <see cref="WaterSurface.BodyForces"/>. Velocities and forces are per second.
     /// </summary>
     [StructLayout(LayoutKind.Sequential)]
     public unsafe struct SwFloater
     {
         public uint struct_size;
-        /// <summary>Native.SW_SHAPE_SPHERE or SW_SHAPE_BOX.</summary>
+        /// <summary>Native.SW_SHAPE_SPHERE, SW_SHAPE_BOX or SW_SHAPE_HULL.</summary>
         public int shape;
         /// <summary>The sphere's radius (0 for a box).</summary>
         public float radius;
@@ -192,6 +264,18 @@ namespace Springwater
         public fixed float push[3];
         /// <summary>Read only: the water's force on the body during its last step.</summary>
         public fixed float water_force[3];
+        /// <summary>Orientation, body to world, a unit quaternion (x, y, z, w).</summary>
+        public fixed float orientation[4];
+        /// <summary>Angular velocity, radians per second about the world's axes.</summary>
+        public fixed float angular_velocity[3];
+        /// <summary>External torque about the centre of mass for the next step only.</summary>
+        public fixed float push_torque[3];
+        /// <summary>Read only: the water's torque on the body during its last step.</summary>
+        public fixed float water_torque[3];
+        /// <summary>1: inertia is the body's; 0: the shape's at uniform density.</summary>
+        public int has_inertia;
+        /// <summary>Inertia tensor in the body's axes, column by column; read back, the one in use.</summary>
+        public fixed float inertia[9];
 
         /// <summary>A sphere at rest centred at (x, y, z) with the default drag.</summary>
         public static SwFloater Sphere(float radius, float mass, float x, float y, float z)
@@ -232,6 +316,78 @@ namespace Springwater
         public Float3 WaterForce
         {
             get { fixed (float* p = water_force) return Float3.Read(p); }
+        }
+
+        public Rotation Orientation
+        {
+            get { fixed (float* p = orientation) return Rotation.Read(p); }
+            set { fixed (float* p = orientation) value.Write(p); }
+        }
+
+        public Float3 AngularVelocity
+        {
+            get { fixed (float* p = angular_velocity) return Float3.Read(p); }
+            set { fixed (float* p = angular_velocity) value.Write(p); }
+        }
+
+        public Float3 PushTorque
+        {
+            get { fixed (float* p = push_torque) return Float3.Read(p); }
+            set { fixed (float* p = push_torque) value.Write(p); }
+        }
+
+        public Float3 WaterTorque
+        {
+            get { fixed (float* p = water_torque) return Float3.Read(p); }
+        }
+
+        /// <summary>Inertia tensor entry (row, col) in the body's axes.</summary>
+        public float Inertia(int row, int col)
+        {
+            if (row < 0 || row > 2 || col < 0 || col > 2)
+                throw new ArgumentOutOfRangeException("row or col", "0 to 2");
+            fixed (float* p = inertia) return p[3 * col + row];
+        }
+
+        /// <summary>Sets the body's own inertia tensor (body axes, symmetric; has_inertia = 1).</summary>
+        public void SetInertia(float xx, float yy, float zz, float xy, float yz, float zx)
+        {
+            has_inertia = 1;
+            fixed (float* p = inertia)
+            {
+                p[0] = xx; p[1] = xy; p[2] = zx;
+                p[3] = xy; p[4] = yy; p[5] = yz;
+                p[6] = zx; p[7] = yz; p[8] = zz;
+            }
+        }
+    }
+
+    /// <summary>
+    /// The water's push on a body over one tick (<see cref="WaterSurface.BodyForces"/>):
+    /// world frame, the torque about the body's centre of mass.
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public unsafe struct SwBodyForces
+    {
+        public uint struct_size;
+        public fixed float force[3];
+        public fixed float torque[3];
+
+        public static SwBodyForces Default()
+        {
+            return Native.sw_body_forces_default();
+        }
+
+        /// <summary>Buoyancy and drag through the centre of mass (gravity is the engine's).</summary>
+        public Float3 Force
+        {
+            get { fixed (float* p = force) return Float3.Read(p); }
+        }
+
+        /// <summary>The torque about the centre of mass, world axes.</summary>
+        public Float3 Torque
+        {
+            get { fixed (float* p = torque) return Float3.Read(p); }
         }
     }
 

@@ -8,8 +8,9 @@ namespace Springwater
         // ---- Floating bodies ----
 
         /// <summary>
-        /// Adds a floating body (SwFloater.Sphere or SwFloater.Box) and returns its id, never
-        /// reused by this surface. It steps with the water and is part of its snapshots.
+        /// Adds a floating body (SwFloater.Sphere or SwFloater.Box; a hull body goes through
+        /// AddHullFloater) and returns its id, never reused by this surface. It steps with
+        /// the water, pitches and rolls, and is part of its snapshots.
         /// </summary>
         public ulong AddFloater(SwFloater body)
         {
@@ -29,7 +30,7 @@ namespace Springwater
             return body;
         }
 
-        /// <summary>Replaces a body's state (teleport, velocity, mass, drag, shape); water_force is kept.</summary>
+        /// <summary>Replaces a body's state (teleport, turn, velocities, mass, drag, inertia, shape); water_force and water_torque are kept.</summary>
         public void SetFloater(ulong id, SwFloater body)
         {
             using (var s = Enter())
@@ -41,6 +42,62 @@ namespace Springwater
         {
             using (var s = Enter())
                 SpringwaterException.Check(Native.sw_surface_push_floater(s.Ptr, id, fx, fy, fz));
+        }
+
+        /// <summary>
+        /// Adds a body whose shape is <paramref name="hull"/> (start <paramref name="body"/>
+        /// from hull.Floater) and returns its id. The surface keeps the mesh: the hull may be
+        /// disposed afterwards. A hull body read back says Native.SW_SHAPE_HULL, and
+        /// SetFloater with it keeps the body's mesh.
+        /// </summary>
+        public ulong AddHullFloater(Hull hull, SwFloater body)
+        {
+            if (hull == null)
+                throw new ArgumentNullException("hull");
+            ulong id;
+            using (var h = hull.Enter())
+            using (var s = Enter())
+                SpringwaterException.Check(Native.sw_surface_add_hull_floater(s.Ptr, h.Ptr, &body, &id));
+            return id;
+        }
+
+        /// <summary>
+        /// Adds a force acting at the world point (x, y, z) to a body for the next step only:
+        /// through its centre of mass, and the torque (point − position) × force.
+        /// </summary>
+        public void PushFloaterAt(ulong id, Float3 force, Float3 point)
+        {
+            using (var s = Enter())
+                SpringwaterException.Check(Native.sw_surface_push_floater_at(
+                    s.Ptr, id, force.x, force.y, force.z, point.x, point.y, point.z));
+        }
+
+        /// <summary>
+        /// The water's force and torque on a sphere or box body your own engine owns, over
+        /// its coming tick of <paramref name="seconds"/> (the engine's fixed step): apply both
+        /// for the tick, with gravity, the same mass and the inertia body.Inertia reads back.
+        /// The water gets the opposite (the body makes waves); call it once per tick.
+        /// Allocates nothing.
+        /// </summary>
+        public SwBodyForces BodyForces(SwFloater body, float seconds)
+        {
+            SwBodyForces push = Native.sw_body_forces_default();
+            using (var s = Enter())
+                SpringwaterException.Check(Native.sw_surface_body_forces(s.Ptr, &body, seconds, &push));
+            return push;
+        }
+
+        /// <summary>BodyForces for a body whose shape is <paramref name="hull"/>.</summary>
+        public SwBodyForces BodyForces(Hull hull, SwFloater body, float seconds)
+        {
+            if (hull == null)
+                throw new ArgumentNullException("hull");
+            SwBodyForces push = Native.sw_body_forces_default();
+            using (var h = hull.Enter())
+            using (var s = Enter())
+                SpringwaterException.Check(Native.sw_surface_hull_body_forces(
+                    s.Ptr, h.Ptr, &body, seconds, &push));
+            return push;
         }
 
         /// <summary>Removes a body; its id stays unused.</summary>

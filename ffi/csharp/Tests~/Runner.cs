@@ -11,7 +11,7 @@ using System.Text;
 using System.Threading;
 using Springwater;
 
-static unsafe class Runner
+static unsafe partial class Runner
 {
     static int failures;
 
@@ -28,6 +28,7 @@ static unsafe class Runner
         Run("snapshots_round_trip_and_state_hashes_follow_the_state", Snapshots);
         Run("two_threads_each_owning_a_surface_get_the_same_bits", TwoThreads);
         Run("queries_agree_with_the_buffers", Queries);
+        Run("a_heeled_box_rights_itself", RigidBodies);
         Console.WriteLine(failures == 0 ? "all passed" : failures + " failed");
         Environment.Exit(failures == 0 ? 0 : 1);
     }
@@ -370,7 +371,11 @@ static unsafe class Runner
         return new[] {
             f.radius, f.HalfExtents.x, f.HalfExtents.y, f.HalfExtents.z, f.mass, f.drag,
             f.Position.x, f.Position.y, f.Position.z, f.Velocity.x, f.Velocity.y, f.Velocity.z,
-            f.Push.x, f.Push.y, f.Push.z, f.WaterForce.x, f.WaterForce.y, f.WaterForce.z };
+            f.Push.x, f.Push.y, f.Push.z, f.WaterForce.x, f.WaterForce.y, f.WaterForce.z,
+            f.Orientation.x, f.Orientation.y, f.Orientation.z, f.Orientation.w,
+            f.AngularVelocity.x, f.AngularVelocity.y, f.AngularVelocity.z,
+            f.PushTorque.x, f.PushTorque.y, f.PushTorque.z,
+            f.WaterTorque.x, f.WaterTorque.y, f.WaterTorque.z };
     }
 
     /// Kept in step with `floaters()` in ffi/tests/csharp.rs, which runs it through Rust;

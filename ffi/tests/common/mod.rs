@@ -1,7 +1,7 @@
 //! What the C and C# client tests share: the release build they run on, and fingerprints
 //! of float values in the order the clients print them.
 
-use springwater::{Floater, Shape};
+use springwater::{Floater, Params, Shape, Surface};
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
@@ -57,12 +57,13 @@ pub fn fnv(values: impl Iterator<Item = f32>) -> u64 {
 }
 
 /// A body's fields in the order the clients fingerprint them: radius, half extents (the
-/// other shape's read as 0), mass, drag, position, velocity, push, water force.
+/// other shapes' read as 0), mass, drag, position, velocity, push, water force,
+/// orientation (x, y, z, w), angular velocity, push torque, water torque.
 pub fn floater_floats(f: &Floater) -> Vec<f32> {
     let (radius, half_extents) = match f.shape {
         Shape::Sphere { radius } => (radius, [0.0; 3]),
         Shape::Box { half_extents } => (0.0, half_extents.to_array()),
-        other => panic!("the clients have no code for {other:?}"),
+        _ => (0.0, [0.0; 3]),
     };
     let mut floats = vec![radius];
     floats.extend(half_extents);
@@ -70,5 +71,39 @@ pub fn floater_floats(f: &Floater) -> Vec<f32> {
     for v in [f.position, f.velocity, f.push, f.water_force] {
         floats.extend(v.to_array());
     }
+    floats.extend(f.orientation.to_array());
+    for v in [f.angular_velocity, f.push_torque, f.water_torque] {
+        floats.extend(v.to_array());
+    }
     floats
+}
+
+/// What the C and C# clients print for their built-in box, through the Rust API: a 6 × 1.5
+/// × 3 box at half the water's density heeled 15° about x (sin and cos of 7.5° as
+/// literals) on a 48 × 48 pool, after ten seconds of 60 Hz frames: its orientation's and
+/// height's bits.
+pub fn righted_box() -> Vec<(&'static str, String)> {
+    let mut s = Surface::new(Params::with_size(48, 48)).unwrap();
+    let e = glam::Vec3::new(3.0, 0.75, 1.5);
+    let mass = 0.5 * s.buoyancy().density * 8.0 * e.x * e.y * e.z;
+    let mut body = Floater::cuboid(e, mass, [24.0, 0.0, 24.0]);
+    body.orientation = glam::Quat::from_xyzw(0.130_526_19, 0.0, 0.0, 0.991_444_9);
+    let id = s.add_floater(body).unwrap();
+    for _ in 0..600 {
+        s.advance(1.0 / 60.0).unwrap();
+    }
+    let f = s.floater(id).unwrap();
+    let bits: Vec<String> = f
+        .orientation
+        .to_array()
+        .iter()
+        .map(|v| format!("{:08x}", v.to_bits()))
+        .collect();
+    vec![
+        ("righted_orientation", bits.join(" ")),
+        (
+            "righted_position",
+            format!("{:08x}", f.position.y.to_bits()),
+        ),
+    ]
 }

@@ -6,8 +6,10 @@
 //! How it is built: the encoder is written once (`stream.rs`), a sequence of fields sent
 //! to a sink that is a byte buffer for saving and a hasher for `state_hash`; the reader
 //! (`read.rs`) checks the framing every version shares and reads the sections the
-//! versions are built from, borrowing the bytes; each format version has one decoder
-//! that upgrades what it read to the next version (`versions.rs`); validation
+//! versions are built from, borrowing the bytes; `bodies.rs` decodes the bodies and the
+//! hull meshes they share, and tells the encoder which meshes to store; each format
+//! version has one decoder that upgrades what it read to the next version
+//! (`versions.rs`); validation
 //! (`validate.rs`) checks a snapshot's contents wherever they are, in vectors or in the
 //! bytes; `restore.rs` copies a current-version snapshot back into a surface of the same
 //! shape without allocating.
@@ -19,7 +21,9 @@
 //! out and why. XXH3-64 over a checksum such as CRC-32: 64 bits (a desync missed with
 //! odds 2⁻⁶⁴ a comparison, not 2⁻³²), and several bytes a cycle.
 
+mod bodies;
 mod read;
+mod reader;
 mod restore;
 mod stream;
 mod validate;
@@ -39,12 +43,14 @@ use validate::Contents;
 
 /// The first eight bytes of every snapshot.
 pub(crate) const MAGIC: [u8; 8] = *b"SPRWATER";
-/// The format version this build writes. It reads versions 1 to 5 (see [`Snapshot`]).
-pub(crate) const VERSION: u32 = 5;
+/// The format version this build writes. It reads versions 1 to 6 (see [`Snapshot`]).
+pub(crate) const VERSION: u32 = 6;
 /// Bytes before the per-node arrays in versions 1 and 2.
 const HEADER_V2: usize = 112;
+/// Bytes before the per-node arrays in versions 3 to 5.
+const HEADER_V5: usize = 136;
 /// Bytes before the per-node arrays.
-const HEADER: usize = 136;
+const HEADER: usize = 152;
 /// Trailing checksum.
 const CRC: usize = 4;
 
@@ -63,16 +69,17 @@ const CRC: usize = 4;
 /// data's arrays may be edited first (its bounds and flags follow them, see
 /// [`Surface::from_snapshot`]).
 ///
-/// # Format (version 5)
+/// # Format (version 6)
 ///
-/// Little-endian throughout; `n = cols × rows`, `f` floating bodies. Per-node arrays hold
-/// exactly `n` values (no SIMD padding); spring tables are indexed by origin node, with
-/// `0.0` for springs that do not exist (E from the last column, S from the last row, …).
+/// Little-endian throughout; `n = cols × rows`, `f` floating bodies, `h` hull meshes in
+/// `m` bytes. Per-node arrays hold exactly `n` values (no SIMD padding); spring tables are
+/// indexed by origin node, with `0.0` for springs that do not exist (E from the last
+/// column, S from the last row, …).
 ///
 /// | offset | size | field |
 /// |---|---|---|
 /// | 0 | 8 | magic `b"SPRWATER"` |
-/// | 8 | 4 | format version `u32` (5; versions 1 to 4 are read too) |
+/// | 8 | 4 | format version `u32` (6; versions 1 to 5 are read too) |
 /// | 12 | 4 | flags `u32`: bit 0 = external forces pending; other bits 0 |
 /// | 16 | 8 | total length in bytes `u64`, checksum included |
 /// | 24 | 8, 8 | `cols`, `rows` as `u64` |
@@ -87,33 +94,76 @@ const CRC: usize = 4;
 /// | 116 | 4 | floating bodies `f` (`u32`) |
 /// | 120 | 8 | the id the next added body gets (`u64`) |
 /// | 128 | 2 × 4 | buoyancy: gravity (world units per second²), water density (`f32`) |
-/// | 136 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z (the lattice's units, model time) |
+/// | 136 | 8 | hull meshes `h` (`u64`) |
+/// | 144 | 8 | the hull section's length in bytes `m` (`u64`) |
+/// | 152 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z (the lattice's units, model time) |
 /// | | 2 × 4n | mass, viscosity per node |
 /// | | n | pinned per node, `u8` 0 or 1 |
 /// | | 8 × 4n | rest length then stiffness, for families E, S, SE, SW |
-/// | | 80 f | per body: id `u64`, shape `u32` (0 = sphere, 1 = box), size (radius, 0, 0 or half extents), mass, drag (per second), position, velocity (per second), push, water force (mass × world units per second²) (`f32`) |
+/// | | 176 f | the bodies, ids increasing (table below) |
+/// | | m | the hull section: the `h` meshes, each its vertex count `v` and triangle count `t` (`u32`), `v` vertices (three `f32`, the body's frame), `t` triangles (three `u32` vertex indices, counter-clockwise seen from outside); `m = Σ (8 + 12 v + 12 t)` |
 /// | end − 44 | 2 × 8 | the window's origin in cells, columns then rows (`i64`, [`Surface::origin_cells`]) |
 /// | end − 28 | 8 | model time [`Surface::advance`] owes and has not stepped (`f64`) |
 /// | end − 20 | 4, 4 | the step cap `u32` and what happens past it `u32`: 0 = drop, 1 = carry ([`Surface::set_step_cap`]) |
 /// | end − 12 | 8 | seconds the cap has dropped so far (`f64`) |
 /// | end − 4 | 4 | CRC-32 (IEEE) of every byte before it |
 ///
-/// The total is `180 + 77 n + 80 f` bytes. Version 4 has the same layout with the
-/// acceleration, gravity and bodies in model time (velocities per unit of model time,
-/// drag per unit, accelerations and forces per unit²): loading converts them to seconds
-/// with the stored `time_scale` (the acceleration to the per-second² value that converts
-/// back to the stored bits where one exists, as for zero and about 9 in 10 other values,
-/// else one rounding off; water without bodies then continues bit for bit, bodies to
-/// rounding). Version 3 has no origin and no clock either (read as
-/// `[0, 0]`, a window that never moved, and a fresh clock). Versions 1 and 2 end the header at offset 112
-/// (no bodies, no absorbing boundary; version 1 has no `time_scale` either: such
-/// snapshots get the default). Loading refuses, with [`Error::Snapshot`] and a message
-/// that says what is wrong: a wrong magic or version, a total length that disagrees with
-/// `cols × rows` or with the bytes present, a checksum mismatch, parameters that
-/// [`Params::validate`] refuses, non-finite values, masses or stiffnesses out of range,
-/// pinned nodes that move, springs outside the grid, bounds that do not cover the
-/// tables, and bodies that [`Floater::validate`] refuses or whose ids are not increasing. Lengths are checked against the bytes actually present before anything is
-/// allocated, so a lying length field costs nothing. A refused snapshot changes nothing.
+/// Each body, in seconds and world units as [`Floater`] has them (`f32` but where said):
+///
+/// | offset | size | field |
+/// |---|---|---|
+/// | 0 | 8 | id `u64` |
+/// | 8 | 4 | shape `u32`: 0 = sphere, 1 = box, 2 = hull |
+/// | 12 | 3 × 4 | size: (radius, 0, 0), the half extents, or (0, 0, 0) for a hull |
+/// | 24 | 2 × 4 | mass, drag (per second) |
+/// | 32 | 3 × 4 | position |
+/// | 44 | 3 × 4 | velocity |
+/// | 56 | 3 × 4 | push (mass × world units per second²) |
+/// | 68 | 3 × 4 | water force |
+/// | 80 | 4 × 4 | orientation x, y, z, w (body to world) |
+/// | 96 | 3 × 4 | angular velocity (radians per second, world axes) |
+/// | 108 | 3 × 4 | push torque |
+/// | 120 | 3 × 4 | water torque |
+/// | 132 | 4 | hull index `u32` into the hull section (0 for the other shapes) |
+/// | 136 | 4 | inertia flag `u32`: 0 = the shape's at uniform density, 1 = the tensor that follows |
+/// | 140 | 9 × 4 | inertia tensor, column by column (zeros without the flag) |
+///
+/// The inertia keeps all nine entries, not the six of a symmetric tensor: validation
+/// accepts a tensor symmetric to rounding, which six entries would not give back bit for
+/// bit.
+///
+/// A hull mesh is stored once however many bodies hold it (bodies sharing one
+/// `Arc<Hull>`, or meshes with the same bits), in the order the bodies first use it: a
+/// body's index is at most one more than the largest before it, every stored mesh is
+/// used, and no two have the same bits. Loading passes each mesh through [`Hull::new`](crate::body::Hull::new) and gives
+/// the bodies that name one mesh one `Arc`; [`Surface::restore`] reuses the surface's own
+/// `Arc` where it has the stored bits.
+///
+/// The total is `196 + 77 n + 176 f + m` bytes. Version 5 has a header of 136 bytes
+/// (without the hull section's count and length), bodies of 80 bytes (the first 80 above,
+/// spheres and boxes) and no hull section: its bodies load upright (the identity
+/// orientation), not spinning, with no torque pushed or felt and the shape's inertia.
+/// Version 4 has version 5's layout with the acceleration, gravity and bodies in model
+/// time (velocities per unit of model time, drag per unit, accelerations and forces per
+/// unit²): loading converts them to seconds with the stored `time_scale` (the
+/// acceleration to the per-second² value that converts back to the stored bits where one
+/// exists, as for zero and about 9 in 10 other values, else one rounding off; water
+/// without bodies then continues bit for bit, bodies to rounding). Version 3 has no
+/// origin and no clock either (read as `[0, 0]`, a window that never moved, and a fresh
+/// clock). Versions 1 and 2 end the header at offset 112 (no bodies, no absorbing
+/// boundary; version 1 has no `time_scale` either: such snapshots get the default).
+///
+/// Loading refuses, with [`Error::Snapshot`] and a message that says what is wrong: a
+/// wrong magic or version, a total length that disagrees with `cols × rows`, the body
+/// count and the hull section's length or with the bytes present, a checksum mismatch,
+/// parameters that [`Params::validate`] refuses, non-finite values, masses or stiffnesses
+/// out of range, pinned nodes that move, springs outside the grid, bounds that do not
+/// cover the tables, bodies that [`Floater::validate`] refuses or whose ids are not
+/// increasing, unknown shape codes or flags, hull meshes whose counts disagree with the
+/// section's length, hull indices out of range or out of order, meshes no body uses or
+/// stored twice, and meshes [`Hull::new`](crate::body::Hull::new) refuses. Lengths are checked against the
+/// bytes actually present before anything is allocated, so a lying length or count costs
+/// nothing. A refused snapshot changes nothing.
 ///
 /// # As plain data
 ///
@@ -237,10 +287,11 @@ pub(crate) struct Scalars {
 impl Snapshot {
     /// The first eight bytes of every binary snapshot.
     pub const MAGIC: [u8; 8] = MAGIC;
-    /// The binary format version this build writes. It reads this one and versions 1 to 4
+    /// The binary format version this build writes. It reads this one and versions 1 to 5
     /// (version 1 had no `time_scale`, version 3 no window origin: such snapshots get the
     /// default and `[0, 0]`; versions up to 4 kept bodies and accelerations in model time,
-    /// converted to seconds on loading).
+    /// converted to seconds on loading; bodies of versions up to 5 did not rotate and load
+    /// upright and not spinning).
     pub const VERSION: u32 = VERSION;
 
     /// Encodes the snapshot in the binary format of the module docs.
@@ -323,7 +374,7 @@ impl Snapshot {
             pinned: &self.pinned[..],
             rest: std::array::from_fn(|f| &self.rest[f][..]),
             stiffness: std::array::from_fn(|f| &self.stiffness[f][..]),
-            bodies: self.floaters.iter().map(|&body| Ok(body)),
+            bodies: &self.floaters,
         }
         .validate()
     }
@@ -472,11 +523,14 @@ impl Surface {
 
     /// A 64-bit hash of everything that decides the surface's future: positions,
     /// velocities, pending forces, per-node masses, viscosities and pins, the springs, the
-    /// bodies with their pushes, the parameters and the acceleration, the bounds behind
+    /// bodies (shape and hull mesh, mass and inertia, pose, velocity and angular velocity,
+    /// pushes and their torques, the water's last force and torque), the parameters and
+    /// the acceleration, the bounds behind
     /// [`Surface::critical_dt`], the window's origin and the clock's carried time and cap;
     /// not the counters that only report (steps taken, [`Surface::time`],
     /// [`Surface::dropped_seconds`]), nor how the surface is stored or run (capacities,
-    /// padding, caches, the thread pool, the SIMD level).
+    /// padding, caches, whether bodies with one hull mesh share its `Arc`, the thread
+    /// pool, the SIMD level).
     ///
     /// Equal states hash equal on every SIMD level, thread count and platform, so peers of
     /// a multiplayer game compare hashes to detect a desync. The hash is XXH3-64 (the
@@ -524,15 +578,19 @@ impl Surface {
             source: e.into(),
         };
         let mut bytes = Vec::with_capacity(HEADER);
-        (&mut r)
-            .take(HEADER as u64)
-            .read_to_end(&mut bytes)
-            .map_err(io)?;
+        // Reads on up to `len` bytes in all.
+        let mut upto = |bytes: &mut Vec<u8>, len: usize| {
+            let more = len.saturating_sub(bytes.len()) as u64;
+            (&mut r).take(more).read_to_end(bytes).map_err(io)
+        };
+        // Every version's header is at least as long as versions 1 and 2's.
+        upto(&mut bytes, HEADER_V2)?;
+        let version = bytes
+            .get(8..12)
+            .map_or(0, |v| u32::from_le_bytes(v.try_into().expect("4 bytes")));
+        upto(&mut bytes, read::header_len(version))?;
         let total = read::check_header(&bytes)?;
-        (&mut r)
-            .take((total - HEADER) as u64)
-            .read_to_end(&mut bytes)
-            .map_err(io)?;
+        upto(&mut bytes, total)?;
         Surface::from_bytes(&bytes)
     }
 
@@ -542,7 +600,9 @@ impl Surface {
     /// A snapshot of this format version for a surface of the same size and model (the
     /// parameters but the acceleration) is checked where it lies and copied into the
     /// surface's buffers: nothing is allocated (a per-node table, a spring table or a
-    /// body list the surface has never needed may be allocated once). Any other snapshot
+    /// body list the surface has never needed may be allocated once). A stored hull mesh
+    /// with the bits of one the surface's bodies hold is that body's `Arc`, neither
+    /// validated nor allocated again; another is validated and allocated. Any other snapshot
     /// replaces the surface as [`Surface::from_bytes`] would. Either way, where and how
     /// the engine runs (the host's threads, the SIMD level) are settings of this surface,
     /// not state: they stay.

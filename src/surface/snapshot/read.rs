@@ -3,18 +3,19 @@
 //!
 //! A version's layout is a sequence of sections (see `versions.rs` for which version has
 //! which): the [`Head`] at offsets 8 to 112, from version 3 the [`World`] after it, the
-//! per-node arrays ([`Nodes`]), from version 3 the bodies ([`Bodies`]) and from version 4
-//! the [`Tail`]. Reading a section allocates nothing: arrays are views of the bytes
-//! ([`Le`]), so a surface can be restored from them in place.
+//! per-node arrays ([`Nodes`]), from version 3 the bodies ([`Bodies`], from version 6 with
+//! their hull meshes) and from version 4 the [`Tail`]. Reading a section allocates
+//! nothing: arrays are views of the bytes ([`Le`]), so a surface can be restored from them
+//! in place.
 
-use super::{bad, Scalars, Snapshot, CRC, HEADER, HEADER_V2, MAGIC, VERSION};
+use super::bodies::{Bodies, Hulls, PER_BODY, PER_TRANSLATING};
+use super::reader::Reader;
+use super::{bad, Scalars, Snapshot, CRC, HEADER, HEADER_V2, HEADER_V5, MAGIC, VERSION};
 use crate::error::Result;
-use crate::floater::{Buoyancy, Floater, FloaterId, Shape};
+use crate::floater::Buoyancy;
 use crate::params::{Boundary, Params, MAX_NODES};
 use crate::surface::{Overflow, Surface};
 
-/// Bytes per floating body.
-pub(super) const PER_FLOATER: usize = 80;
 /// Bytes per node: 11 `f32` arrays, 1 `u8`, 8 `f32` spring arrays.
 pub(super) const PER_NODE: usize = 11 * 4 + 1 + 8 * 4;
 /// From version 4, before the checksum: the window's origin in cells (two `i64`) and the
@@ -23,19 +24,39 @@ pub(super) const PER_NODE: usize = 11 * 4 + 1 + 8 * 4;
 pub(super) const TAIL: usize = 16 + 24;
 pub(super) const FLAG_FORCES_PENDING: u32 = 1;
 
-/// Snapshot size in bytes for `nodes` nodes and `floaters` bodies in a format version's
-/// layout, or `None` on overflow.
-pub(super) fn encoded_len(version: u32, nodes: usize, floaters: usize) -> Option<usize> {
-    let header = if version < 3 { HEADER_V2 } else { HEADER };
+/// Bytes before the per-node arrays in a format version's layout.
+pub(super) fn header_len(version: u32) -> usize {
+    match version {
+        ..=2 => HEADER_V2,
+        3..=5 => HEADER_V5,
+        _ => HEADER,
+    }
+}
+
+/// Snapshot size in bytes for `nodes` nodes, `floaters` bodies and a hull section of
+/// `hull_bytes` (0 before version 6) in a format version's layout, or `None` on overflow.
+pub(super) fn encoded_len(
+    version: u32,
+    nodes: usize,
+    floaters: usize,
+    hull_bytes: u64,
+) -> Option<usize> {
+    let per_body = if version < 6 {
+        PER_TRANSLATING
+    } else {
+        PER_BODY
+    };
     let tail = if version < 4 { 0 } else { TAIL };
     nodes
         .checked_mul(PER_NODE)?
-        .checked_add(floaters.checked_mul(PER_FLOATER)?)?
-        .checked_add(header + tail + CRC)
+        .checked_add(floaters.checked_mul(per_body)?)?
+        .checked_add(usize::try_from(hull_bytes).ok()?)?
+        .checked_add(header_len(version) + tail + CRC)
 }
 
 /// Checks magic, version and lengths; returns the total length the header announces,
-/// which is consistent with `cols × rows` and at most [`MAX_NODES`] nodes.
+/// which is consistent with `cols × rows` (at most [`MAX_NODES`] nodes), the body count
+/// and the hull section's length.
 pub(super) fn check_header(bytes: &[u8]) -> Result<usize> {
     if bytes.len() < 8 && MAGIC.starts_with(bytes) {
         return Err(bad(format!(
@@ -52,14 +73,14 @@ pub(super) fn check_header(bytes: &[u8]) -> Result<usize> {
             bytes.len()
         )));
     }
-    let mut r = Reader { bytes, at: 8 };
+    let mut r = Reader::at(bytes, 8);
     let version = r.u32();
     if !(1..=VERSION).contains(&version) {
         return Err(bad(format!(
             "format version {version}, this build of springwater reads versions 1 to {VERSION}"
         )));
     }
-    let header = if version < 3 { HEADER_V2 } else { HEADER };
+    let header = header_len(version);
     if bytes.len() < header {
         return Err(bad(format!(
             "truncated: {} bytes, the header alone has {header}",
@@ -72,20 +93,26 @@ pub(super) fn check_header(bytes: &[u8]) -> Result<usize> {
     let floaters = if version < 3 {
         0
     } else {
-        Reader { bytes, at: 116 }.u32() as usize
+        Reader::at(bytes, 116).u32() as usize
     };
-    let nodes = cols.checked_mul(rows).filter(|&n| n <= MAX_NODES as u64);
-    let Some(expected) = nodes.and_then(|n| encoded_len(version, n as usize, floaters)) else {
+    let hull_bytes = if version < 6 {
+        0
+    } else {
+        Reader::at(bytes, 144).u64()
+    };
+    let Some(nodes) = cols.checked_mul(rows).filter(|&n| n <= MAX_NODES as u64) else {
         return Err(bad(format!(
             "grid {cols}x{rows} is larger than any surface (at most {MAX_NODES} nodes)"
         )));
     };
-    if total != expected as u64 {
+    let expected = encoded_len(version, nodes as usize, floaters, hull_bytes);
+    if expected.map(|e| e as u64) != Some(total) {
+        let needs = expected.map_or("more than fits in memory".into(), |e| e.to_string());
         return Err(bad(format!(
-            "inconsistent lengths: the header says {total} bytes, a {cols}x{rows} grid with {floaters} floaters needs {expected}"
+            "inconsistent lengths: the header says {total} bytes, a {cols}x{rows} grid with {floaters} floaters and {hull_bytes} bytes of hull meshes needs {needs}"
         )));
     }
-    Ok(expected)
+    Ok(total as usize)
 }
 
 /// Checks the framing of exactly one snapshot (magic, version, lengths, no trailing data,
@@ -112,42 +139,14 @@ pub(super) fn framing(bytes: &[u8]) -> Result<(u32, Reader<'_>)> {
             "checksum mismatch (stored {stored:08x}, computed {actual:08x}): the data is corrupted"
         )));
     }
-    let mut r = Reader { bytes: body, at: 8 };
+    let mut r = Reader::at(body, 8);
     let version = r.u32();
     Ok((version, r))
 }
 
-/// A forward reader over bytes whose length has been checked already.
-pub(super) struct Reader<'a> {
-    bytes: &'a [u8],
-    at: usize,
-}
-
-impl<'a> Reader<'a> {
-    fn take(&mut self, len: usize) -> &'a [u8] {
-        let s = &self.bytes[self.at..self.at + len];
-        self.at += len;
-        s
-    }
-    fn u32(&mut self) -> u32 {
-        u32::from_le_bytes(self.take(4).try_into().expect("4 bytes"))
-    }
-    fn u64(&mut self) -> u64 {
-        u64::from_le_bytes(self.take(8).try_into().expect("8 bytes"))
-    }
-    fn f32(&mut self) -> f32 {
-        f32::from_bits(self.u32())
-    }
-    fn f64(&mut self) -> f64 {
-        f64::from_bits(self.u64())
-    }
-    fn floats(&mut self, n: usize) -> Le<'a> {
-        Le(self.take(4 * n))
-    }
-    /// Whether every byte has been read (the layout read was the one the length says).
-    pub(super) fn at_end(&self) -> bool {
-        self.at == self.bytes.len()
-    }
+/// `n` `f32` values from `r`, borrowed.
+fn floats<'a>(r: &mut Reader<'a>, n: usize) -> Le<'a> {
+    Le(r.take(4 * n))
 }
 
 /// `f32` values stored little-endian, borrowed from the bytes (which need no alignment).
@@ -210,23 +209,33 @@ pub(super) fn head(r: &mut Reader<'_>) -> Head {
     }
 }
 
-/// Offsets 112 to 136, from version 3: the absorbing frame's width and the bodies' world.
+/// Offsets 112 to 136 from version 3, to 152 from version 6: the absorbing frame's width
+/// and the bodies' world; from version 6 the hull section's mesh count and length.
 pub(super) struct World {
     pub width: u32,
     pub bodies: u32,
     pub next_id: u64,
     pub buoyancy: Buoyancy,
+    pub hulls: u64,
+    pub hull_bytes: u64,
 }
 
-pub(super) fn world(r: &mut Reader<'_>) -> World {
+pub(super) fn world(r: &mut Reader<'_>, version: u32) -> World {
     let (width, bodies, next_id) = (r.u32(), r.u32(), r.u64());
     let gravity = r.f32();
     let density = r.f32();
+    let (hulls, hull_bytes) = if version < 6 {
+        (0, 0)
+    } else {
+        (r.u64(), r.u64())
+    };
     World {
         width,
         bodies,
         next_id,
         buoyancy: Buoyancy { gravity, density },
+        hulls,
+        hull_bytes,
     }
 }
 
@@ -244,11 +253,11 @@ pub(super) struct Nodes<'a> {
 }
 
 pub(super) fn nodes<'a>(r: &mut Reader<'a>, n: usize) -> Result<Nodes<'a>> {
-    let positions = [(); 3].map(|_| r.floats(n));
-    let velocities = [(); 3].map(|_| r.floats(n));
-    let forces = [(); 3].map(|_| r.floats(n));
-    let mass = r.floats(n);
-    let viscosity = r.floats(n);
+    let positions = [(); 3].map(|_| floats(r, n));
+    let velocities = [(); 3].map(|_| floats(r, n));
+    let forces = [(); 3].map(|_| floats(r, n));
+    let mass = floats(r, n);
+    let viscosity = floats(r, n);
     let pinned = r.take(n);
     if let Some(i) = pinned.iter().position(|&b| b > 1) {
         return Err(bad(format!(
@@ -259,8 +268,8 @@ pub(super) fn nodes<'a>(r: &mut Reader<'a>, n: usize) -> Result<Nodes<'a>> {
     let mut rest = [Le(&[]); 4];
     let mut stiffness = [Le(&[]); 4];
     for f in 0..4 {
-        rest[f] = r.floats(n);
-        stiffness[f] = r.floats(n);
+        rest[f] = floats(r, n);
+        stiffness[f] = floats(r, n);
     }
     Ok(Nodes {
         positions,
@@ -274,58 +283,19 @@ pub(super) fn nodes<'a>(r: &mut Reader<'a>, n: usize) -> Result<Nodes<'a>> {
     })
 }
 
-/// The bodies, from version 3: [`PER_FLOATER`] bytes each, decoded as they are read.
-#[derive(Clone, Copy)]
-pub(super) struct Bodies<'a>(&'a [u8]);
-
-pub(super) fn bodies<'a>(r: &mut Reader<'a>, count: u32) -> Bodies<'a> {
-    Bodies(r.take(count as usize * PER_FLOATER))
-}
-
-impl<'a> Bodies<'a> {
-    pub const NONE: Bodies<'static> = Bodies(&[]);
-
-    /// Each body with its id, or the error that its shape code or size fields give.
-    pub fn iter(self) -> impl Iterator<Item = Result<(FloaterId, Floater)>> + Clone + 'a {
-        self.0.chunks_exact(PER_FLOATER).map(body)
+/// The bodies, from version 3, and from version 6 the hull section after them. Their
+/// lengths were checked against the total length (`check_header`).
+pub(super) fn bodies<'a>(r: &mut Reader<'a>, world: &World, version: u32) -> Bodies<'a> {
+    let count = world.bodies as usize;
+    if version < 6 {
+        return Bodies::Translating(r.take(count * PER_TRANSLATING));
     }
-}
-
-fn body(bytes: &[u8]) -> Result<(FloaterId, Floater)> {
-    let mut r = Reader { bytes, at: 0 };
-    let id = FloaterId(r.u64());
-    let shape = r.u32();
-    let [a, b, c, mass, drag] = [(); 5].map(|_| r.f32());
-    let mut vector = || glam::Vec3::from_array([(); 3].map(|_| r.f32()));
-    let (position, velocity, push, water_force) = (vector(), vector(), vector(), vector());
-    let shape = match (shape, b.to_bits(), c.to_bits()) {
-        (0, 0, 0) => Shape::Sphere { radius: a },
-        (1, ..) => Shape::Box {
-            half_extents: glam::Vec3::new(a, b, c),
-        },
-        (0, ..) => {
-            return Err(bad(format!(
-                "floater {}: a sphere with size fields other than (radius, 0, 0)",
-                id.0
-            )))
-        }
-        (other, ..) => {
-            return Err(bad(format!(
-                "floater {}: unknown shape code {other} (0 = sphere, 1 = box)",
-                id.0
-            )))
-        }
+    let records = r.take(count * PER_BODY);
+    let hulls = Hulls {
+        count: world.hulls,
+        bytes: r.take(world.hull_bytes as usize),
     };
-    let body = Floater {
-        shape,
-        mass,
-        drag,
-        position,
-        velocity,
-        push,
-        water_force,
-    };
-    Ok((id, body))
+    Bodies::Rigid { records, hulls }
 }
 
 /// The 40 bytes before the checksum, from version 4: the window's origin and the clock.
@@ -383,8 +353,9 @@ pub(super) fn unknown_boundary(code: u32) -> crate::error::Error {
     ))
 }
 
-/// The sections of versions 4 and 5 (one layout; version 4 keeps the acceleration, the
-/// buoyancy and the bodies in model time), borrowed from the bytes.
+/// The sections of versions 4 to 6 (one layout for 4 and 5, version 4 keeping the
+/// acceleration, the buoyancy and the bodies in model time; version 6 with the hull
+/// section's header fields and rigid bodies), borrowed from the bytes.
 pub(crate) struct Layout<'a> {
     pub head: Head,
     pub world: World,
@@ -394,12 +365,12 @@ pub(crate) struct Layout<'a> {
 }
 
 impl<'a> Layout<'a> {
-    pub fn read(r: &mut Reader<'a>) -> Result<Self> {
+    pub fn read(r: &mut Reader<'a>, version: u32) -> Result<Self> {
         let head = head(r);
-        let world = world(r);
+        let world = world(r, version);
         let n = head.params.cols * head.params.rows; // bounded by check_header
         let nodes = nodes(r, n)?;
-        let bodies = bodies(r, world.bodies);
+        let bodies = bodies(r, &world, version);
         let tail = tail(r)?;
         Ok(Layout {
             head,
@@ -441,6 +412,8 @@ impl<'a> Layout<'a> {
     /// The plain data, its arrays copied out of the bytes.
     pub fn to_snapshot(&self) -> Result<Snapshot> {
         let s = self.scalars()?;
+        let mut floaters = Vec::new();
+        self.bodies.decode_into(&mut floaters)?;
         let n = &self.nodes;
         let vecs = |a: [Le<'_>; 3]| a.map(Le::to_vec);
         Ok(Snapshot {
@@ -459,7 +432,7 @@ impl<'a> Layout<'a> {
             pinned: n.pinned.iter().map(|&b| b == 1).collect(),
             rest: n.rest.map(Le::to_vec),
             stiffness: n.stiffness.map(Le::to_vec),
-            floaters: self.bodies.iter().collect::<Result<_>>()?,
+            floaters,
             next_floater_id: s.next_floater_id,
             buoyancy: s.buoyancy,
             origin_cells: s.origin_cells,

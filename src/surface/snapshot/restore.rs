@@ -3,11 +3,17 @@
 //! `validate.rs`), then copied into the surface's buffers. Only what differs from the
 //! surface's current state is written beyond the positions, velocities and forces, so a
 //! rollback between states with the same tables copies three arrays and a few fields.
+//!
+//! The bodies are decoded after the surface's own, in the same list (whose capacity a
+//! rollback reuses), borrowing their hull meshes where the stored mesh has the bits of one
+//! the surface holds; they replace the old bodies once everything is checked, and are
+//! dropped if anything is refused.
 
 use super::read::{self, Layout, Le};
 use super::validate::{blocks, first_bad, spring_columns, Contents, NodeFloats, NodePins, BLOCK};
-use super::VERSION;
+use super::{Scalars, VERSION};
 use crate::error::Result;
+use crate::floater::{Floater, FloaterId};
 use crate::grid::Family;
 use crate::params::Params;
 use crate::springs::Springs;
@@ -23,24 +29,16 @@ impl Surface {
         if version != VERSION {
             return Ok(false);
         }
-        let saved = Layout::read(&mut r)?;
+        let saved = Layout::read(&mut r, version)?;
         let scalars = saved.scalars()?;
         let nodes = &saved.nodes;
-        Contents {
-            scalars: &scalars,
-            positions: nodes.positions,
-            velocities: nodes.velocities,
-            forces: nodes.forces,
-            mass: nodes.mass,
-            viscosity: nodes.viscosity,
-            pinned: nodes.pinned,
-            rest: nodes.rest,
-            stiffness: nodes.stiffness,
-            bodies: saved.bodies.iter(),
-        }
-        .validate()?;
-        if !same_model(&self.params, &scalars.params) {
-            return Ok(false);
+        let old = self.floaters.bodies.len();
+        let checked = saved.bodies.decode_into(&mut self.floaters.bodies);
+        let checked =
+            checked.and_then(|()| Self::check(&saved, &scalars, &self.floaters.bodies[old..]));
+        if checked.is_err() || !same_model(&self.params, &scalars.params) {
+            self.floaters.bodies.truncate(old);
+            return checked.map(|()| false);
         }
         // Checked: from here on nothing can fail.
         let n = self.node_count();
@@ -78,12 +76,27 @@ impl Surface {
                 std::array::from_fn(|f| coef[f].as_slice()),
             );
         }
-        let bodies = &mut self.floaters.bodies;
-        bodies.clear();
-        // (Every body decoded in validation.)
-        bodies.extend(saved.bodies.iter().flatten());
+        self.floaters.bodies.drain(..old);
         self.take_scalars(&scalars);
         Ok(true)
+    }
+
+    /// Validates a saved state whose bodies are decoded (see [`Contents::validate`]).
+    fn check(saved: &Layout<'_>, scalars: &Scalars, bodies: &[(FloaterId, Floater)]) -> Result<()> {
+        let nodes = &saved.nodes;
+        Contents {
+            scalars,
+            positions: nodes.positions,
+            velocities: nodes.velocities,
+            forces: nodes.forces,
+            mass: nodes.mass,
+            viscosity: nodes.viscosity,
+            pinned: nodes.pinned,
+            rest: nodes.rest,
+            stiffness: nodes.stiffness,
+            bodies,
+        }
+        .validate()
     }
 
     /// Whether every spring of `saved` has the bits of this surface's.

@@ -6,11 +6,14 @@
 //!
 //! The fields come from a [`Fields`] view, which a [`Surface`] gives straight from its
 //! buffers (a table kept as rows of defaults or a family's shared spring is written out
-//! node by node, as the format has it) and a [`Snapshot`] from its vectors.
+//! node by node, as the format has it) and a [`Snapshot`] from its vectors. Hull meshes
+//! are written once each, after the bodies ([`HullTable`]).
 
+use super::bodies::{hull_of, HullTable};
 use super::read::{encoded_len, FLAG_FORCES_PENDING};
 use super::validate::spring_columns;
 use super::{Scalars, Snapshot, MAGIC, VERSION};
+use crate::body::Hull;
 use crate::floater::{FloaterId, Shape};
 use crate::grid::{Family, Grid};
 use crate::params::Boundary;
@@ -91,12 +94,15 @@ pub(super) struct Fields<'a> {
     pub rest: [Values<'a>; 4],
     pub stiffness: [Values<'a>; 4],
     pub bodies: &'a [(FloaterId, Floater)],
+    /// The bodies' distinct hull meshes.
+    pub hulls: HullTable<'a>,
 }
 
 impl Fields<'_> {
     /// The length of the encoding, checksum included.
     pub fn encoded_len(&self) -> usize {
-        encoded_len(VERSION, self.grid.node_count(), self.bodies.len())
+        let (nodes, bodies) = (self.grid.node_count(), self.bodies.len());
+        encoded_len(VERSION, nodes, bodies, self.hulls.bytes)
             .expect("a snapshot of an allocated surface fits in memory")
     }
 
@@ -131,6 +137,10 @@ impl Fields<'_> {
         sink.state(&(self.bodies.len() as u32).to_le_bytes());
         sink.state(&s.next_floater_id.to_le_bytes());
         floats(sink, &[s.buoyancy.gravity, s.buoyancy.density]);
+        // Framing, like the total length: both follow from the meshes, which are state
+        // (and water without bodies hashes as it did before hulls were stored).
+        sink.record(&self.hulls.count.to_le_bytes());
+        sink.record(&self.hulls.bytes.to_le_bytes());
         for a in self
             .positions
             .iter()
@@ -152,19 +162,7 @@ impl Fields<'_> {
             self.values(sink, self.rest[f]);
             self.values(sink, self.stiffness[f]);
         }
-        for (id, body) in self.bodies {
-            sink.state(&id.0.to_le_bytes());
-            let (shape, size): (u32, [f32; 3]) = match body.shape {
-                Shape::Sphere { radius } => (0, [radius, 0.0, 0.0]),
-                Shape::Box { half_extents } => (1, half_extents.to_array()),
-            };
-            sink.state(&shape.to_le_bytes());
-            floats(sink, &size);
-            floats(sink, &[body.mass, body.drag]);
-            for v in [body.position, body.velocity, body.push, body.water_force] {
-                floats(sink, &v.to_array());
-            }
-        }
+        self.bodies(sink);
         for c in s.origin_cells {
             sink.state(&c.to_le_bytes());
         }
@@ -176,6 +174,52 @@ impl Fields<'_> {
         };
         sink.state(&overflow.to_le_bytes());
         sink.record(&s.dropped_seconds.to_le_bytes());
+    }
+
+    /// Each body's record, then each distinct hull mesh: its vertex and triangle counts
+    /// (`u32`), its vertices and its triangles.
+    fn bodies(&self, sink: &mut impl Sink) {
+        // Bodies that share a mesh usually come in runs: the last one found is tried first.
+        let mut last: Option<(&Hull, u32)> = None;
+        for (id, body) in self.bodies {
+            sink.state(&id.0.to_le_bytes());
+            let (shape, size): (u32, [f32; 3]) = match &body.shape {
+                Shape::Sphere { radius } => (0, [*radius, 0.0, 0.0]),
+                Shape::Box { half_extents } => (1, half_extents.to_array()),
+                Shape::Hull(_) => (2, [0.0; 3]),
+            };
+            sink.state(&shape.to_le_bytes());
+            floats(sink, &size);
+            floats(sink, &[body.mass, body.drag]);
+            for v in [body.position, body.velocity, body.push, body.water_force] {
+                floats(sink, &v.to_array());
+            }
+            floats(sink, &body.orientation.to_array());
+            for v in [body.angular_velocity, body.push_torque, body.water_torque] {
+                floats(sink, &v.to_array());
+            }
+            let hull = hull_of(body).map_or(0, |hull| match last {
+                Some((h, index)) if std::ptr::eq(h, &**hull) => index,
+                _ => {
+                    let index = self.hulls.index(hull);
+                    last = Some((hull, index));
+                    index
+                }
+            });
+            sink.state(&hull.to_le_bytes());
+            let (flag, inertia) = match body.inertia {
+                Some(i) => (1u32, i.to_cols_array()),
+                None => (0, [0.0; 9]),
+            };
+            sink.state(&flag.to_le_bytes());
+            floats(sink, &inertia);
+        }
+        for hull in self.hulls.distinct() {
+            let (vertices, triangles) = (hull.vertices(), hull.triangles());
+            words(sink, &[vertices.len() as u32, triangles.len() as u32]);
+            floats(sink, bytemuck::cast_slice(vertices));
+            words(sink, bytemuck::cast_slice(triangles));
+        }
     }
 
     /// One value per node of `values`, row by row.
@@ -205,6 +249,11 @@ impl Fields<'_> {
 
 /// `values` little-endian.
 fn floats(sink: &mut impl Sink, values: &[f32]) {
+    words(sink, bytemuck::cast_slice(values));
+}
+
+/// `values` little-endian.
+fn words(sink: &mut impl Sink, values: &[u32]) {
     if cfg!(target_endian = "little") {
         sink.state(bytemuck::cast_slice(values));
     } else {
@@ -284,6 +333,7 @@ impl Surface {
             rest,
             stiffness,
             bodies: &self.floaters.bodies,
+            hulls: HullTable::of(&self.floaters.bodies),
         }
     }
 }
@@ -304,6 +354,7 @@ impl Snapshot {
             rest: std::array::from_fn(|f| Values::Nodes(&self.rest[f])),
             stiffness: std::array::from_fn(|f| Values::Nodes(&self.stiffness[f])),
             bodies: &self.floaters,
+            hulls: HullTable::of(&self.floaters),
         }
     }
 }

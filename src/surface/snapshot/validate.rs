@@ -143,8 +143,8 @@ fn first_bad_value<F: NodeFloats>(a: F, bad: impl Fn(f32) -> bool) -> Option<(us
 }
 
 /// A snapshot's contents, borrowed: the fields beside the arrays, the arrays and the
-/// bodies (each decoded as it is read, so a body's bytes may still be refused).
-pub(super) struct Contents<'a, F, P, B> {
+/// bodies (decoded: a body's record and hull mesh are checked as they are decoded).
+pub(super) struct Contents<'a, F, P> {
     pub scalars: &'a Scalars,
     pub positions: [F; 3],
     pub velocities: [F; 3],
@@ -154,7 +154,7 @@ pub(super) struct Contents<'a, F, P, B> {
     pub pinned: P,
     pub rest: [F; 4],
     pub stiffness: [F; 4],
-    pub bodies: B,
+    pub bodies: &'a [(FloaterId, Floater)],
 }
 
 /// The columns of row `r` whose spring of `family` exists (the others store zeros).
@@ -170,11 +170,10 @@ pub(super) fn spring_columns(grid: Grid, family: Family, r: usize) -> Range<usiz
     }
 }
 
-impl<F, P, B> Contents<'_, F, P, B>
+impl<F, P> Contents<'_, F, P>
 where
     F: NodeFloats,
     P: NodePins,
-    B: Iterator<Item = Result<(FloaterId, Floater)>> + Clone,
 {
     /// Checks every invariant a surface relies on (see [`Surface::from_snapshot`]).
     pub fn validate(&self) -> Result<()> {
@@ -353,8 +352,7 @@ where
             .validate()
             .map_err(|e| bad(format!("buoyancy: {e}")))?;
         let mut previous = None;
-        for body in self.bodies.clone() {
-            let (id, body) = body?;
+        for (id, body) in self.bodies {
             body.validate()
                 .and_then(|()| crate::floater::check_footprint(&body.shape, s.params.spacing))
                 .map_err(|e| bad(format!("floater {}: {e}", id.0)))?;
@@ -409,7 +407,7 @@ where
     fn timestep(&self) -> Result<()> {
         let s = self.scalars;
         let p = &s.params;
-        let floating = self.bodies.clone().next().is_some();
+        let floating = !self.bodies.is_empty();
         let extra = if floating {
             s.buoyancy.node_stiffness(p.spacing, p.time_scale)
         } else {

@@ -7,27 +7,32 @@
 //! | 2 | the time scale at offset 108 | no bodies, no absorbing frame, the default buoyancy |
 //! | 3 | the frame width, bodies and buoyancy (header of 136 bytes), the bodies after the arrays | the window's origin `[0, 0]`, a fresh clock |
 //! | 4 | the window's origin and the clock before the checksum | the acceleration, buoyancy and bodies from model time to seconds |
-//! | 5 | (the layout of 4, in seconds) | (current) |
+//! | 5 | (the layout of 4, in seconds) | bodies upright, not spinning, not twisted, with their shape's inertia |
+//! | 6 | rigid bodies (orientation, angular velocity, torques, inertia; 176 bytes each), hull meshes after them (header of 152 bytes) | (current) |
 //!
 //! Each step is written once, so a snapshot of version 1 passes every upgrade in turn and
 //! a new version adds one decoder and one upgrade.
 
-use super::read::{self, Bodies, Head, Layout, Nodes, Reader, Tail, World};
+use super::bodies::Bodies;
+use super::read::{self, Head, Layout, Nodes, Tail, World};
+use super::reader::Reader;
 use super::{bad, Snapshot};
 use crate::error::Result;
 use crate::floater::{Buoyancy, Floater, FloaterId};
 use crate::params::Params;
+use glam::{Quat, Vec3};
 
 /// Decodes the bytes after the version field (`r`) of a snapshot of `version`, whose
 /// framing has been checked, into the current version's plain data.
 pub(super) fn decode(version: u32, mut r: Reader<'_>) -> Result<Snapshot> {
     let r = &mut r;
     let snapshot = match version {
-        1 => v4_to_5(v3_to_4(v2_to_3(v1_to_2(v1(r)?)?)?))?,
-        2 => v4_to_5(v3_to_4(v2_to_3(v2(r)?)?))?,
-        3 => v4_to_5(v3_to_4(v3(r)?))?,
-        4 => v4_to_5(Layout::read(r)?)?,
-        _ => v5(r)?,
+        1 => v5_to_6(v4_to_5(v3_to_4(v2_to_3(v1_to_2(v1(r)?)?)?))?),
+        2 => v5_to_6(v4_to_5(v3_to_4(v2_to_3(v2(r)?)?))?),
+        3 => v5_to_6(v4_to_5(v3_to_4(v3(r)?))?),
+        4 => v5_to_6(v4_to_5(Layout::read(r, 4)?)?),
+        5 => v5_to_6(v5(r)?),
+        _ => v6(r)?,
     };
     debug_assert!(r.at_end(), "version {version} read to its end");
     Ok(snapshot)
@@ -80,6 +85,8 @@ fn v2_to_3(v2: V2<'_>) -> Result<V3<'_>> {
         bodies: 0,
         next_id: 0,
         buoyancy: Buoyancy::default(),
+        hulls: 0,
+        hull_bytes: 0,
     };
     Ok(V3 {
         head: v2.head,
@@ -92,10 +99,10 @@ fn v2_to_3(v2: V2<'_>) -> Result<V3<'_>> {
 /// Version 3: the world after the header, the bodies after the arrays.
 fn v3<'a>(r: &mut Reader<'a>) -> Result<V3<'a>> {
     let head = read::head(r);
-    let world = read::world(r);
+    let world = read::world(r, 3);
     let n = head.params.cols * head.params.rows;
     let nodes = read::nodes(r, n)?;
-    let bodies = read::bodies(r, world.bodies);
+    let bodies = read::bodies(r, &world, 3);
     Ok(V3 {
         head,
         world,
@@ -128,9 +135,27 @@ fn v4_to_5(v4: Layout<'_>) -> Result<Snapshot> {
     })
 }
 
-/// Version 5, the current one: version 4's layout in seconds.
+/// Version 5: version 4's layout in seconds.
 fn v5(r: &mut Reader<'_>) -> Result<Snapshot> {
-    Layout::read(r)?.to_snapshot()
+    Layout::read(r, 5)?.to_snapshot()
+}
+
+/// Version 5's bodies only translated: they are upright and not spinning, no torque is
+/// pending or was felt, and their mass is spread evenly (the shape's inertia).
+fn v5_to_6(mut snap: Snapshot) -> Snapshot {
+    for (_, body) in &mut snap.floaters {
+        body.orientation = Quat::IDENTITY;
+        body.angular_velocity = Vec3::ZERO;
+        body.push_torque = Vec3::ZERO;
+        body.water_torque = Vec3::ZERO;
+        body.inertia = None;
+    }
+    snap
+}
+
+/// Version 6, the current one: rigid bodies and their hull meshes.
+fn v6(r: &mut Reader<'_>) -> Result<Snapshot> {
+    Layout::read(r, 6)?.to_snapshot()
 }
 
 /// The acceleration, buoyancy and bodies of a snapshot of version 4 or older, stored in

@@ -1,0 +1,453 @@
+//! The floating bodies and the water, coupled: each step of the surface reads the water
+//! under every body, steps the bodies (in parallel, each on its own), pushes their
+//! reactions into the water and then steps the water; and the water's forces on a body
+//! another physics engine owns ([`Surface::body_forces`]).
+//!
+//! The model is explained in [`crate::floater`] and computed in [`crate::body`]: the
+//! `hydrostatics` module presses the water on a body's wet triangles, the `rigid` module
+//! solves its step. This file only gathers the water for them and hands their reactions
+//! back: bodies step in parallel but their reactions go into the water one body after
+//! another in the order the bodies were added, so the bits do not depend on the threads.
+
+use super::query::{Spread, Waters};
+use super::Surface;
+use crate::body::rigid::{self, Piece, World};
+use crate::body::{Hull, HullScratch};
+use crate::error::{Error, Result};
+use crate::floater::{self, BodyForces, Buoyancy, Floater, Shape};
+use crate::jobs::{self, Runner};
+use glam::{DVec3, Vec3};
+use std::sync::Arc;
+
+/// Buffers the coupled step reuses; not state.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Coupling {
+    /// Each body's shape and the mesh the water presses on (parallel to the bodies; a
+    /// body whose shape changed, or a restored one, gets its mesh again).
+    meshes: Vec<(Shape, Arc<Hull>)>,
+    /// Meshes of the bodies [`Surface::body_forces`] was asked about, newest last.
+    foreign: Vec<(Shape, Arc<Hull>)>,
+    /// One per body: its workspace and its step's outcome.
+    slots: Vec<Slot>,
+    /// The workspace of [`Surface::body_forces`].
+    foreign_slot: Slot,
+    /// External forces of the nodes the reactions touched, before they did, and the
+    /// pending flag and length of the list of pushed nodes.
+    log: Vec<(usize, [f32; 3])>,
+    pending: bool,
+    listed: Option<usize>,
+}
+
+/// How many meshes of bodies another engine owns are kept.
+const FOREIGN_MESHES: usize = 16;
+
+/// Bodies per task when they step in parallel.
+const BODIES_PER_TASK: usize = 16;
+
+impl Coupling {
+    /// Keeps `mesh` as body `k`'s (the last body, or one already listed).
+    pub fn keep_mesh(&mut self, k: usize, shape: &Shape, mesh: Arc<Hull>) {
+        let entry = (shape.clone(), mesh);
+        match k.cmp(&self.meshes.len()) {
+            std::cmp::Ordering::Less => self.meshes[k] = entry,
+            std::cmp::Ordering::Equal => self.meshes.push(entry),
+            // The list is behind (after a restore): `fit_meshes` catches up.
+            std::cmp::Ordering::Greater => {}
+        }
+    }
+
+    /// Forgets body `k`'s mesh (it was removed).
+    pub fn forget_mesh(&mut self, k: usize) {
+        if k < self.meshes.len() {
+            self.meshes.remove(k);
+        }
+    }
+}
+
+/// One body's workspace and outcome in a step.
+#[derive(Debug, Clone, Default)]
+struct Slot {
+    hull: HullScratch,
+    pieces: Vec<Piece>,
+    /// Where each piece's reaction goes into the water (parallel to `pieces`).
+    spreads: Vec<Option<Spread>>,
+    /// The forces the body feels and where (the water gets minus each): first one per
+    /// piece, then the waterplane's.
+    forces: Vec<(DVec3, DVec3)>,
+    /// The water's share of the body's reactions, node by node (in the order the nodes
+    /// were first touched), in the lattice's units.
+    shares: Vec<(usize, [f32; 3])>,
+    /// The body after its step, or `None` if it failed (not finite, out of range).
+    moved: Option<Floater>,
+}
+
+/// What every body's step reads: the water and the world.
+struct Context<'a> {
+    waters: Waters<'a>,
+    buoyancy: Buoyancy,
+    /// The time scale: seconds of the bodies to model time of the lattice.
+    scale: f32,
+    spacing: f32,
+    /// The step, seconds.
+    seconds: f32,
+    /// The damping rate per unit of model time the water's step has room for.
+    room_rate: f32,
+}
+
+impl Context<'_> {
+    /// Body `body` pressing on `mesh`: its implicit step over `seconds` (see the
+    /// `rigid` module of [`crate::body`]), leaving the forces it feels in `slot.forces`.
+    fn step(&self, body: &Floater, mesh: &Hull, slot: &mut Slot) -> Result<rigid::Moved> {
+        let Buoyancy { gravity, density } = self.buoyancy;
+        let rho_g = density as f64 * gravity as f64;
+        let h = self.spacing as f64;
+        let pieces = &mut slot.pieces;
+        pieces.clear();
+        let waters = &self.waters;
+        let pressure = mesh.pressed(
+            body.position,
+            body.orientation,
+            rho_g,
+            // Off the patch the water is calm, at height 0.
+            |x, z| waters.height(x, z).unwrap_or(0.0),
+            &mut slot.hull,
+            |point, force, area| {
+                pieces.push(Piece {
+                    point,
+                    force,
+                    area,
+                    flow: DVec3::ZERO,
+                })
+            },
+        )?;
+        // The water's velocity under each piece (per second), and the damping room the
+        // water's step leaves under the body, per second.
+        let mut room = f64::INFINITY;
+        let mut seen = 0.0;
+        let mut cache = None;
+        slot.spreads.clear();
+        for p in pieces.iter_mut() {
+            let (x, z) = (p.point.x as f32, p.point.z as f32);
+            let under = waters.flow(x, z, self.room_rate, &mut cache);
+            if let Some((flow, r, _)) = under {
+                p.flow = (flow * self.scale).as_dvec3();
+                room = room.min(r.max(0.0) as f64 * self.scale as f64);
+            }
+            slot.spreads.push(under.map(|u| u.2));
+            let f = p.force.length();
+            if f > 0.0 {
+                seen += p.area * p.force.y.abs() / f;
+            }
+        }
+        // The body's drag rate, capped at half of what that room allows over the cells it
+        // covers (its waterplane, or half its wet area seen from above when under).
+        let cells = pressure.plane.area.max(0.5 * seen) / (h * h);
+        let drag = body.drag as f64 * density as f64 * pressure.volume;
+        let world = World {
+            rho_g,
+            gravity: gravity as f64,
+            dt: self.seconds as f64,
+            drag_rate: drag.min(0.5 * room * cells.max(1.0)),
+        };
+        Ok(rigid::step(
+            &body.rigid(),
+            pieces,
+            &pressure.plane,
+            world,
+            &mut slot.forces,
+        ))
+    }
+
+    /// Each node's share of minus every force the body of `slot` feels, times `factor`,
+    /// in the lattice's units, summed node by node into `slot.shares` (forces off the patch
+    /// push nothing). A body's forces fall on a few nodes, so a short list searched from
+    /// its end is the map.
+    fn shares(&self, slot: &mut Slot, factor: f64) {
+        let Slot {
+            spreads,
+            forces,
+            shares,
+            ..
+        } = slot;
+        shares.clear();
+        // The lattice's forces are per unit of model time²: a body's force in seconds goes
+        // in divided by `time_scale²`.
+        let to_lattice = (self.scale as f64) * (self.scale as f64);
+        for (k, &(point, force)) in forces.iter().enumerate() {
+            // The pieces' spreads were found with the water under them.
+            let spread = match spreads.get(k) {
+                Some(known) => *known,
+                None => self.waters.spread(point.x as f32, point.z as f32),
+            };
+            if let Some((nodes, weights)) = spread {
+                let reaction = (-force * (factor / to_lattice)).as_vec3();
+                for (i, w) in nodes.into_iter().zip(weights) {
+                    let add = reaction * w;
+                    match shares.iter_mut().rev().find(|(j, _)| *j == i) {
+                        Some((_, f)) => *f = (Vec3::from(*f) + add).to_array(),
+                        None => shares.push((i, add.to_array())),
+                    }
+                }
+            }
+        }
+    }
+}
+
+impl Surface {
+    /// One step of model time `dt` with the bodies: their reactions go into the external
+    /// forces, the water takes its step, and the bodies move only if it succeeded. On any
+    /// error the surface is unchanged, bodies and pending forces included.
+    pub(crate) fn floating_step(&mut self, dt: f32) -> Result<()> {
+        let mut c = std::mem::take(&mut self.floaters.scratch);
+        let coupled = self
+            .couple(dt, &mut c)
+            .and_then(|()| self.push_shares(&mut c, false));
+        let coupled = coupled.and_then(|()| self.water(1, dt).inspect_err(|_| self.undo(&c)));
+        if coupled.is_ok() {
+            for ((_, body), slot) in self.floaters.bodies.iter_mut().zip(&mut c.slots) {
+                if let Some(moved) = slot.moved.take() {
+                    *body = moved;
+                }
+            }
+        }
+        self.floaters.scratch = c;
+        coupled
+    }
+
+    /// Makes every body's mesh match its shape (after a restore or a change of shape).
+    fn fit_meshes(&self, c: &mut Coupling) -> Result<()> {
+        let bodies = &self.floaters.bodies;
+        c.meshes.truncate(bodies.len());
+        for (k, (_, body)) in bodies.iter().enumerate() {
+            let fits = matches!(c.meshes.get(k), Some((shape, _)) if same(shape, &body.shape));
+            if !fits {
+                let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
+                c.keep_mesh(k, &body.shape, mesh);
+            }
+        }
+        Ok(())
+    }
+
+    fn context(&self, seconds: f32) -> Context<'_> {
+        Context {
+            waters: self.waters(),
+            buoyancy: self.floaters.buoyancy,
+            scale: self.params.time_scale,
+            spacing: self.params.spacing,
+            seconds,
+            room_rate: self.damping_room(self.params.dt),
+        }
+    }
+
+    /// Steps every body (in parallel, into `c.slots`) and gathers the reactions'
+    /// shares of the nodes (in the bodies' order, into `c.shares`). `dt` is model time;
+    /// the bodies step `dt / time_scale` seconds.
+    fn couple(&self, dt: f32, c: &mut Coupling) -> Result<()> {
+        self.fit_meshes(c)?;
+        let bodies = &self.floaters.bodies;
+        c.slots.resize_with(bodies.len(), Slot::default);
+        let cx = self.context(dt / self.params.time_scale);
+        let meshes = &c.meshes;
+        jobs::for_each_part(
+            Runner::of(self.host.as_ref()),
+            bodies.len(),
+            1,
+            BODIES_PER_TASK,
+            &mut c.slots[..],
+            &|range, slots: &mut [Slot]| {
+                for (k, slot) in range.zip(slots) {
+                    let body = &bodies[k].1;
+                    slot.moved = cx
+                        .step(body, &meshes[k].1, slot)
+                        .ok()
+                        .map(|m| moved(body, &m))
+                        .filter(|b| b.validate().is_ok());
+                    cx.shares(slot, 1.0);
+                }
+            },
+        );
+        for ((id, _), slot) in bodies.iter().zip(&c.slots) {
+            if slot.moved.is_none() {
+                return Err(Error::FloaterNonFinite {
+                    step: self.steps(),
+                    floater: id.0,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Adds the bodies' shares (`c.slots`, in the bodies' order), or the foreign body's, to
+    /// the external forces (logged in `c.log`). Refused, with nothing changed, if a node's
+    /// force would not be finite.
+    fn push_shares(&mut self, c: &mut Coupling, foreign: bool) -> Result<()> {
+        c.log.clear();
+        c.pending = self.state.ext_pending;
+        c.listed = self.state.ext_nodes.as_ref().map(Vec::len);
+        let ext = &mut self.state.ext;
+        let slots = if foreign {
+            std::slice::from_ref(&c.foreign_slot)
+        } else {
+            &c.slots[..]
+        };
+        for &(i, f) in slots.iter().flat_map(|slot| &slot.shares) {
+            c.log.push((i, [ext[0][i], ext[1][i], ext[2][i]]));
+            for (k, v) in f.into_iter().enumerate() {
+                ext[k][i] += v;
+            }
+        }
+        let finite = c
+            .log
+            .iter()
+            .all(|&(i, _)| (0..3).all(|k| self.state.ext[k][i].is_finite()));
+        if !finite {
+            self.undo(c);
+            c.log.clear();
+            return Err(Error::InvalidParam {
+                name: "accumulated force",
+                value: f64::INFINITY,
+                expected: "finite: the bodies' reactions overflow f32",
+            });
+        }
+        for &(i, _) in &c.log {
+            self.state.touch_ext(i);
+        }
+        Ok(())
+    }
+
+    /// Undoes [`push_shares`](Self::push_shares): the nodes in `c.log` get their old
+    /// forces back, newest first (so every touched node gets its old bits), and the flag
+    /// and list of pending forces go back too, unless the list overflowed (`None`, clear
+    /// every force, is then still correct).
+    fn undo(&mut self, c: &Coupling) {
+        for &(i, f) in c.log.iter().rev() {
+            for (k, v) in f.into_iter().enumerate() {
+                self.state.ext[k][i] = v;
+            }
+        }
+        self.state.ext_pending = c.pending;
+        if let (Some(len), Some(nodes)) = (c.listed, &mut self.state.ext_nodes) {
+            nodes.truncate(len);
+        }
+    }
+
+    /// The damping rate per unit of model time the water's step has room for at the
+    /// stiffest node with the waterline springs (`b_lim`, see the `absorb` module).
+    fn damping_room(&self, dt: f32) -> f32 {
+        let omega2 = (12.0 * self.max_stiffness + self.floater_stiffness()) / self.min_mass;
+        ((4.0 - omega2 * dt * dt) / (2.0 * dt)).max(0.0)
+    }
+
+    /// The water's force and torque on a body another physics engine owns, over the
+    /// engine's coming tick of `seconds`: for the body's shape, mass, inertia, drag, pose
+    /// and velocities (`body`; its `push`, `push_torque` and read-only fields are ignored),
+    /// as [`BodyForces`] in the world frame, the torque about `body.position` (the centre
+    /// of mass). The water gets the opposite of both, spread where each part of the hull
+    /// meets it, in its next step (the whole tick's impulse, so call this once per tick).
+    ///
+    /// The forces are those of the surface's own bodies (see [`crate::floater`]): buoyancy
+    /// and drag on the wet part of the hull, taken implicitly over the tick for the
+    /// velocities the body will have at its end under them and gravity. An engine that
+    /// applies them with an explicit step of the same `seconds` and the same mass and
+    /// inertia therefore gets the stable step of a built-in body, however light the body
+    /// is: keep `seconds` equal to the engine's tick, and `gravity` of
+    /// [`Surface::buoyancy`] equal to the engine's.
+    ///
+    /// Refused (nothing changes): an invalid body ([`Floater::validate`]), one more than
+    /// [`MAX_CELLS`](crate::floater::MAX_CELLS) cells across, `seconds` not finite and
+    /// positive or above one second, or reactions the water cannot hold.
+    ///
+    /// ```
+    /// use springwater::{Floater, Params, Surface};
+    ///
+    /// let mut water = Surface::new(Params::with_size(64, 64))?;
+    /// // A box 4 × 2 × 4 of half the water's density, floating at its draft of 1.
+    /// let density = water.buoyancy().density;
+    /// let boat = Floater::cuboid([2.0, 1.0, 2.0], 0.5 * density * 32.0, [32.0, 0.0, 32.0]);
+    /// let push = water.body_forces(&boat, 1.0 / 60.0)?;
+    /// let weight = boat.mass * water.buoyancy().gravity;
+    /// assert!((push.force.y - weight).abs() < 0.02 * weight);   // it floats
+    /// assert!(push.torque.length() < 1e-3 * weight);
+    /// # Ok::<(), springwater::Error>(())
+    /// ```
+    pub fn body_forces(&mut self, body: &Floater, seconds: f32) -> Result<BodyForces> {
+        if !(seconds.is_finite() && seconds > 0.0 && seconds <= 1.0) {
+            return Err(Error::InvalidParam {
+                name: "body tick",
+                value: seconds as f64,
+                expected: "seconds, finite, above 0 and at most 1",
+            });
+        }
+        let body = Floater {
+            push: Vec3::ZERO,
+            push_torque: Vec3::ZERO,
+            ..self.admit(body.clone(), Vec3::ZERO, Vec3::ZERO)?
+        };
+        let mut c = std::mem::take(&mut self.floaters.scratch);
+        let out = self
+            .foreign_forces(&body, seconds, &mut c)
+            .and_then(|forces| self.push_shares(&mut c, true).map(|()| forces));
+        self.floaters.scratch = c;
+        out
+    }
+
+    /// The water's forces on `body` over `seconds`, its reactions' shares in `c.shares`.
+    fn foreign_forces(&self, body: &Floater, seconds: f32, c: &mut Coupling) -> Result<BodyForces> {
+        let mesh = match c.foreign.iter().position(|(s, _)| same(s, &body.shape)) {
+            Some(k) => {
+                let entry = c.foreign.remove(k);
+                let mesh = Arc::clone(&entry.1);
+                c.foreign.push(entry);
+                mesh
+            }
+            None => {
+                let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
+                if c.foreign.len() == FOREIGN_MESHES {
+                    c.foreign.remove(0);
+                }
+                c.foreign.push((body.shape.clone(), Arc::clone(&mesh)));
+                mesh
+            }
+        };
+        let cx = self.context(seconds);
+        let slot = &mut c.foreign_slot;
+        let moved = cx.step(body, &mesh, slot)?;
+        let (force, torque) = (moved.force.as_vec3(), moved.torque.as_vec3());
+        if !(force.is_finite() && torque.is_finite()) {
+            return Err(Error::InvalidParam {
+                name: "body forces",
+                value: moved.force.length(),
+                expected: "finite in f32: the body is too large, deep or dense",
+            });
+        }
+        // The water steps `dt / time_scale` seconds at a time: the tick's impulse goes into
+        // its next step.
+        let step_seconds = (self.params.dt / self.params.time_scale) as f64;
+        cx.shares(slot, seconds as f64 / step_seconds);
+        Ok(BodyForces { force, torque })
+    }
+}
+
+/// Whether two shapes are the same (a hull shared through one `Arc` without comparing
+/// its triangles).
+fn same(a: &Shape, b: &Shape) -> bool {
+    match (a, b) {
+        (Shape::Hull(a), Shape::Hull(b)) => Arc::ptr_eq(a, b) || a == b,
+        _ => a == b,
+    }
+}
+
+/// `body` after its step `m`, its push spent.
+fn moved(body: &Floater, m: &rigid::Moved) -> Floater {
+    Floater {
+        position: m.position.as_vec3(),
+        orientation: m.orientation.as_quat(),
+        velocity: m.velocity.as_vec3(),
+        angular_velocity: m.angular_velocity.as_vec3(),
+        push: Vec3::ZERO,
+        push_torque: Vec3::ZERO,
+        water_force: m.force.as_vec3(),
+        water_torque: m.torque.as_vec3(),
+        ..body.clone()
+    }
+}
