@@ -562,3 +562,61 @@ fn rocking_boats_give_the_same_bits_on_every_level_and_thread_count() {
     }
     assert_eq!(reference, GOLDEN_ROCKING, "{reference:#018x}");
 }
+
+#[test]
+fn bad_rigid_bodies_are_refused_with_one_clear_error_and_change_nothing() {
+    use springwater::glam::Mat3;
+    let mut s = Surface::new(Params::with_size(32, 32)).unwrap();
+    let good = Floater::cuboid([1.0, 0.5, 1.0], 2.0, [16.0, 0.0, 16.0]);
+    let id = s.add_floater(good.clone()).unwrap();
+    let before = s.to_bytes();
+    let edited = |f: fn(&mut Floater)| {
+        let mut b = good.clone();
+        f(&mut b);
+        b
+    };
+    let bad = [
+        edited(|b| b.orientation = Quat::from_xyzw(f32::NAN, 0.0, 0.0, 1.0)),
+        edited(|b| b.orientation = Quat::from_xyzw(0.0, 0.0, 0.0, 2.0)),
+        edited(|b| b.angular_velocity = Vec3::new(0.0, f32::INFINITY, 0.0)),
+        edited(|b| b.angular_velocity = Vec3::new(0.0, 2e6, 0.0)),
+        edited(|b| b.push_torque = Vec3::new(f32::NAN, 0.0, 0.0)),
+        edited(|b| b.mass = 0.0),
+        edited(|b| b.mass = -1.0),
+        edited(|b| b.inertia = Some(Mat3::ZERO)),
+        edited(|b| b.inertia = Some(Mat3::from_diagonal(Vec3::new(1.0, 1.0, 3.0)))),
+        edited(|b| {
+            b.inertia = Some(Mat3::from_cols_array(&[
+                1.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0,
+            ]))
+        }),
+        edited(|b| b.inertia = Some(Mat3::from_diagonal(Vec3::new(1.0, f32::NAN, 1.0)))),
+    ];
+    for body in bad {
+        let message = s.add_floater(body.clone()).unwrap_err().to_string();
+        assert!(!message.contains('\n') && !message.is_empty(), "{message}");
+        assert!(s.set_floater(id, body.clone()).is_err());
+        assert!(s.body_forces(&body, 1.0 / 60.0).is_err());
+        println!("refused: {message}");
+    }
+    assert_eq!(s.to_bytes(), before, "nothing changed");
+    assert_eq!(s.floaters().len(), 1);
+
+    // Meshes: open (a box missing a face) and inside out.
+    let cube = Hull::cuboid([1.0, 1.0, 1.0]).unwrap();
+    let open = &cube.triangles()[..10];
+    let err = Floater::hull(cube.vertices(), open, 1.0, [16.0, 0.0, 16.0]).unwrap_err();
+    println!("open mesh: {err}");
+    assert!(
+        err.to_string().contains("closed") || err.to_string().contains("edge"),
+        "{err}"
+    );
+    let inside_out: Vec<[u32; 3]> = cube
+        .triangles()
+        .iter()
+        .map(|&[a, b, c]| [a, c, b])
+        .collect();
+    let err = Floater::hull(cube.vertices(), &inside_out, 1.0, [16.0, 0.0, 16.0]).unwrap_err();
+    println!("inside out: {err}");
+    assert!(err.to_string().contains("inside out"), "{err}");
+}
