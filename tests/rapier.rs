@@ -5,6 +5,9 @@
 //!
 //! "Water held still" is a surface whose nodes are all pinned: it stays flat at height 0,
 //! so a draft can be held to the displacement theory.
+//!
+//! Not on wasm32: rapier3d is a dev-dependency for other targets only.
+#![cfg(not(target_family = "wasm"))]
 
 #[allow(dead_code)]
 #[path = "../examples/rapier.rs"]
