@@ -107,8 +107,9 @@ impl Floating {
     pub fn floater(&self, world: &PhysicsWorld) -> Floater {
         let body = &world.bodies[self.handle];
         let local = &body.mass_properties().local_mprops;
-        // Rapier keeps the inertia as principal moments and axes; rebuilt, the matrix is
-        // symmetric only to rounding, which the water's check would refuse.
+        // Rapier keeps the inertia as principal moments and axes (in the body's axes, about
+        // the centre of mass, as the water's); rebuilt, the matrix is symmetric only to
+        // rounding, and the water checks symmetry to 1e-6 of its size: symmetrise it.
         let inertia = Mat3::from_cols_array(&local.reconstruct_inertia_matrix().to_cols_array());
         let mut floater = self.shape.clone();
         floater.mass = body.mass();
