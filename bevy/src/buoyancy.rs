@@ -151,7 +151,7 @@ impl Bodies {
     /// Which water and floater `body` is, if any (saved for rollback).
     #[cfg(feature = "ggrs")]
     pub(crate) fn link(&self, body: Entity) -> Option<Link> {
-        self.0.get(&body).copied()
+        self.0.get(&body).cloned()
     }
 
     /// Puts back what [`Bodies::link`] said at a saved frame.

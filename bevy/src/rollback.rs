@@ -190,7 +190,7 @@ fn save(
         .bodies
         .extend(bodies.iter().map(|(entity, buoyant, transform)| SavedBody {
             entity,
-            buoyant: *buoyant,
+            buoyant: buoyant.clone(),
             transform: *transform,
             link: registry.link(entity),
         }));
@@ -230,9 +230,9 @@ fn load(
             .or_else(|| saved.bodies.iter().find(|b| b.entity == entity));
         match was {
             Some(was) => {
-                buoyant.set_if_neq(was.buoyant);
+                buoyant.set_if_neq(was.buoyant.clone());
                 transform.set_if_neq(was.transform);
-                registry.set_link(entity, was.link);
+                registry.set_link(entity, was.link.clone());
             }
             // Not yet a body at that frame: it joins its water again when it steps.
             None => registry.set_link(entity, None),
