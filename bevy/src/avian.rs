@@ -25,8 +25,8 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use avian3d::prelude::{
-    Collider, ComputedAngularInertia, ComputedCenterOfMass, ComputedMass, Forces, Gravity,
-    Physics, PhysicsTime, ReadRigidBodyForces, RigidBody, WriteRigidBodyForces,
+    Collider, ComputedAngularInertia, ComputedCenterOfMass, ComputedMass, Forces, Gravity, Physics,
+    PhysicsTime, ReadRigidBodyForces, RigidBody, WriteRigidBodyForces,
 };
 use bevy::ecs::prelude::*;
 use bevy::math::{Quat, Vec3};
@@ -189,7 +189,12 @@ pub(crate) fn apply_water_forces(
             continue;
         };
         let Some(shape) = body_shape(&mut shapes, body, &buoyant, collider, com.0, |e| {
-            report(&mut errors, water, &format!("hull of avian body {body}"), &e)
+            report(
+                &mut errors,
+                water,
+                &format!("hull of avian body {body}"),
+                &e,
+            )
         }) else {
             continue;
         };
@@ -216,7 +221,12 @@ pub(crate) fn apply_water_forces(
                 buoyant.water_force = force;
                 buoyant.water_torque = torque;
             }
-            Err(e) => report(&mut errors, water, &format!("avian body {body} refused"), &e),
+            Err(e) => report(
+                &mut errors,
+                water,
+                &format!("avian body {body} refused"),
+                &e,
+            ),
         }
         if params.paused {
             // A paused water holds its bodies up but keeps no reactions (it would get
@@ -296,9 +306,11 @@ fn make_shape(
         let v = mesh.vertices().iter().map(|p| p.to_array()).collect();
         (v, mesh.indices().to_vec())
     } else {
-        return Err("the collider is not a cuboid, ball, convex hull or trimesh: \
+        return Err(
+            "the collider is not a cuboid, ball, convex hull or trimesh: \
                     give AvianBuoyant::hull"
-            .into());
+                .into(),
+        );
     };
     moved_hull(&vertices, &triangles, com)
 }
