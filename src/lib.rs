@@ -67,8 +67,10 @@
 //! * [`Params`], [`Boundary`]: the model's parameters, their defaults and limits; the
 //!   boundary is a pinned pool, a free sheet, or open water whose waves leave through a
 //!   damping frame ([`Boundary::Absorbing`]).
-//! * [`floater`]: floating spheres and boxes ([`Floater`], [`Surface::add_floater`]) that
-//!   ride the waves and push back on them, two-way.
+//! * [`floater`]: floating rigid bodies, spheres, boxes and hull meshes ([`Floater`],
+//!   [`Surface::add_floater`]) that pitch and roll with the waves and push back on them,
+//!   two-way; [`Surface::body_forces`] for bodies another physics engine owns. [`body`]
+//!   holds their physics: hulls, the pressure on the wet triangles, the rigid step.
 //! * [`disturb`]: rain reproducible from a seed, a moving object's wake, and the
 //!   [`disturb::Disturbance`] trait that [`Surface::advance_with`] applies every substep.
 //! * [`mesh`]: normals and the LOD index buffer. Its docs show a renderer's frame.

@@ -503,3 +503,120 @@ fn with_drag_a_body_on_still_water_never_gains_energy() {
     assert!(worst <= 1e-4 * start.abs(), "{worst}");
     assert!(last < start);
 }
+
+/// The state hash after [`rocking_boats`] (two boats of the shipped hull, one heeled, and a
+/// spinning box, on waves from drops): the same on every level, thread count and target.
+const GOLDEN_ROCKING: u64 = 0x947d_7137_910c_2d03;
+
+/// Two boats of one shared hull and a box, turned and spinning, rocked by drops for 240
+/// steps on `level` and `threads` threads; returns the final state hash and the largest
+/// heel any body reached (degrees).
+fn rocking_boats(level: springwater::SimdLevel, threads: usize) -> (u64, f32) {
+    let mut s = Surface::new(Params::with_size(40, 32)).unwrap();
+    s.set_simd_level(level);
+    #[cfg(feature = "parallel")]
+    {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads);
+        s.set_thread_pool(Some(Arc::new(pool.build().unwrap())));
+    }
+    #[cfg(not(feature = "parallel"))]
+    let _ = threads;
+    let hull = boat();
+    let density = s.buoyancy().density;
+    let mut ids = Vec::new();
+    for (k, at) in [[12.0, 0.0, 10.0], [26.0, 0.0, 20.0]]
+        .into_iter()
+        .enumerate()
+    {
+        let mut b = Floater::with_hull(Arc::clone(&hull), 0.4 * density * hull.volume(), at);
+        b.orientation = Quat::from_rotation_x(0.2 * k as f32) * Quat::from_rotation_y(0.7);
+        ids.push(s.add_floater(b).unwrap());
+    }
+    let mut crate_ = Floater::cuboid([1.0, 0.5, 0.75], 1.2, [30.0, 0.5, 8.0]);
+    crate_.angular_velocity = Vec3::new(0.5, 2.0, -0.3);
+    ids.push(s.add_floater(crate_).unwrap());
+    let mut most = 0.0f32;
+    for step in 0..240 {
+        if step % 40 == 0 {
+            let x = 8.0 + (step / 40) as f32 * 4.5;
+            s.drop_at(x, 16.0, 0.5, 3.0).unwrap();
+        }
+        s.step().unwrap();
+        for id in &ids {
+            most = most.max(heel(s.floater(*id).unwrap()));
+        }
+    }
+    (s.state_hash(), most)
+}
+
+#[test]
+fn rocking_boats_give_the_same_bits_on_every_level_and_thread_count() {
+    let (reference, most) = rocking_boats(springwater::SimdLevel::Scalar, 1);
+    println!("rocking boats: hash {reference:#018x}, largest heel {most}°");
+    assert!(most > 5.0, "the bodies hardly rocked: {most}°");
+    for level in springwater::SimdLevel::ALL {
+        for threads in [1, 2] {
+            let (hash, _) = rocking_boats(level, threads);
+            assert_eq!(hash, reference, "{level} on {threads} threads");
+        }
+    }
+    assert_eq!(reference, GOLDEN_ROCKING, "{reference:#018x}");
+}
+
+#[test]
+fn bad_rigid_bodies_are_refused_with_one_clear_error_and_change_nothing() {
+    use springwater::glam::Mat3;
+    let mut s = Surface::new(Params::with_size(32, 32)).unwrap();
+    let good = Floater::cuboid([1.0, 0.5, 1.0], 2.0, [16.0, 0.0, 16.0]);
+    let id = s.add_floater(good.clone()).unwrap();
+    let before = s.to_bytes();
+    let edited = |f: fn(&mut Floater)| {
+        let mut b = good.clone();
+        f(&mut b);
+        b
+    };
+    let bad = [
+        edited(|b| b.orientation = Quat::from_xyzw(f32::NAN, 0.0, 0.0, 1.0)),
+        edited(|b| b.orientation = Quat::from_xyzw(0.0, 0.0, 0.0, 2.0)),
+        edited(|b| b.angular_velocity = Vec3::new(0.0, f32::INFINITY, 0.0)),
+        edited(|b| b.angular_velocity = Vec3::new(0.0, 2e6, 0.0)),
+        edited(|b| b.push_torque = Vec3::new(f32::NAN, 0.0, 0.0)),
+        edited(|b| b.mass = 0.0),
+        edited(|b| b.mass = -1.0),
+        edited(|b| b.inertia = Some(Mat3::ZERO)),
+        edited(|b| b.inertia = Some(Mat3::from_diagonal(Vec3::new(1.0, 1.0, 3.0)))),
+        edited(|b| {
+            b.inertia = Some(Mat3::from_cols_array(&[
+                1.0, 0.5, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0,
+            ]))
+        }),
+        edited(|b| b.inertia = Some(Mat3::from_diagonal(Vec3::new(1.0, f32::NAN, 1.0)))),
+    ];
+    for body in bad {
+        let message = s.add_floater(body.clone()).unwrap_err().to_string();
+        assert!(!message.contains('\n') && !message.is_empty(), "{message}");
+        assert!(s.set_floater(id, body.clone()).is_err());
+        assert!(s.body_forces(&body, 1.0 / 60.0).is_err());
+        println!("refused: {message}");
+    }
+    assert_eq!(s.to_bytes(), before, "nothing changed");
+    assert_eq!(s.floaters().len(), 1);
+
+    // Meshes: open (a box missing a face) and inside out.
+    let cube = Hull::cuboid([1.0, 1.0, 1.0]).unwrap();
+    let open = &cube.triangles()[..10];
+    let err = Floater::hull(cube.vertices(), open, 1.0, [16.0, 0.0, 16.0]).unwrap_err();
+    println!("open mesh: {err}");
+    assert!(
+        err.to_string().contains("closed") || err.to_string().contains("edge"),
+        "{err}"
+    );
+    let inside_out: Vec<[u32; 3]> = cube
+        .triangles()
+        .iter()
+        .map(|&[a, b, c]| [a, c, b])
+        .collect();
+    let err = Floater::hull(cube.vertices(), &inside_out, 1.0, [16.0, 0.0, 16.0]).unwrap_err();
+    println!("inside out: {err}");
+    assert!(err.to_string().contains("inside out"), "{err}");
+}

@@ -1,111 +1,32 @@
-//! Rollback as netcode runs it: save every frame into reused buffers, restore an earlier
-//! frame, simulate the same inputs again, and compare state hashes with a straight run,
-//! frame by frame, on every SIMD level and thread count. And what the hash covers: every
-//! input that decides the future changes it; how the surface is stored or run does not.
+//! Rollback as netcode runs it (the scene is `tests/common/rollback.rs`): the straight
+//! run's state hashes are golden on every SIMD level, and a short run that saves every
+//! frame into reused buffers, restores an earlier frame and simulates the same inputs
+//! again gives the straight run's hashes frame by frame (the whole run, on every level and
+//! thread count, is `tests/rollback_levels.rs`). And what the hash covers: every input
+//! that decides the future changes it; how the surface is stored or run does not.
 //!
 //! The golden hashes are the same constants on every target CI runs (x86-64 at every
 //! level, AArch64 under qemu, wasm32 under Node's WASI).
 
 mod common;
+#[path = "common/rollback.rs"]
+mod scene;
 
 use glam::Vec3;
+use scene::{play, pool, straight, with_rollback, DEPTH, FRAMES, PERIOD};
 use springwater::{Floater, FloaterId, Params, SimdLevel, Snapshot, Surface};
-
-/// Frames of the straight run.
-const FRAMES: usize = 300;
-/// A rollback every `PERIOD`th frame…
-const PERIOD: usize = 8;
-/// …of this many frames.
-const DEPTH: usize = 7;
 
 /// XXH3-64 state hash after the straight run of [`pool`] and [`FRAMES`] frames of
 /// [`play`], and after [`water_only`]: the same on every level, thread count and target.
 const GOLDEN_POOL: u64 = 0x71f6_0318_3884_23e0;
 const GOLDEN_WATER: u64 = 0x3de9_fb3f_6657_cd7f;
 
-/// A pinned pool with a heavier patch, a ball and a box floating on it (whose waterlines
-/// stiffen the water: half the default timestep, two steps a frame).
-fn pool() -> (Surface, [FloaterId; 2]) {
-    let mut p = Params::with_size(48, 40);
-    p.dt = 0.2;
-    let mut s = Surface::new(p).unwrap();
-    for i in [20 * 48 + 30, 20 * 48 + 31] {
-        s.set_mass(i, 1.5).unwrap();
-    }
-    let density = s.buoyancy().density;
-    let mut ball = Floater::sphere(1.5, 1.0, [14.0, 0.0, 12.0]);
-    ball.mass = 0.5 * density * ball.shape.volume();
-    let mut crate_ = Floater::cuboid([1.2, 0.6, 0.9], 1.0, [32.0, 0.0, 26.0]);
-    crate_.mass = 0.4 * density * crate_.shape.volume();
-    let ids = [s.add_floater(ball).unwrap(), s.add_floater(crate_).unwrap()];
-    (s, ids)
-}
-
-/// The players' inputs of `frame`, a pure function of it (so a resimulated frame gets
-/// the same): drops now and then, a push on the ball, a paddle's force left pending for
-/// the next frame.
-fn play(s: &mut Surface, [ball, crate_]: [FloaterId; 2], frame: usize) {
-    let mut rng = common::Rng((frame as u32).wrapping_mul(0x9e37_79b9) | 1);
-    let (a, b, c) = (rng.next(), rng.next(), rng.next());
-    if frame.is_multiple_of(5) {
-        // Drops within the stable regime: |height| well below the radius.
-        s.drop_at(24.0 + 36.0 * a, 20.0 + 30.0 * b, 0.4 * c, 2.0)
-            .unwrap();
-    }
-    s.push_floater(ball, [40.0 * a, 0.0, 40.0 * b]).unwrap();
-    s.advance(1.0 / 60.0).unwrap();
-    // Pending through the save at the start of the next frame.
-    s.add_force_at(10.0 + 20.0 * (a + 0.5), 30.0, [0.0, 0.5 * c, 0.0])
-        .unwrap();
-    s.push_floater(crate_, [0.0, 0.0, 30.0 * c]).unwrap();
-}
-
-/// The state hash at the start of every frame and at the end, without rollback.
-fn straight(level: SimdLevel) -> Vec<u64> {
-    let (mut s, ids) = pool();
-    s.set_simd_level(level);
-    let mut hashes = Vec::with_capacity(FRAMES + 1);
-    for frame in 0..FRAMES {
-        hashes.push(s.state_hash());
-        play(&mut s, ids, frame);
-    }
-    hashes.push(s.state_hash());
-    hashes
-}
-
-/// The same frames, saving each frame's start into a ring of reused buffers and rolling
-/// back [`DEPTH`] frames after every [`PERIOD`]th: restore, then simulate them again.
-/// Asserts every hash, first and second time, against `expected`; returns how many
-/// frames were simulated again.
-fn with_rollback(s: &mut Surface, ids: [FloaterId; 2], expected: &[u64], what: &str) -> usize {
-    let mut ring: Vec<Vec<u8>> = vec![Vec::new(); DEPTH + 1];
-    let mut again = 0;
-    for frame in 0..FRAMES {
-        s.save_into(&mut ring[frame % (DEPTH + 1)]);
-        assert_eq!(s.state_hash(), expected[frame], "{what}: frame {frame}");
-        play(s, ids, frame);
-        if frame % PERIOD == PERIOD - 1 {
-            let first = frame + 1 - DEPTH;
-            s.restore(&ring[first % (DEPTH + 1)]).unwrap();
-            for redo in first..=frame {
-                assert_eq!(
-                    s.state_hash(),
-                    expected[redo],
-                    "{what}: frame {redo} simulated again after frame {frame}"
-                );
-                s.save_into(&mut ring[redo % (DEPTH + 1)]);
-                play(s, ids, redo);
-                again += 1;
-            }
-        }
-    }
-    assert_eq!(s.state_hash(), expected[FRAMES], "{what}: the end");
-    again
-}
+/// Frames of the short run with rollbacks: six of them.
+const SHORT: usize = 6 * PERIOD;
 
 #[test]
-fn rollback_gives_the_straight_runs_hashes_on_every_level_and_thread_count() {
-    let expected = straight(SimdLevel::Scalar);
+fn the_straight_run_is_golden_on_every_level() {
+    let expected = straight(SimdLevel::Scalar, FRAMES);
     assert_eq!(
         expected[FRAMES], GOLDEN_POOL,
         "the straight run's last hash: {:#018x}",
@@ -114,28 +35,18 @@ fn rollback_gives_the_straight_runs_hashes_on_every_level_and_thread_count() {
     // Not trivially equal: the state moved frame after frame.
     let distinct: std::collections::HashSet<_> = expected.iter().collect();
     assert_eq!(distinct.len(), expected.len());
-    for level in SimdLevel::ALL {
-        for threads in [1, 2] {
-            let (mut s, ids) = pool();
-            s.set_simd_level(level);
-            #[cfg(feature = "parallel")]
-            {
-                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads);
-                s.set_thread_pool(Some(std::sync::Arc::new(pool.build().unwrap())));
-            }
-            let what = format!("{level} ({:?}) on {threads} threads", s.simd_level());
-            let again = with_rollback(&mut s, ids, &expected, &what);
-            assert_eq!(again, FRAMES / PERIOD * DEPTH);
-        }
+    for level in SimdLevel::ALL.into_iter().filter(|l| l.is_available()) {
+        assert!(straight(level, FRAMES) == expected, "{level}");
     }
 }
 
 #[test]
-fn every_level_hashes_a_straight_run_alike() {
-    let reference = straight(SimdLevel::Scalar);
-    for level in SimdLevel::ALL.into_iter().filter(|l| l.is_available()) {
-        assert!(straight(level) == reference, "{level}");
-    }
+fn a_short_rollback_gives_the_straight_runs_hashes() {
+    let expected = straight(SimdLevel::Scalar, SHORT);
+    let (mut s, ids) = pool();
+    let what = format!("{:?}", s.simd_level());
+    let again = with_rollback(&mut s, ids, &expected, &what);
+    assert_eq!(again, SHORT / PERIOD * DEPTH);
 }
 
 /// Drops, a force and frames of `advance` on open water at `level`: no bodies, the

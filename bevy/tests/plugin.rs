@@ -468,6 +468,39 @@ fn a_buoyant_body_is_the_librarys_floater_and_goes_with_its_entity() {
 }
 
 #[test]
+fn a_heeled_box_rights_itself_and_its_transform_turns_with_it() {
+    let mut app = app(SpringwaterPlugin::default());
+    let water = app.world_mut().spawn(Water::with_size(65, 65)).id();
+    let settings = BuoyancySettings::default();
+    let heeled = Quat::from_rotation_x(15f32.to_radians());
+    let barge = app
+        .world_mut()
+        .spawn((
+            Buoyant::cuboid(Vec3::new(4.0, 0.75, 3.0), 0.5, &settings),
+            Transform::from_xyz(32.0, 0.0, 32.0).with_rotation(heeled),
+        ))
+        .id();
+    run(&mut app, 1);
+    let tilt = |app: &App| {
+        let up = app.world().get::<Transform>(barge).unwrap().rotation * Vec3::Y;
+        up.y.clamp(-1.0, 1.0).acos().to_degrees()
+    };
+    assert!(tilt(&app) > 10.0, "the plugin read the entity's rotation");
+    run(&mut app, 600);
+    // The Transform is the floater's pose, and the body stands upright again.
+    let ws = app.world().get::<WaterSurface>(water).unwrap();
+    let (_, body) = ws.surface().floaters().next().unwrap();
+    let rotation = app.world().get::<Transform>(barge).unwrap().rotation;
+    assert_eq!(rotation.to_array(), body.orientation.to_array());
+    assert!(tilt(&app) < 1.0, "still heeled {}°", tilt(&app));
+    let b = app.world().get::<Buoyant>(barge).unwrap();
+    assert_eq!(
+        b.angular_velocity.to_array(),
+        body.angular_velocity.to_array()
+    );
+}
+
+#[test]
 fn bodies_come_back_one_each_when_the_surface_starts_over() {
     let mut app = app(SpringwaterPlugin::default());
     let water = app.world_mut().spawn(Water::with_size(65, 65)).id();

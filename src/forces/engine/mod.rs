@@ -35,7 +35,7 @@ use crate::jobs::Runner;
 use crate::simd::{Kernel, SimdLevel, Vector};
 use crate::springs::{Springs, Tiling};
 use crate::state::State;
-use schedule::Claims;
+use access::Claims;
 pub(crate) use schedule::PassEnd;
 use scratch::Row;
 use std::any::Any;

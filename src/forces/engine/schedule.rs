@@ -4,122 +4,32 @@
 //! Which band integrates which row at which level is [`Tiling`]: the cut between two
 //! bands leans one row per level into the even band. Colour 0 (even bands) runs first, in
 //! parallel: each needs only its own rows. It also hands over, at each level below the
-//! last, its first two and last two rows ([`Handoff`]). Colour 1 (odd bands) runs second,
-//! in parallel: it reads those rows wherever it needs a row at a level that it did not
-//! integrate itself.
+//! last, its first two and last two rows ([`super::Handoff`]). Colour 1 (odd bands) runs
+//! second, in parallel: it reads those rows wherever it needs a row at a level that it
+//! did not integrate itself.
 //!
 //! Bands of one colour write disjoint rows, so each task takes `&mut` slices of its own
-//! rows of the back buffer and of its own handoff slots ([`Disjoint`]): band `b` owns the
-//! back-buffer rows `cut(b, levels) .. cut(b + 1, levels)` (cuts never decrease, so no two
-//! bands share a row) and, if it is even, the handoff slots `b` and `b + 1` (the next even
-//! band's are `b + 2` and `b + 3`); [`Claims`] run each band at most once. No atomics on the
-//! state, no locks. Each colour's bands are one batch of independent tasks for a
-//! [`Runner`]: rayon's pool, or the host's job system ([`crate::JobSystem`]). A step
-//! allocates nothing: handoffs live in the [`Workspace`], and each worker thread keeps its
-//! rings from pass to pass ([`take_scratch`]).
+//! rows of the back buffer and of its own handoff slots, claimed from [`Bands`] (the
+//! engine's access module, which states why no two tasks hold the same value). No
+//! atomics on the state, no locks. Each colour's bands are one batch of independent tasks
+//! for a [`Runner`]: rayon's pool, or the host's job system ([`crate::JobSystem`]). A
+//! step allocates nothing: handoffs live in the [`Workspace`], and each worker thread
+//! keeps its rings from pass to pass ([`take_scratch`]).
 //!
 //! Within a band, a pass is a wavefront over rows and levels ([`band`]): as soon as row
 //! `r` of level `l−1` exists, row `r−1` of level `l` can be integrated, because a row only
 //! needs the rows beside it.
 
+use super::access::{Bands, Handoffs, Rows};
 use super::row::{advance_row, down_springs, Inputs, Level, RowOut};
 use super::scratch::{put_scratch, take_scratch, Scratch};
-use super::{Handoff, StepConfig, Workspace, MAX_PASS_STEPS, STREAM_MIN_NODES};
-use crate::jobs::{Disjoint, Runner};
+use super::{StepConfig, Workspace, MAX_PASS_STEPS, STREAM_MIN_NODES};
+use crate::jobs::Runner;
 use crate::simd::{Task, Vector};
 use crate::springs::{Springs, Tiling};
-use crate::state::{State, Xyz};
+use crate::state::State;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
-
-/// The back-buffer rows one task may write: rows `first_row ..` of x, y, z, vx, vy, vz.
-struct Rows<'a> {
-    first_row: usize,
-    cols: usize,
-    out: [&'a mut [f32]; 6],
-}
-
-impl Rows<'_> {
-    /// Row `r` (held by this task), for [`advance_row`] to write.
-    #[inline(always)]
-    fn row(&mut self, r: usize) -> [&mut [f32]; 6] {
-        let at = (r - self.first_row) * self.cols;
-        let row = at..at + self.cols;
-        // Written out: a closure passed to `array::map` is compiled on its own (a call per
-        // row).
-        let [x, y, z, vx, vy, vz] = &mut self.out;
-        [
-            &mut x[row.clone()],
-            &mut y[row.clone()],
-            &mut z[row.clone()],
-            &mut vx[row.clone()],
-            &mut vy[row.clone()],
-            &mut vz[row],
-        ]
-    }
-}
-
-/// The back buffers (`next_pos`, `next_vel`), for the tasks to take their bands' rows of.
-struct BackRows<'a> {
-    cols: usize,
-    out: [Disjoint<'a, f32>; 6],
-}
-
-impl<'a> BackRows<'a> {
-    fn new(pos: &'a mut Xyz, vel: &'a mut Xyz, cols: usize, n: usize) -> Self {
-        let [px, py, pz] = pos;
-        let [vx, vy, vz] = vel;
-        let out = [px, py, pz, vx, vy, vz].map(|b| Disjoint::new(&mut b[..n]));
-        Self { cols, out }
-    }
-
-    /// The rows `rows` of every buffer.
-    ///
-    /// # Safety
-    ///
-    /// No other task may hold rows overlapping `rows` at the same time.
-    unsafe fn rows(&self, rows: Range<usize>) -> Rows<'a> {
-        let cols = self.cols;
-        let span = rows.start * cols..rows.end * cols;
-        Rows {
-            first_row: rows.start,
-            cols,
-            // SAFETY: the caller holds these rows alone.
-            out: self.out.each_ref().map(|d| unsafe { d.part(span.clone()) }),
-        }
-    }
-}
-
-/// One flag per band of a colour: a band runs only if it is the first to claim its flag.
-/// That keeps each band's rows and handoff slots with one task even if a job system
-/// calls a task twice, and tells whether every band ran.
-pub(super) struct Claims(Vec<AtomicBool>);
-
-impl Claims {
-    pub fn new(bands: usize) -> Self {
-        Self((0..bands).map(|_| AtomicBool::new(false)).collect())
-    }
-
-    fn reset(&mut self) {
-        self.0.iter_mut().for_each(|c| *c.get_mut() = false);
-    }
-
-    /// Whether band `b` is still free (it is then claimed).
-    fn claim(&self, b: usize) -> bool {
-        self.0
-            .get(b)
-            .is_some_and(|c| !c.swap(true, Ordering::AcqRel))
-    }
-
-    /// Whether every band of `colour` has been claimed.
-    fn all(&mut self, colour: usize) -> bool {
-        self.0
-            .iter_mut()
-            .skip(colour)
-            .step_by(2)
-            .all(|c| *c.get_mut())
-    }
-}
 
 /// How a pass ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -164,73 +74,46 @@ pub(super) fn pass_with<V: Vector>(
         cfg,
         n >= STREAM_MIN_NODES,
     );
-    let bands = t.bands();
-    let back = BackRows::new(&mut state.next_pos, &mut state.next_vel, cols, n);
-    // SAFETY (both colours): a band takes only its own rows at the last level, and each
-    // band runs at most once per colour (`Claims`); cuts never decrease, so the rows of
-    // two bands never overlap.
-    debug_assert!((0..bands).all(|b| t.cut(b, levels) <= t.cut(b + 1, levels)));
-
-    // Colour 0: even bands, each writing the handoff slots on both of its cuts.
-    let slots = Disjoint::new(&mut handoffs[..]);
-    let even_ok = run_colour(runner, claims, bands, 0, &|b| {
-        // SAFETY: see above.
-        let mut rows = unsafe { back.rows(t.rows_at(b, levels)) };
-        // SAFETY: slots `b` and `b + 1` belong to even band `b` alone (the next even band's
-        // are `b + 2` and `b + 3`), and `b` runs once.
-        let mine = unsafe { slots.part(b.min(slots.len())..(b + 2).min(slots.len())) };
-        let mut mine = mine.iter_mut();
-        let above = mine.next().filter(|_| b > 0);
-        let below = mine.next();
-        band(&inp, &t, b, Handoffs::Give(above, below), &mut rows)
-    });
-    let Some(even_ok) = even_ok else {
+    let mut parts = Bands::new(
+        t,
+        cols,
+        &mut state.next_pos,
+        &mut state.next_vel,
+        handoffs,
+        claims,
+    );
+    // Colour 0 (even bands) writes the handoff slots on both of its cuts; colour 1 (odd
+    // bands) reads them.
+    let Some(even_ok) = run_colour(runner, &mut parts, 0, &inp, &t) else {
         return PassEnd::Incomplete;
     };
-
-    // Colour 1: odd bands, reading what the even bands handed over.
-    let handoffs = &handoffs[..];
-    let odd_ok = run_colour(runner, claims, bands, 1, &|b| {
-        // SAFETY: see above.
-        let mut rows = unsafe { back.rows(t.rows_at(b, levels)) };
-        let take = |s: usize| handoffs.get(s).filter(|_| s < bands);
-        band(&inp, &t, b, Handoffs::Take(take(b), take(b + 1)), &mut rows)
-    });
-    match odd_ok {
+    match run_colour(runner, &mut parts, 1, &inp, &t) {
         None => PassEnd::Incomplete,
         Some(true) if even_ok => PassEnd::Done,
         Some(_) => PassEnd::NonFinite,
     }
 }
 
-/// Runs `f` on the bands of `colour` (`colour, colour + 2, …`) through `runner`, each at
-/// most once. Returns whether every band returned `true`, or `None` if some band did not
-/// run.
-fn run_colour(
+/// Runs the bands of `colour` (`colour, colour + 2, …`) through `runner`, each at most
+/// once. Returns whether every band's new values are finite, or `None` if some band did
+/// not run.
+fn run_colour<V: Vector>(
     runner: Runner<'_>,
-    claims: &mut Claims,
-    bands: usize,
+    parts: &mut Bands<V>,
     colour: usize,
-    f: &(dyn Fn(usize) -> bool + Sync),
+    inp: &Inputs<V>,
+    t: &Tiling,
 ) -> Option<bool> {
-    let count = bands.saturating_sub(colour).div_ceil(2);
-    claims.reset();
+    let colour = parts.colour(colour);
     let ok = AtomicBool::new(true);
-    let shared: &Claims = claims;
-    runner.run(count, &|i| {
-        let b = colour + 2 * i;
-        if b < bands && shared.claim(b) && !f(b) {
-            ok.store(false, Ordering::Relaxed);
+    runner.run(colour.tasks(), &|i| {
+        if let Some(mut own) = colour.claim(i) {
+            if !band(inp, t, own.band, own.handoffs, &mut own.rows) {
+                ok.store(false, Ordering::Relaxed);
+            }
         }
     });
-    claims.all(colour).then(|| ok.into_inner())
-}
-
-/// A band's handoff slots on its two cuts (above, below): written by an even band, read
-/// by an odd one.
-enum Handoffs<'a, V> {
-    Give(Option<&'a mut Handoff<V>>, Option<&'a mut Handoff<V>>),
-    Take(Option<&'a Handoff<V>>, Option<&'a Handoff<V>>),
+    colour.all_claimed().then(|| ok.into_inner())
 }
 
 /// Band `b`'s part of a pass: a wavefront over rows and levels. Level `l` handles row `r`

@@ -1,7 +1,9 @@
 //! The engine's unchecked access: every read and write the row kernel makes of the state,
 //! the node and spring tables and its scratch rows goes through the views of this module,
-//! so that the kernel above it ([`super::row`]) is safe code. Only this module of the
-//! engine says `unsafe` (besides the bands' disjoint rows in [`super::schedule`]).
+//! so that the kernel above it ([`super::row`]) is safe code, and each band's own rows of
+//! the back buffers and handoff slots are handed out by [`bands`], so that the schedule
+//! above it ([`super::schedule`]) is safe code too. Only this module of the engine says
+//! `unsafe`.
 //!
 //! # Why every access is in bounds
 //!
@@ -34,6 +36,10 @@
 //!
 //! `tests/miri.rs` runs these paths under Miri on every width around the lane count, in
 //! single steps and passes, with uniform and edited springs.
+
+mod bands;
+
+pub(super) use bands::{Bands, Claims, Handoffs, Rows};
 
 use super::scratch::Group;
 use crate::grid::Family;
