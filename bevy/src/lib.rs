@@ -66,6 +66,10 @@
 //! write in `PostUpdate`, and registers every water and body for rollback through
 //! springwater's own saves, restores and state hashes: see the `rollback` module.
 //!
+//! For Avian's rigid bodies (feature `avian`), `SpringwaterPlugin::with_avian` runs the
+//! sets in `FixedPostUpdate` after Avian's step, and pushes every `AvianBuoyant` body
+//! before it, with the tick Avian takes and Avian's gravity: see the `avian` module.
+//!
 //! Errors (refused parameters, a step that would go non-finite) never panic: they are
 //! logged and sent as [`WaterError`] messages.
 //!
@@ -74,13 +78,16 @@
 //! The modules' arrows run one way. `water` is the bottom: the components, the messages,
 //! world ↔ local transforms (`Space`), the frame's pushes on floating bodies and
 //! `report` (the one way errors leave); it uses no other module. `jobs` stands alone.
-//! `buoyancy`, `follow`, `mesh` and `query` use `water` only. `step` (surfaces for new
+//! `buoyancy`, `follow`, `mesh` and `query` use `water` only; `avian` (feature `avian`) uses
+//! `water` and `buoyancy`. `step` (surfaces for new
 //! waters, messages, the step itself, and the plugin's settings) uses `water`, `mesh`,
 //! `buoyancy` and `jobs`. `rollback` (feature `ggrs`) uses `water` and `buoyancy`. This
 //! file uses them all to wire the plugin, and nothing uses it.
 
 #![warn(missing_docs)]
 
+#[cfg(feature = "avian")]
+pub mod avian;
 mod buoyancy;
 mod follow;
 mod jobs;
@@ -105,6 +112,8 @@ pub use water::{
     Water, WaterDisturbance, WaterDrop, WaterError, WaterForce, WaterSurface, WaterViewer,
 };
 
+#[cfg(feature = "avian")]
+pub use avian::AvianBuoyant;
 /// Re-exported so that a game needs no direct dependency on the library.
 pub use springwater;
 
@@ -115,6 +124,9 @@ pub mod prelude {
         WaterError, WaterFollow, WaterForce, WaterQuery, WaterQueryMut, WaterSample, WaterSurface,
         WaterSystems, WaterViewer,
     };
+
+    #[cfg(feature = "avian")]
+    pub use crate::AvianBuoyant;
 }
 
 /// The plugin's system sets, run in this order in the plugin's schedule.
@@ -146,6 +158,9 @@ pub struct SpringwaterPlugin {
     task_pool: bool,
     /// Registered for bevy_ggrs's rollback, the mesh written in `PostUpdate`.
     rollback: bool,
+    /// Pushes Avian's [`AvianBuoyant`] bodies.
+    #[cfg(feature = "avian")]
+    avian: bool,
 }
 
 impl Default for SpringwaterPlugin {
@@ -155,6 +170,8 @@ impl Default for SpringwaterPlugin {
             schedule: PostUpdate.intern(),
             task_pool: true,
             rollback: false,
+            #[cfg(feature = "avian")]
+            avian: false,
         }
     }
 }
@@ -184,6 +201,17 @@ impl SpringwaterPlugin {
     pub fn with_rollback(mut self) -> Self {
         self.rollback = true;
         self.in_schedule(bevy_ggrs::GgrsSchedule)
+    }
+
+    /// Buoyancy for Avian's rigid bodies (feature `avian`): runs in `FixedPostUpdate`, the
+    /// schedule of Avian's `PhysicsPlugins::default()`, and pushes every [`AvianBuoyant`]
+    /// body before Avian's step; the water steps after it by the same fixed timestep, with
+    /// Avian's gravity. Keep Avian in `FixedPostUpdate` and `Time<Physics>` at relative
+    /// speed 1. See the [`avian`] module.
+    #[cfg(feature = "avian")]
+    pub fn with_avian(mut self) -> Self {
+        self.avian = true;
+        self.in_fixed_schedule()
     }
 
     /// Whether surfaces step on Bevy's `ComputeTaskPool` ([`TaskPoolJobs`], the default)
@@ -257,6 +285,21 @@ impl Plugin for SpringwaterPlugin {
         #[cfg(feature = "ggrs")]
         if self.rollback {
             rollback::build(app);
+        }
+        #[cfg(feature = "avian")]
+        if self.avian {
+            use avian3d::schedule::PhysicsSystems;
+            app.init_resource::<avian::AvianShapes>()
+                .configure_sets(
+                    schedule,
+                    WaterSystems::SyncInputs.after(PhysicsSystems::StepSimulation),
+                )
+                .add_systems(
+                    schedule,
+                    avian::apply_water_forces
+                        .after(PhysicsSystems::Prepare)
+                        .before(PhysicsSystems::StepSimulation),
+                );
         }
     }
 }

@@ -97,8 +97,8 @@ fuzz_target!(|input: Input| {
         })
         .collect();
     // The timestep: a share of the critical one with the bodies floating.
-    for &f in &bodies {
-        let _ = s.add_floater(f);
+    for f in &bodies {
+        let _ = s.add_floater(f.clone());
     }
     let share = 0.05 + 0.94 * input.dt as f32 / 255.0;
     let p = base.with_dt(share * s.critical_dt());

@@ -527,9 +527,11 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
             below_east,
         } = at.around();
         let h_east = east3(h0, here_east);
-        let d_east = east3(d0, below_east);
         let e = self.spring::<EDGE, P>(c, &at, Family::E, h0, h_east);
         let s = self.spring::<EDGE, P>(c, &at, Family::S, h0, d0);
+        // Shifted only here: made with `h_east`, its lanes stayed live across the E and S
+        // springs, and SSE2's pairs of registers spilled more (`docs/performance.md`).
+        let d_east = east3(d0, below_east);
         let se = self.spring::<EDGE, P>(c, &at, Family::SE, h0, d_east);
         let sw = self.spring::<EDGE, P>(c, &at, Family::SW, d0, h_east);
         let node = at.exchange([s, se, sw]);
