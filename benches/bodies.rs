@@ -22,6 +22,17 @@ fn pool(threads: usize) -> rayon::ThreadPool {
         .unwrap()
 }
 
+/// Times 8 steps of `s` on `pool`, every iteration from the same state.
+fn eight_steps(b: &mut criterion::Bencher<'_>, pool: &rayon::ThreadPool, s: &Surface) {
+    pool.install(|| {
+        b.iter_batched_ref(
+            || s.clone(),
+            |s| s.step_n(8).unwrap(),
+            criterion::BatchSize::LargeInput,
+        )
+    })
+}
+
 /// A 512² pool with a drop in the middle and `count` small bodies on a regular grid.
 fn with_bodies(count: usize) -> Surface {
     let n = 512;
@@ -58,15 +69,7 @@ fn many(c: &mut Criterion) {
         for count in [0, 100, 1000] {
             let s = with_bodies(count);
             let id = BenchmarkId::new(format!("512x512_{threads}threads"), count);
-            group.bench_function(id, |b| {
-                pool.install(|| {
-                    b.iter_batched_ref(
-                        || s.clone(),
-                        |s| s.step_n(8).unwrap(),
-                        criterion::BatchSize::LargeInput,
-                    )
-                })
-            });
+            group.bench_function(id, |b| eight_steps(b, &pool, &s));
         }
     }
     group.finish();
@@ -91,13 +94,7 @@ fn hull(c: &mut Criterion) {
         }
         let name = if with_boat { "one_boat" } else { "no_boat" };
         group.bench_function(BenchmarkId::new(name, "128x128"), |b| {
-            pool.install(|| {
-                b.iter_batched_ref(
-                    || s.clone(),
-                    |s| s.step_n(8).unwrap(),
-                    criterion::BatchSize::LargeInput,
-                )
-            })
+            eight_steps(b, &pool, &s)
         });
     }
     group.finish();
