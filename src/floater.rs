@@ -52,7 +52,7 @@
 //! Not modelled: added mass, slamming, bodies touching each other or the pool's walls
 //! (a physics engine that owns the bodies does that: [`Surface::body_forces`]).
 
-use crate::body::rigid::{outer, Rigid};
+use crate::body::rigid::{self, outer, Rigid};
 use crate::body::{tessellate, Hull};
 use crate::error::{Error, Result};
 use crate::params;
@@ -326,7 +326,11 @@ impl Floater {
             MAX_DRAG,
             "at most 1e8 per second",
         )?;
-        check_orientation(self.orientation)?;
+        rigid::check_unit(
+            self.orientation,
+            "floater orientation",
+            "floater orientation's squared norm",
+        )?;
         for (name, v, max, expected) in [
             (
                 "floater position",
@@ -373,27 +377,6 @@ impl Floater {
         }
         Ok(())
     }
-}
-
-/// A unit quaternion within rounding: finite, squared norm within 1e-3 of 1.
-pub(crate) fn check_orientation(q: Quat) -> Result<()> {
-    for v in q.to_array() {
-        params::finite("floater orientation", v)?;
-    }
-    let n = q
-        .to_array()
-        .map(f64::from)
-        .iter()
-        .map(|v| v * v)
-        .sum::<f64>();
-    if (n - 1.0).abs() > 1e-3 {
-        return Err(Error::InvalidParam {
-            name: "floater orientation's squared norm",
-            value: n,
-            expected: "1 within 1e-3: a unit quaternion (normalise it)",
-        });
-    }
-    Ok(())
 }
 
 /// The water's push on a body another physics engine owns, over one tick

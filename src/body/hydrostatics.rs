@@ -283,26 +283,9 @@ impl Hull {
 /// The body-to-world rotation of `q`, as a function of body-frame vectors, scaled by
 /// `2 / |q|²` so that it is a rotation for any `q` near unit length.
 fn rotation(q: Quat) -> Result<impl Fn(DVec3) -> DVec3> {
-    for v in q.to_array() {
-        params::finite("body orientation", v)?;
-    }
-    let [x, y, z, w] = q.to_array().map(f64::from);
-    let n = x * x + y * y + z * z + w * w;
-    // (The components are finite, so n is a number.)
-    if (n - 1.0) * (n - 1.0) > 1e-6 {
-        return Err(Error::InvalidParam {
-            name: "body orientation's squared norm",
-            value: n,
-            expected: "1 within 1e-3: a unit quaternion (normalise it)",
-        });
-    }
-    let s = 2.0 / n;
-    let (xx, yy, zz) = (s * x * x, s * y * y, s * z * z);
-    let (xy, yz, zx) = (s * x * y, s * y * z, s * z * x);
-    let (wx, wy, wz) = (s * w * x, s * w * y, s * w * z);
-    let cx = DVec3::new(1.0 - (yy + zz), xy + wz, zx - wy);
-    let cy = DVec3::new(xy - wz, 1.0 - (xx + zz), yz + wx);
-    let cz = DVec3::new(zx + wy, yz - wx, 1.0 - (xx + yy));
+    let n = rigid::check_unit(q, "body orientation", "body orientation's squared norm")?;
+    let m = rigid::rotation_scaled(q.as_dquat(), 2.0 / n);
+    let (cx, cy, cz) = (m.x_axis, m.y_axis, m.z_axis);
     Ok(move |v: DVec3| cx * v.x + cy * v.y + cz * v.z)
 }
 

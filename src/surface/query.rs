@@ -290,18 +290,6 @@ impl Surface {
     /// # Ok::<(), springwater::Error>(())
     /// ```
     pub fn add_force_at(&mut self, x: f32, z: f32, force: [f32; 3]) -> Result<()> {
-        self.add_force_at_logged(x, z, force, None)
-    }
-
-    /// [`Surface::add_force_at`], recording each touched node's force before the change in
-    /// `log` (so that a caller can undo it exactly).
-    pub(crate) fn add_force_at_logged(
-        &mut self,
-        x: f32,
-        z: f32,
-        force: [f32; 3],
-        log: Option<&mut Vec<(usize, [f32; 3])>>,
-    ) -> Result<()> {
         for f in force {
             crate::params::finite("force", f)?;
         }
@@ -314,9 +302,6 @@ impl Surface {
             std::array::from_fn(|k| std::array::from_fn(|c| ext[c][corners[k]] + w[k] * force[c]));
         for f in sums.iter().flatten() {
             crate::params::finite("accumulated force", *f)?;
-        }
-        if let Some(log) = log {
-            log.extend(corners.map(|i| (i, [ext[0][i], ext[1][i], ext[2][i]])));
         }
         for (k, sum) in sums.iter().enumerate() {
             for (c, &f) in sum.iter().enumerate() {
