@@ -6,7 +6,13 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
 /// The crates' source folders, from the workspace root.
-const CRATES: [&str; 4] = ["src", "cli/src", "ffi/src", "bevy/src"];
+const CRATES: [&str; 5] = [
+    "src",
+    "cli/src",
+    "ffi/src",
+    "bevy/src",
+    "examples/rapier/src",
+];
 
 /// The only places an `unsafe` block, function or impl may stand (ARCHITECTURE.md, "Where
 /// `unsafe` lives"): a folder ends in `/`. The C ABI's exported functions are declared

@@ -1,4 +1,6 @@
-//! A Rapier rigid body floating on springwater's water, without Bevy.
+//! Rapier rigid bodies floating on springwater's water, without Bevy: the coupling a game
+//! copies, over springwater's public API (`src/main.rs` runs it, `tests/rapier.rs` holds it
+//! to theory).
 //!
 //! Rapier owns the body: its collider, mass, inertia, collisions and integration. Once per
 //! 60 Hz tick the water is asked for its force and torque on the body
@@ -11,20 +13,14 @@
 //! meet through plain arrays (`to_array` / `from_array`, quaternions as `[x, y, z, w]`,
 //! matrices column by column).
 //!
-//! ```text
-//! cargo run --release --example rapier
-//! ```
-//!
-//! A barge heeled 15° is dropped next to a dock; every half second the example prints its
-//! height and heel.
+//! This crate is an example, not published: it lives in its own crate so that only it
+//! builds Rapier.
 
 use rapier3d::math::{Pose, Vector};
-use rapier3d::prelude::{
-    ColliderBuilder, PhysicsWorld, RigidBody, RigidBodyBuilder, RigidBodyHandle,
-};
+use rapier3d::prelude::{PhysicsWorld, RigidBody, RigidBodyHandle};
 use springwater::body::Hull;
 use springwater::glam::{Mat3, Quat, Vec3};
-use springwater::{BodyForces, Floater, Params, Surface};
+use springwater::{BodyForces, Floater, Surface};
 use std::sync::Arc;
 
 /// The engine's tick: 60 Hz, Rapier's default.
@@ -161,41 +157,4 @@ pub fn tick(
 /// The angle in degrees between a rotation's up axis and the world's.
 pub fn heel(rotation: Quat) -> f32 {
     (rotation * Vec3::Y).y.clamp(-1.0, 1.0).acos().to_degrees()
-}
-
-fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let mut water = Surface::new(Params::with_size(64, 64))?;
-    let mut world = world_for(&water);
-    // A dock: a fixed block standing half in the water; the water does not know it, Rapier
-    // keeps the barge out of it.
-    let dock = world.bodies.insert(RigidBodyBuilder::fixed());
-    world.colliders.insert_with_parent(
-        ColliderBuilder::cuboid(3.0, 1.0, 12.0).translation(Vector::new(24.0, 0.0, 32.0)),
-        dock,
-        &mut world.bodies,
-    );
-    // A barge 4 × 1 × 3 at half the water's density, dropped heeled 15° beside the dock,
-    // drifting towards it.
-    let density = 0.5 * water.buoyancy().density;
-    let (barge, _) = world.insert(
-        RigidBodyBuilder::dynamic()
-            .translation(Vector::new(30.0, 1.5, 32.0))
-            .rotation(Vector::new(0.0, 0.0, 15f32.to_radians()))
-            .linvel(Vector::new(-2.0, 0.0, 0.0))
-            .can_sleep(false),
-        ColliderBuilder::cuboid(1.5, 0.5, 2.0).density(density),
-    );
-    let bodies = [Floating::new(&mut world, barge)?];
-    println!("time s   height   heel °");
-    for step in 0..=600 {
-        if step % 30 == 0 {
-            let body = &world.bodies[barge];
-            let rotation = Quat::from_array(body.rotation().to_array());
-            let height = body.center_of_mass().y;
-            let t = step as f32 * TICK;
-            println!("{t:6.1}  {height:7.3}  {:7.2}", heel(rotation));
-        }
-        tick(&mut world, &mut water, &bodies)?;
-    }
-    Ok(())
 }

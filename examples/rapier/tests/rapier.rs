@@ -1,23 +1,17 @@
 //! Rapier rigid bodies floated with `Surface::body_forces`: Rapier 0.36 owns the bodies
 //! (mass, inertia, collisions, its own integrator at 60 Hz), the water hands it its force
-//! and torque every tick and takes the reaction (`examples/rapier.rs`, whose coupling these
-//! tests drive).
+//! and torque every tick and takes the reaction (the coupling of this crate's `src/lib.rs`).
 //!
 //! "Water held still" is a surface whose nodes are all pinned: it stays flat at height 0,
 //! so a draft can be held to the displacement theory.
-//!
-//! Not on wasm32: rapier3d is a dev-dependency for other targets only.
-#![cfg(not(target_family = "wasm"))]
 
-#[allow(dead_code)]
-#[path = "../examples/rapier.rs"]
-mod coupling;
-
-use coupling::{apply, heel, push_water, tick, vec3, vector, world_for, Floating, TICK};
 use rapier3d::math::Vector;
 use rapier3d::prelude::{ColliderBuilder, PhysicsWorld, RigidBodyBuilder, RigidBodyHandle};
 use springwater::glam::{Quat, Vec3};
 use springwater::{Floater, Params, Surface};
+use springwater_rapier_example::{
+    apply, heel, push_water, tick, vec3, vector, world_for, Floating, TICK,
+};
 
 /// A 48 × 48 surface at the defaults (its edges pinned), its water held still or free.
 fn water(still: bool) -> Surface {
