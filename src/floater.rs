@@ -326,6 +326,12 @@ impl Floater {
             MAX_DRAG,
             "at most 1e8 per second",
         )?;
+        self.validate_motion()
+    }
+
+    /// The part of [`Floater::validate`] a step changes: orientation, position,
+    /// velocities, pushes and the water's force and torque.
+    pub(crate) fn validate_motion(&self) -> Result<()> {
         rigid::check_unit(
             self.orientation,
             "floater orientation",

@@ -46,6 +46,7 @@ mod boat;
 mod hull;
 mod hydrostatics;
 pub(crate) mod rigid;
+pub(crate) mod small;
 pub(crate) mod tessellate;
 
 pub use boat::BoatShape;
