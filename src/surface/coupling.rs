@@ -4,8 +4,9 @@
 //! another physics engine owns ([`Surface::body_forces`]).
 //!
 //! The model is explained in [`crate::floater`] and computed in [`crate::body`]: the
-//! `hydrostatics` module presses the water on a body's wet triangles, the `rigid` module
-//! solves its step. This file only gathers the water for them and hands their reactions
+//! `hydrostatics` module presses the water on a body's wet triangles (the `small` module
+//! presses one plane of water on a small ball or box), the `rigid` module solves its
+//! step. This file only gathers the water for them and hands their reactions
 //! back: bodies step in parallel but their reactions go into the water one body after
 //! another in the order the bodies were added, so the bits do not depend on the threads.
 
