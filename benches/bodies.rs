@@ -1,8 +1,9 @@
 //! Floating rigid bodies: what they add to a step.
 //!
 //! * `many`: a 512² pool with 0, 100 and 1,000 small bodies (balls and boxes one to two
-//!   cells across, half the water's density, heeled a little so that they rock), 8 steps,
-//!   on 1 and 2 threads. The ratio to 0 bodies is the bodies' cost.
+//!   cells across, half the water's density, heeled a little so that they rock; all small
+//!   enough to meet the water as a plane), 8 steps, on 1 and 2 threads. The ratio to 0
+//!   bodies is the bodies' cost.
 //! * `hull`: one boat of the shipped hull (2,024 triangles), 8 steps on a 128² pool, against
 //!   the same pool without it.
 //!

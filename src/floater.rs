@@ -22,6 +22,11 @@
 //! * **Shape.** A sphere, a box, or any closed triangle mesh ([`Hull`]), in the body's
 //!   frame with the centre of mass at the origin. On a surface each shape is cut into
 //!   triangles at most about a grid cell across (the volume kept exactly).
+//! * **Small bodies.** A ball or a box whose farthest point is at most one cell from its
+//!   centre meets the water as one plane, sampled at its centre (height and slope): the
+//!   plane's pressure in closed form through the centre of buoyancy, the drag there, the
+//!   same implicit step and the same equal and opposite reaction, for a fraction of the
+//!   cost (the `small` module of [`body`](crate::body)).
 //! * **Buoyancy** is the water's pressure `ρ g d` on each triangle below the water's
 //!   surface, clipped where the waterline crosses it (Kerner's model): a force and a
 //!   torque about the centre of mass. In still water this is Archimedes' law exactly, at
@@ -326,6 +331,12 @@ impl Floater {
             MAX_DRAG,
             "at most 1e8 per second",
         )?;
+        self.validate_motion()
+    }
+
+    /// The part of [`Floater::validate`] a step changes: orientation, position,
+    /// velocities, pushes and the water's force and torque.
+    pub(crate) fn validate_motion(&self) -> Result<()> {
         rigid::check_unit(
             self.orientation,
             "floater orientation",

@@ -108,7 +108,8 @@ fn bodies_settle_at_the_draft_their_displacement_predicts() {
         Shape::Sphere { radius: 2.0 },
         Shape::Hull(boat()),
     ];
-    for shape in shapes {
+    // The small ones meet the water as a plane.
+    for shape in shapes.into_iter().chain(small_shapes()) {
         for ratio in [0.25f32, 0.5, 0.75] {
             let mut s = still_water();
             let density = s.buoyancy().density;
@@ -160,6 +161,65 @@ fn bodies_settle_at_the_draft_their_displacement_predicts() {
                 b.position
             );
             assert!(heel(b) < 0.5, "{ratio}: heeled {}°", heel(b));
+        }
+    }
+}
+
+/// A ball and a box at most one cell from their centre to their farthest point: they meet
+/// the water as a plane (the small-body model of `springwater::body`).
+fn small_shapes() -> [Shape; 2] {
+    [
+        Shape::Sphere { radius: 0.8 },
+        Shape::Box {
+            half_extents: Vec3::new(0.5, 0.3, 0.6),
+        },
+    ]
+}
+
+#[test]
+fn the_water_gets_minus_a_small_bodys_force_and_torque() {
+    for shape in small_shapes() {
+        assert!(shape.bounding_radius() <= 1.0, "not a small body");
+        for drag in [0.0f32, Floater::DEFAULT_DRAG] {
+            let mut s = Surface::new(Params::with_size(48, 48)).unwrap();
+            let scale2 = s.params().time_scale * s.params().time_scale;
+            let mass = 0.4 * s.buoyancy().density * shape.volume();
+            let mut body = Floater::sphere(1.0, mass, [20.3, -0.1, 21.7]);
+            body.shape = shape.clone();
+            body.drag = drag;
+            body.orientation = Quat::from_rotation_x(0.3) * Quat::from_rotation_y(0.4);
+            body.velocity = Vec3::new(0.5, -0.3, 0.2);
+            body.angular_velocity = Vec3::new(0.4, -0.2, 0.3);
+            let c = body.position;
+            let push = s.body_forces(&body, 1.0 / 60.0).unwrap();
+            let [fx, fy, fz] = s.forces();
+            let (mut force, mut torque) = (Vec3::ZERO, Vec3::ZERO);
+            for row in 0..48 {
+                for col in 0..48 {
+                    let i = row * 48 + col;
+                    let f = Vec3::new(fx[i], fy[i], fz[i]) * scale2;
+                    force += f;
+                    // Still water: the nodes rest at height 0.
+                    torque += (Vec3::new(col as f32, 0.0, row as f32) - c).cross(f);
+                }
+            }
+            let size = push.force.length();
+            println!(
+                "small {} drag {drag}: body {push:?}, water {force} {torque}",
+                name(&shape)
+            );
+            assert!(size > 0.1 * mass * s.buoyancy().gravity);
+            assert!(
+                (force + push.force).length() < 1e-4 * size,
+                "{force} {push:?}"
+            );
+            if drag == 0.0 {
+                // Without drag every force is vertical on still water, so the nodes' height
+                // does not matter and the bilinear spread keeps each force's moment.
+                let err = (torque + push.torque).length();
+                assert!(err < 1e-4 * size, "{torque} {push:?}");
+                assert!(push.torque.length() > 1e-3 * size, "no torque to check");
+            }
         }
     }
 }

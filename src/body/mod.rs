@@ -12,6 +12,8 @@
 //!   triangle below the water, clipped at the waterline; against a flat water plane the
 //!   result is Archimedes' exactly, at any heel (the `hydrostatics` source file gives the
 //!   method, and why it rather than columns under the hull).
+//! * Small balls and boxes (at most two cells across) meet the water as a plane: the
+//!   `small` source file computes a ball's cap and a box's clipped triangles under it.
 //! * [`BoatShape`]: a simple displacement hull, generated, for examples and tests
 //!   (`assets/boat.obj` is the default one).
 //!
@@ -46,6 +48,7 @@ mod boat;
 mod hull;
 mod hydrostatics;
 pub(crate) mod rigid;
+pub(crate) mod small;
 pub(crate) mod tessellate;
 
 pub use boat::BoatShape;

@@ -4,14 +4,16 @@
 //! another physics engine owns ([`Surface::body_forces`]).
 //!
 //! The model is explained in [`crate::floater`] and computed in [`crate::body`]: the
-//! `hydrostatics` module presses the water on a body's wet triangles, the `rigid` module
-//! solves its step. This file only gathers the water for them and hands their reactions
+//! `hydrostatics` module presses the water on a body's wet triangles (the `small` module
+//! presses one plane of water on a small ball or box), the `rigid` module solves its
+//! step. This file only gathers the water for them and hands their reactions
 //! back: bodies step in parallel but their reactions go into the water one body after
 //! another in the order the bodies were added, so the bits do not depend on the threads.
 
 use super::query::{Spread, Waters};
 use super::Surface;
 use crate::body::rigid::{self, Piece, World};
+use crate::body::small::{self, Plane};
 use crate::body::{Hull, HullScratch};
 use crate::error::{Error, Result};
 use crate::floater::{self, BodyForces, Buoyancy, Floater, Shape};
@@ -97,7 +99,11 @@ struct Context<'a> {
 impl Context<'_> {
     /// Body `body` pressing on `mesh`: its implicit step over `seconds` (see the
     /// `rigid` module of [`crate::body`]), leaving the forces it feels in `slot.forces`.
+    /// A small body meets the water as a plane ([`Context::step_small`]).
     fn step(&self, body: &Floater, mesh: &Hull, slot: &mut Slot) -> Result<rigid::Moved> {
+        if is_small(&body.shape, self.spacing) {
+            return self.step_small(body, mesh, slot);
+        }
         let Buoyancy { gravity, density } = self.buoyancy;
         let rho_g = density as f64 * gravity as f64;
         let h = self.spacing as f64;
@@ -153,6 +159,63 @@ impl Context<'_> {
             &body.rigid(),
             pieces,
             &pressure.plane,
+            world,
+            &mut slot.forces,
+        ))
+    }
+
+    /// [`Context::step`] for a small body (the `small` module of [`crate::body`]): the
+    /// water sampled once, at the body's centre, as a plane; the pressure of that plane as
+    /// one force at the centre of buoyancy `B`, and the drag there towards the water's
+    /// velocity under `B`. `mesh` is a box's 12 triangles (a ball needs none).
+    fn step_small(&self, body: &Floater, mesh: &Hull, slot: &mut Slot) -> Result<rigid::Moved> {
+        let Buoyancy { gravity, density } = self.buoyancy;
+        let rho_g = density as f64 * gravity as f64;
+        let c = body.position;
+        // Off the patch the water is calm, at height 0.
+        let (height, slope) = self.waters.plane(c.x, c.z).unwrap_or((0.0, [0.0; 2]));
+        let water = Plane {
+            at: [c.x as f64, c.z as f64],
+            height: height as f64,
+            slope: slope.map(f64::from),
+        };
+        let wet = match body.shape {
+            Shape::Sphere { radius } => small::sphere(radius as f64, c.as_dvec3(), water, rho_g),
+            _ => small::mesh(mesh, c, body.orientation, water, rho_g, &mut slot.hull)?,
+        };
+        let b = wet.centre;
+        let under = self
+            .waters
+            .flow(b.x as f32, b.z as f32, self.room_rate, &mut None);
+        let (flow, room) = match under {
+            Some((flow, room, _)) => (
+                (flow * self.scale).as_dvec3(),
+                room.max(0.0) as f64 * self.scale as f64,
+            ),
+            None => (DVec3::ZERO, f64::INFINITY),
+        };
+        slot.pieces.clear();
+        slot.pieces.push(Piece {
+            point: b,
+            force: wet.force,
+            area: 1.0,
+            flow,
+        });
+        slot.spreads.clear();
+        slot.spreads.push(under.map(|u| u.2));
+        // The whole drag lands on the four nodes under `B`: capped at half the room of
+        // one cell.
+        let drag = body.drag as f64 * density as f64 * wet.volume;
+        let world = World {
+            rho_g,
+            gravity: gravity as f64,
+            dt: self.seconds as f64,
+            drag_rate: drag.min(0.5 * room),
+        };
+        Ok(rigid::step(
+            &body.rigid(),
+            &slot.pieces,
+            &wet.plane,
             world,
             &mut slot.forces,
         ))
@@ -221,7 +284,7 @@ impl Surface {
         for (k, (_, body)) in bodies.iter().enumerate() {
             let fits = matches!(c.meshes.get(k), Some((shape, _)) if same(shape, &body.shape));
             if !fits {
-                let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
+                let mesh = wet_mesh(&body.shape, self.params.spacing)?;
                 c.keep_mesh(k, &body.shape, mesh);
             }
         }
@@ -261,7 +324,8 @@ impl Surface {
                         .step(body, &meshes[k].1, slot)
                         .ok()
                         .map(|m| moved(body, &m))
-                        .filter(|b| b.validate().is_ok());
+                        // Shape, mass, inertia and drag are the valid body's.
+                        .filter(|b| b.validate_motion().is_ok());
                     cx.shares(slot, 1.0);
                 }
             },
@@ -401,7 +465,7 @@ impl Surface {
                 mesh
             }
             None => {
-                let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
+                let mesh = wet_mesh(&body.shape, self.params.spacing)?;
                 if c.foreign.len() == FOREIGN_MESHES {
                     c.foreign.remove(0);
                 }
@@ -425,6 +489,34 @@ impl Surface {
         let step_seconds = (self.params.dt / self.params.time_scale) as f64;
         cx.shares(slot, seconds as f64 / step_seconds);
         Ok(BodyForces { force, torque })
+    }
+}
+
+/// The widest a ball or box may be, in cells of the water, to meet the water as a plane
+/// (the `small` module of [`crate::body`]): its bounding radius at most one cell, so at
+/// most two cells across.
+const SMALL_CELLS: f32 = 1.0;
+
+/// Whether `shape` takes the small-body path on a grid of `spacing`: a ball or a box at most
+/// [`SMALL_CELLS`] cells from its centre to its farthest point. Hulls never do.
+fn is_small(shape: &Shape, spacing: f32) -> bool {
+    let most = SMALL_CELLS * spacing;
+    match shape {
+        Shape::Sphere { radius } => *radius <= most,
+        Shape::Box { half_extents } => half_extents.length_squared() <= most * most,
+        _ => false,
+    }
+}
+
+/// The mesh the water presses on for `shape`: a small box's 12 triangles (the water under
+/// it is a plane), else the shape cut into triangles a cell across
+/// ([`floater::wet_mesh`]).
+pub(crate) fn wet_mesh(shape: &Shape, spacing: f32) -> Result<Arc<Hull>> {
+    match shape {
+        Shape::Box { half_extents } if is_small(shape, spacing) => {
+            Hull::cuboid(half_extents.to_array()).map(Arc::new)
+        }
+        _ => floater::wet_mesh(shape, spacing),
     }
 }
 

@@ -1,7 +1,7 @@
 //! The floating bodies of a [`Surface`]: adding, reading and pushing them, and the coupled
 //! step that moves them with the water (the model is explained in [`crate::floater`]).
 
-use super::coupling::Coupling;
+use super::coupling::{self, Coupling};
 use super::Surface;
 use crate::body::rigid;
 use crate::error::{Error, Result};
@@ -43,7 +43,7 @@ impl Surface {
     pub fn add_floater(&mut self, body: Floater) -> Result<FloaterId> {
         let body = self.admit(body, Vec3::ZERO, Vec3::ZERO)?;
         params::check_dt(self.params.dt, self.limit_with(self.floaters.buoyancy))?;
-        let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
+        let mesh = coupling::wet_mesh(&body.shape, self.params.spacing)?;
         let id = FloaterId(self.floaters.next_id);
         self.floaters.next_id = id.0.checked_add(1).ok_or(Error::InvalidParam {
             name: "floater id",
@@ -91,7 +91,7 @@ impl Surface {
         let old = &self.floaters.bodies[k].1;
         let body = self.admit(body, old.water_force, old.water_torque)?;
         if body.shape != self.floaters.bodies[k].1.shape {
-            let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
+            let mesh = coupling::wet_mesh(&body.shape, self.params.spacing)?;
             self.floaters.scratch.keep_mesh(k, &body.shape, mesh);
         }
         self.floaters.bodies[k].1 = body;

@@ -143,6 +143,41 @@ impl Waters<'_> {
         Some(s.blend(self.view.cols(), self.view.y()))
     }
 
+    /// The water near `(x, z)` as a plane, or `None` off the footprint: the height there
+    /// and the slope `[∂η/∂x, ∂η/∂z]`, for a body too small to feel the water's curvature.
+    /// The slope is the central difference of the bilinear height one cell either side,
+    /// `(η(x + h) − η(x − h)) / 2h` (one-sided at the grid's edge): continuous as the point
+    /// moves, and level at the bottom of a symmetric dent, where the gradient of the one
+    /// cell holding the point would tilt towards that cell.
+    pub fn plane(&self, x: f32, z: f32) -> Option<(f32, [f32; 2])> {
+        let s = self.sample(x, z)?;
+        let (cols, rows) = (self.view.cols(), self.view.rows());
+        let y = self.view.y();
+        let w = s.weights();
+        // The bilinear height at the point moved to the same spot of cell (c, r).
+        let at = |c: usize, r: usize| {
+            let i = r * cols + c;
+            w[0] * y[i] + w[1] * y[i + 1] + w[2] * y[i + cols] + w[3] * y[i + cols + 1]
+        };
+        // Cells either side of the point's, where the grid has them.
+        let either = |k: usize, cells: usize| (k.saturating_sub(1), (k + 1).min(cells - 1));
+        let h = self.view.spacing();
+        let ((west, east), (north, south)) = (either(s.c, cols - 1), either(s.r, rows - 1));
+        // A grid one cell wide: that cell's own gradient.
+        let [i00, i10, i01, i11] = s.corners(cols);
+        let slope_x = if east > west {
+            (at(east, s.r) - at(west, s.r)) / ((east - west) as f32 * h)
+        } else {
+            ((1.0 - s.fz) * (y[i10] - y[i00]) + s.fz * (y[i11] - y[i01])) / h
+        };
+        let slope_z = if south > north {
+            (at(s.c, south) - at(s.c, north)) / ((south - north) as f32 * h)
+        } else {
+            ((1.0 - s.fx) * (y[i01] - y[i00]) + s.fx * (y[i11] - y[i10])) / h
+        };
+        Some((at(s.c, s.r), [slope_x, slope_z]))
+    }
+
     /// The water under `(x, z)`, or `None` off the footprint: its velocity (the
     /// lattice's, per unit of model time), and the least `mass × rate − viscosity` over the
     /// four nodes the point blends (the damping room `rate` leaves them).
