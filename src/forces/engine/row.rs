@@ -30,8 +30,8 @@
 //! schedule and the level.
 
 use super::access::{
-    each_chunk, Around, BackRow, Chunk, ChunkWork, EitherValues, FrontRow, NodeViews, RowPair,
-    RowViews, Shared, Sink, Source, SpringValues, Tables,
+    each_chunk, BackRow, Chunk, ChunkWork, EitherValues, FrontRow, NodeViews, RowPair, RowViews,
+    Shared, Sink, Source, SpringValues, Tables,
 };
 use super::scratch::{Group, Row, RowForces};
 use super::StepConfig;
@@ -520,12 +520,8 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         mut at: Chunk<'_, '_, '_, V, S, P>,
         west: &mut [V; 3],
     ) -> [V; 6] {
-        let Around {
-            here: h0,
-            here_east,
-            below: d0,
-            below_east,
-        } = at.around();
+        let (h0, here_east, d0, below_east) =
+            (at.here(), at.here_east(), at.below(), at.below_east());
         let h_east = east3(h0, here_east);
         let e = self.spring::<EDGE, P>(c, &at, Family::E, h0, h_east);
         let s = self.spring::<EDGE, P>(c, &at, Family::S, h0, d0);

@@ -346,24 +346,17 @@ impl<'p, V: Vector, S: Source<V>, P: SpringValues<V>> RowPair<'p, V, S, P> {
         }
     }
 
-    /// The positions around chunk `k`.
+    /// The positions of chunk `k` of the row, or of the row below.
     ///
     /// # Safety
     ///
-    /// `k < chunks`.
+    /// `k ≤ chunks`.
     #[inline(always)]
-    unsafe fn around_unchecked(&self, k: usize) -> Around<V> {
-        debug_assert!(k < self.chunks);
-        let (h, d) = (self.here, self.below);
-        // SAFETY: `k < chunks`, so `k + 1 ≤ chunks < pos_chunks` (checked in `new`).
-        unsafe {
-            Around {
-                here: h.pos(k),
-                here_east: h.pos(k + 1),
-                below: d.pos(k),
-                below_east: d.pos(k + 1),
-            }
-        }
+    unsafe fn pos_unchecked(&self, below: bool, k: usize) -> [V; 3] {
+        debug_assert!(k <= self.chunks);
+        let row = if below { self.below } else { self.here };
+        // SAFETY: `k ≤ chunks < pos_chunks` (checked in `new`).
+        unsafe { row.pos(k) }
     }
 
     /// Family `fam`'s `(coefficient, rest length)` in chunk `k`'s lanes.
@@ -382,8 +375,15 @@ impl<'p, V: Vector, S: Source<V>, P: SpringValues<V>> RowPair<'p, V, S, P> {
     #[inline(always)]
     pub fn around(&self, k: usize) -> Around<V> {
         assert!(k < self.chunks);
-        // SAFETY: `k < chunks`, checked above.
-        unsafe { self.around_unchecked(k) }
+        // SAFETY: `k < chunks`, checked above, so `k + 1 ≤ chunks`.
+        unsafe {
+            Around {
+                here: self.pos_unchecked(false, k),
+                here_east: self.pos_unchecked(false, k + 1),
+                below: self.pos_unchecked(true, k),
+                below_east: self.pos_unchecked(true, k + 1),
+            }
+        }
     }
 
     /// Family `fam`'s `(coefficient, rest length)` in chunk `k`'s lanes. Panics unless
@@ -499,20 +499,42 @@ impl<'a, V: Vector, S: Source<V>, P: SpringValues<V>> Chunk<'_, '_, 'a, V, S, P>
         self.views.chunks
     }
 
-    /// The positions around the chunk ([`Around`]).
+    /// The chunk's positions in the row.
     ///
-    /// (Each value is read where the kernel uses it, as late as it can be: a value read
-    /// early stays in a register, or is spilled, through everything computed in between.)
+    /// (One `[V; 3]` per call, not the four as one [`Around`]: returned together, two of
+    /// the row below's axes went through the stack at the portable level, 4.6 more
+    /// instructions per node update there; `docs/performance.md`.)
     #[inline(always)]
-    pub fn around(&self) -> Around<V> {
+    pub fn here(&self) -> [V; 3] {
         // SAFETY: `k < chunks` (`Chunk`), the count `pair` was checked for.
-        unsafe { self.views.pair.around_unchecked(self.k) }
+        unsafe { self.views.pair.pos_unchecked(false, self.k) }
+    }
+
+    /// The positions of the chunk east of this one in the row.
+    #[inline(always)]
+    pub fn here_east(&self) -> [V; 3] {
+        // SAFETY: `k + 1 ≤ chunks`, as `k < chunks` (`Chunk`).
+        unsafe { self.views.pair.pos_unchecked(false, self.k + 1) }
+    }
+
+    /// The chunk's positions in the row below.
+    #[inline(always)]
+    pub fn below(&self) -> [V; 3] {
+        // SAFETY: as in `here`.
+        unsafe { self.views.pair.pos_unchecked(true, self.k) }
+    }
+
+    /// The positions of the chunk east of this one in the row below.
+    #[inline(always)]
+    pub fn below_east(&self) -> [V; 3] {
+        // SAFETY: as in `here_east`.
+        unsafe { self.views.pair.pos_unchecked(true, self.k + 1) }
     }
 
     /// Family `fam`'s `(coefficient, rest length)` in the chunk's lanes.
     #[inline(always)]
     pub fn spring(&self, fam: Family) -> (V, V) {
-        // SAFETY: as in `around`.
+        // SAFETY: as in `here`.
         unsafe { self.views.pair.spring_unchecked(fam, self.k) }
     }
 
@@ -759,11 +781,17 @@ impl<V: Vector> Sink<V> for &mut [[V; 6]] {
     #[inline(always)]
     fn put_last(&mut self, k: usize, new: [V; 6], real: V::Mask) -> bool {
         // The lanes past the row stay zero; `whole` counts the last chunk of a ring row as
-        // whole whatever its width, so the mask decides here.
+        // whole whatever its width, so the mask decides here (a chunk with every lane in
+        // the row is stored as it is, as the chunks before it are).
         let g = &mut self[k + 1];
-        for (g, v) in g.iter_mut().zip(new) {
-            *g = V::keep(real, v);
+        let whole = V::all(real);
+        if whole {
+            *g = new;
+        } else {
+            for (g, v) in g.iter_mut().zip(new) {
+                *g = V::keep(real, v);
+            }
         }
-        V::all(real)
+        whole
     }
 }
