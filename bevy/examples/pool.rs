@@ -5,8 +5,8 @@
 //! `cargo run --release -p springwater-bevy --example pool --features example`
 //!
 //! Drag with the left mouse button to orbit, scroll to zoom, arrows or WASD push the
-//! ball, space drops a splash under the ball, R toggles the rain, B turns the camera to
-//! the boats and back, F makes the water's window follow the ball (a [`WaterFollow`] on
+//! ball, space drops a splash under the ball, R toggles the rain, B makes the camera ride
+//! along with the white boat and back, F makes the water's window follow the ball (a [`WaterFollow`] on
 //! it; the camera follows too) out of the pool and across an open sea of the same tiles.
 //!
 //! The boats are the shipped hull (`BoatShape::default()`, 6 × 2 × 1), each an Avian
@@ -18,8 +18,8 @@
 //! `SPRINGWATER_SCREENSHOT=pool.png` runs on a fixed 1/60 s clock instead, saves the
 //! window after `SPRINGWATER_SCREENSHOT_FRAME` frames (default 180), prints the boats'
 //! heel and trim, and exits: the pictures in the README were made so, under Xvfb with
-//! Mesa's software Vulkan. `SPRINGWATER_BOATS=1` as well starts with the camera on the
-//! boats.
+//! Mesa's software Vulkan. `SPRINGWATER_BOATS=1` as well starts with the camera riding
+//! along with a boat.
 //! `SPRINGWATER_FOLLOW=1` as well makes the second one: the window follows the ball from
 //! the start, and the ball cruises to the right at twice the ripple speed with 30 times
 //! the gravity, so that it dents the water enough for its wake to show (no rain, no deck,
@@ -118,7 +118,7 @@ struct ScreenshotAt {
     frame: u32,
 }
 
-/// Screenshot mode with `SPRINGWATER_BOATS=1`: the camera starts on the boats.
+/// Screenshot mode with `SPRINGWATER_BOATS=1`: the camera starts riding along with a boat.
 #[derive(Resource)]
 struct StartOnBoats;
 
@@ -127,14 +127,14 @@ struct StartOnBoats;
 /// from the horizontal; positive: starboard down, bow up).
 fn screenshot(
     mut frames: Local<u32>,
-    mut greatest: Local<Vec<[f32; 2]>>,
+    mut greatest: Local<[[f32; 2]; BOATS.len()]>,
     at: Res<ScreenshotAt>,
-    boats: Query<&Transform, With<Helm>>,
+    boats: Query<(&Transform, &Helm)>,
     mut commands: Commands,
 ) {
     *frames += 1;
-    greatest.resize(boats.iter().len(), [0.0; 2]);
-    for (k, boat) in boats.iter().enumerate() {
+    for (boat, helm) in &boats {
+        let k = helm.number;
         let tilt = heel_and_trim(boat.rotation);
         for (most, now) in greatest[k].iter_mut().zip(tilt) {
             *most = most.max(now.abs());
@@ -234,6 +234,9 @@ struct Orbit {
     distance: f32,
     yaw: f32,
     pitch: f32,
+    /// Riding along with the [`Ridden`] boat: the focus on it, looking from ahead of it,
+    /// a little to the inside of its turn, the yaw following its heading.
+    ride: bool,
 }
 
 /// Rain that can be switched off.
@@ -337,6 +340,7 @@ fn setup(
         distance,
         yaw: 0.6,
         pitch,
+        ride: false,
     };
     if on_boats.is_some() {
         orbit = BOATS_VIEW;
@@ -361,16 +365,29 @@ fn setup(
 /// The ball while the water follows it (never the camera).
 type FollowedBall = (With<Ball>, With<WaterFollow>, Without<Camera3d>);
 
+/// The boat the camera rides along with (never the camera).
+type RiddenBoat = (With<Ridden>, Without<Camera3d>);
+
 fn orbit_camera(
     buttons: Res<ButtonInput<MouseButton>>,
     motion: Res<AccumulatedMouseMotion>,
     scroll: Res<AccumulatedMouseScroll>,
     mut cameras: Query<(&mut Orbit, &mut Transform), With<Camera3d>>,
     followed: Query<&Transform, FollowedBall>,
+    ridden: Query<(&Transform, &Helm), RiddenBoat>,
 ) {
     for (mut orbit, mut transform) in &mut cameras {
         if let Ok(ball) = followed.single() {
             orbit.focus = ball.translation.with_y(0.0);
+        }
+        if let (true, Ok((boat, helm))) = (orbit.ride, ridden.single()) {
+            let heading = (boat.rotation * Vec3::X).with_y(0.0).normalize_or_zero();
+            let inside = (helm.centre - boat.translation)
+                .with_y(0.0)
+                .normalize_or_zero();
+            let from = heading + 0.4 * inside;
+            orbit.focus = boat.translation.with_y(0.0);
+            orbit.yaw = from.x.atan2(from.z);
         }
         if buttons.pressed(MouseButton::Left) {
             orbit.yaw -= motion.delta.x * 0.005;
@@ -454,7 +471,7 @@ fn follow_ball(
     }
 }
 
-/// B: the camera looks at the boats, or back where it looked before.
+/// B: the camera rides along with the white boat, or goes back where it looked before.
 fn look_at_boats(
     keys: Res<ButtonInput<KeyCode>>,
     mut before: Local<Option<Orbit>>,
@@ -473,17 +490,24 @@ fn look_at_boats(
     }
 }
 
-/// Where the camera looks at the boats from (B, and `SPRINGWATER_BOATS=1`).
+/// The camera riding along with the white boat, low (B, and `SPRINGWATER_BOATS=1`).
 const BOATS_VIEW: Orbit = Orbit {
     focus: Vec3::new(36.0, 0.0, 4.0),
-    distance: 28.0,
+    distance: 15.0,
     yaw: 0.9,
-    pitch: 0.25,
+    pitch: 0.28,
+    ride: true,
 };
+
+/// The boat the camera rides along with in the boats' view (the white one).
+#[derive(Component)]
+struct Ridden;
 
 /// A boat's helmsman: keeps it under way round its circle.
 #[derive(Component)]
 struct Helm {
+    /// Which of [`BOATS`].
+    number: usize,
     /// The centre of the circle, world.
     centre: Vec3,
     /// +1: round the circle anticlockwise seen from above; −1: clockwise.
@@ -515,8 +539,12 @@ fn spawn_boats(
         // Each starts at a different place on its circle, heading along it.
         let out = Quat::from_rotation_y(2.0 * k as f32) * Vec3::X;
         let heading = turn * Vec3::Y.cross(out);
-        commands.spawn((
-            Helm { centre, turn },
+        let mut boat = commands.spawn((
+            Helm {
+                number: k,
+                centre,
+                turn,
+            },
             RigidBody::Dynamic,
             collider.clone(),
             ColliderDensity(BOAT_DENSITY),
@@ -528,6 +556,9 @@ fn spawn_boats(
             Transform::from_translation(centre + BOAT_CIRCLE * out)
                 .with_rotation(Quat::from_rotation_y(f32::atan2(-heading.z, heading.x))),
         ));
+        if k == 1 {
+            boat.insert(Ridden);
+        }
     }
 }
 
