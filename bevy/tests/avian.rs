@@ -261,3 +261,38 @@ fn a_box_against_a_dock_stays_afloat() {
     assert!(heel(r) < 2.0);
     assert!(v.length() < 0.05, "still moving: {v}");
 }
+
+#[test]
+fn a_box_keeps_its_draft_with_avians_clock_slower_or_faster() {
+    // Avian's tick is the fixed timestep times `Time<Physics>`'s relative speed, and the
+    // water's forces are taken over that tick; the water itself steps by the fixed
+    // timestep. Floating at rest is a balance of weight and buoyancy, whatever the tick.
+    for speed in [0.5f32, 2.0] {
+        let (mut app, water) = app();
+        app.world_mut()
+            .resource_mut::<Time<Physics>>()
+            .set_relative_speed(speed);
+        let half = Vec3::new(2.0, 1.0, 1.5);
+        let boxed = spawn_box(&mut app, half, 0.5, Vec3::new(24.0, 0.5, 24.0));
+        // The same 25 seconds of physics time at either speed.
+        run(&mut app, (SETTLE as f32 / speed) as usize);
+
+        let (p, r) = pose(&app, boxed);
+        let draft = water_under(&app, water, p) - (p.y - half.y);
+        let weight = app.world().get::<ComputedMass>(boxed).unwrap().value() * 9.81;
+        let push = app.world().get::<AvianBuoyant>(boxed).unwrap().water_force;
+        let v = app.world().get::<LinearVelocity>(boxed).unwrap().0;
+        println!(
+            "relative speed {speed}: draft {draft} for 1, heel {}, lift {} for {weight}, velocity {v}",
+            heel(r),
+            push.y
+        );
+        assert!((draft - 1.0).abs() < 0.02, "speed {speed}: draft {draft}");
+        assert!(heel(r) < 1.0, "speed {speed}: heel {}", heel(r));
+        assert!(
+            (push.y - weight).abs() < 0.02 * weight,
+            "speed {speed}: {push} vs {weight}"
+        );
+        assert!(v.length() < 0.05, "speed {speed}: still moving: {v}");
+    }
+}
