@@ -530,7 +530,7 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         let d_east = east3(d0, below_east);
         let se = self.spring::<EDGE, P>(c, &at, Family::SE, h0, d_east);
         let sw = self.spring::<EDGE, P>(c, &at, Family::SW, d0, h_east);
-        let node = at.exchange([s, se, sw]);
+        let node = at.exchange(s, se, sw);
         let (inv_mass, viscosity, north) = (node.inv_mass, node.viscosity, node.north);
         let free = inv_mass.gt(V::zero());
         let mut new = [V::zero(); 6];

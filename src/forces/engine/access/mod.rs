@@ -546,10 +546,11 @@ impl<'a, V: Vector, S: Source<V>, P: SpringValues<V>> Chunk<'_, '_, 'a, V, S, P>
         unsafe { self.views.pair.here.vel(self.k) }
     }
 
-    /// Leaves `down` as what the chunk sends to the row below, and gives its node values
-    /// and what arrived from the row above.
+    /// Leaves `[s, se, sw]` as what the chunk sends to the row below, and gives its node
+    /// values and what arrived from the row above. (Three arguments, each written in
+    /// place: a `Group` argument went through the stack frame on wasm, `docs/performance.md`.)
     #[inline(always)]
-    pub fn exchange(&mut self, down: Group<V>) -> NodeChunk<'a, V> {
+    pub fn exchange(&mut self, s: [V; 3], se: [V; 3], sw: [V; 3]) -> NodeChunk<'a, V> {
         let (k, v) = (self.k, &mut *self.views);
         let arriving: &'a [Group<V>] = v.nodes.arriving;
         debug_assert!(k < v.chunks);
@@ -557,7 +558,8 @@ impl<'a, V: Vector, S: Source<V>, P: SpringValues<V>> Chunk<'_, '_, 'a, V, S, P>
         // rows (`chunks + 2` groups), as checked in `NodeViews::new` and `RowViews::new`.
         unsafe {
             let (inv_mass, viscosity) = (v.nodes.inv_mass.get(k), v.nodes.viscosity.get(k));
-            *v.sent.get_unchecked_mut(k + 1) = down;
+            let down = v.sent.get_unchecked_mut(k + 1);
+            (down[0], down[1], down[2]) = (s, se, sw);
             NodeChunk {
                 inv_mass,
                 viscosity,
