@@ -206,8 +206,9 @@ impl SpringwaterPlugin {
     /// Buoyancy for Avian's rigid bodies (feature `avian`): runs in `FixedPostUpdate`, the
     /// schedule of Avian's `PhysicsPlugins::default()`, and pushes every [`AvianBuoyant`]
     /// body before Avian's step; the water steps after it by the same fixed timestep, with
-    /// Avian's gravity. Keep Avian in `FixedPostUpdate` and `Time<Physics>` at relative
-    /// speed 1. See the [`avian`] module.
+    /// Avian's gravity. Keep Avian in `FixedPostUpdate`. `Time<Physics>` at a relative
+    /// speed other than 1 scales the bodies' tick (their forces are taken over it) but not
+    /// the water's, whose waves keep the fixed timestep's pace. See the [`avian`] module.
     #[cfg(feature = "avian")]
     pub fn with_avian(mut self) -> Self {
         self.avian = true;
