@@ -6,8 +6,9 @@
 //!
 //! Drag with the left mouse button to orbit, scroll to zoom, arrows or WASD push the
 //! ball, space drops a splash under the ball, R toggles the rain, B makes the camera ride
-//! along with the white boat and back, F makes the water's window follow the ball (a [`WaterFollow`] on
-//! it; the camera follows too) out of the pool and across an open sea of the same tiles.
+//! along with the white boat and back, F makes the water's window follow the ball (a
+//! [`WaterFollow`] on it; the camera follows too) out of the pool and across an open sea
+//! of the same tiles.
 //!
 //! The boats are the shipped hull (`BoatShape::default()`, 6 × 2 × 1), each an Avian
 //! `RigidBody` with the hull as its trimesh collider and its mesh; a helmsman keeps each
