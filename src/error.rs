@@ -21,7 +21,9 @@ pub enum Error {
     },
 
     /// `SPRINGWATER_SIMD` (or a level given by name) is not a SIMD level.
-    #[error("SIMD level '{value}' is unknown: use scalar, sse2, avx2 or avx512")]
+    #[error(
+        "SIMD level '{value}' is unknown: use scalar, sse2, avx2, avx512, neon, simd128 or portable"
+    )]
     InvalidSimdLevel {
         /// The name that was given.
         value: String,

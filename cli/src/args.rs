@@ -356,8 +356,9 @@ pub fn positive(v: f32, flag: &str) -> CliResult<f32> {
     }
 }
 
-/// Runs `s` at the level `SPRINGWATER_SIMD` names, if it is set (clamped to what the CPU
-/// has): the command line's way to force a level, which the library itself never reads.
+/// Runs `s` at the level `SPRINGWATER_SIMD` names, if it is set and not empty (clamped to
+/// what the CPU has): the command line's way to force a level, which the library itself
+/// never reads.
 pub fn forced_level(s: &mut Surface) -> CliResult<()> {
     s.set_simd_level(SimdLevel::from_env().map_err(lib_error)?);
     Ok(())

@@ -216,9 +216,27 @@ fn bench_names_the_level_first_and_an_unknown_level_is_refused() {
     let stderr = String::from_utf8(out.stderr).unwrap();
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(
-        stderr.contains("avx3") && stderr.contains("avx512"),
+        stderr.contains("avx3") && stderr.contains("avx512") && stderr.contains("portable"),
         "{stderr}"
     );
+
+    // Set but empty is as if unset: the widest level the CPU has.
+    let bench = |simd: Option<&str>| {
+        let mut command = Command::new(env!("CARGO_BIN_EXE_springwater"));
+        match simd {
+            Some(value) => command.env("SPRINGWATER_SIMD", value),
+            None => command.env_remove("SPRINGWATER_SIMD"),
+        };
+        let out = command
+            .args(["bench", "--size", "32x32", "--steps", "3", "--repeats", "1"])
+            .args(["--compare", "none"])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{out:?}");
+        let stdout = String::from_utf8(out.stdout).unwrap();
+        stdout.split_whitespace().nth(1).unwrap().to_string()
+    };
+    assert_eq!(bench(Some("")), bench(None));
 }
 
 /// `--drop COL,ROW,HEIGHT,RADIUS` stays in grid steps whatever the spacing (the command

@@ -80,14 +80,16 @@ impl SimdLevel {
         }
     }
 
-    /// The level `SPRINGWATER_SIMD` names if it is set (clamped to what the CPU has), else
-    /// [`SimdLevel::detect`]. An unknown value of the variable is an error that names it.
+    /// The level `SPRINGWATER_SIMD` names if it is set and not empty (clamped to what the
+    /// CPU has), else [`SimdLevel::detect`]. An unknown value of the variable is an error
+    /// that names it.
     /// The library never calls this itself (a [`Surface`](crate::Surface) starts at
     /// [`SimdLevel::detect`]): the command line and the tests do, and a host that wants the
     /// variable honoured passes the result to
     /// [`Surface::set_simd_level`](crate::Surface::set_simd_level).
     pub fn from_env() -> crate::Result<SimdLevel> {
         match std::env::var(ENV) {
+            Ok(v) if v.trim().is_empty() => Ok(Self::detect()),
             Ok(v) => v.parse::<SimdLevel>().map(SimdLevel::clamped),
             Err(std::env::VarError::NotPresent) => Ok(Self::detect()),
             Err(std::env::VarError::NotUnicode(_)) => Err(crate::Error::InvalidSimdLevel {
@@ -183,7 +185,10 @@ mod tests {
         for l in SimdLevel::ALL {
             assert_eq!(l.name().parse::<SimdLevel>().unwrap(), l);
         }
-        assert!("avx3".parse::<SimdLevel>().is_err());
+        let unknown = "avx3".parse::<SimdLevel>().unwrap_err().to_string();
+        for l in SimdLevel::ALL {
+            assert!(unknown.contains(l.name()), "{unknown} names {l}");
+        }
         let best = SimdLevel::detect();
         assert!(best.is_available());
         for l in SimdLevel::ALL {
