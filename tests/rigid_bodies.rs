@@ -7,7 +7,7 @@
 
 use springwater::body::{BoatShape, Hull};
 use springwater::glam::{Quat, Vec3};
-use springwater::{Floater, Params, Shape, Surface};
+use springwater::{Floater, FloaterId, Params, Shape, Surface};
 use std::sync::Arc;
 
 /// A 48 × 48 surface at the defaults whose water does not move.
@@ -572,15 +572,7 @@ const GOLDEN_ROCKING: u64 = 0x947d_7137_910c_2d03;
 /// steps on `level` and `threads` threads; returns the final state hash and the largest
 /// heel any body reached (degrees).
 fn rocking_boats(level: springwater::SimdLevel, threads: usize) -> (u64, f32) {
-    let mut s = Surface::new(Params::with_size(40, 32)).unwrap();
-    s.set_simd_level(level);
-    #[cfg(feature = "parallel")]
-    {
-        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads);
-        s.set_thread_pool(Some(Arc::new(pool.build().unwrap())));
-    }
-    #[cfg(not(feature = "parallel"))]
-    let _ = threads;
+    let mut s = surface_on(40, 32, level, threads);
     let hull = boat();
     let density = s.buoyancy().density;
     let mut ids = Vec::new();
@@ -595,18 +587,91 @@ fn rocking_boats(level: springwater::SimdLevel, threads: usize) -> (u64, f32) {
     let mut crate_ = Floater::cuboid([1.0, 0.5, 0.75], 1.2, [30.0, 0.5, 8.0]);
     crate_.angular_velocity = Vec3::new(0.5, 2.0, -0.3);
     ids.push(s.add_floater(crate_).unwrap());
+    rock(&mut s, &ids, 240, 40, 4.5, 16.0)
+}
+
+/// A `cols` × `rows` surface stepping at `level` on `threads` threads.
+fn surface_on(cols: usize, rows: usize, level: springwater::SimdLevel, threads: usize) -> Surface {
+    let mut s = Surface::new(Params::with_size(cols, rows)).unwrap();
+    s.set_simd_level(level);
+    #[cfg(feature = "parallel")]
+    {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads);
+        s.set_thread_pool(Some(Arc::new(pool.build().unwrap())));
+    }
+    #[cfg(not(feature = "parallel"))]
+    let _ = threads;
+    s
+}
+
+/// Steps `s` `steps` times with a drop every `every` steps, marching along `z` at
+/// `x = 8 + k · stride`; returns the final state hash and the largest heel of `ids`.
+fn rock(
+    s: &mut Surface,
+    ids: &[FloaterId],
+    steps: usize,
+    every: usize,
+    stride: f32,
+    z: f32,
+) -> (u64, f32) {
     let mut most = 0.0f32;
-    for step in 0..240 {
-        if step % 40 == 0 {
-            let x = 8.0 + (step / 40) as f32 * 4.5;
-            s.drop_at(x, 16.0, 0.5, 3.0).unwrap();
+    for step in 0..steps {
+        if step % every == 0 {
+            let x = 8.0 + (step / every) as f32 * stride;
+            s.drop_at(x, z, 0.5, 3.0).unwrap();
         }
         s.step().unwrap();
-        for id in &ids {
+        for id in ids {
             most = most.max(heel(s.floater(*id).unwrap()));
         }
     }
     (s.state_hash(), most)
+}
+
+/// The golden state hash of [`small_bodies`], the same on every level, thread count and
+/// platform.
+const GOLDEN_SMALL: u64 = 0xd6cc_ec9f_6920_a38c;
+
+/// Two balls and two spinning boxes small enough to meet the water as a plane, rocked by
+/// drops for 240 steps on `level` and `threads` threads; returns the final state hash and
+/// the largest heel any body reached (degrees).
+fn small_bodies(level: springwater::SimdLevel, threads: usize) -> (u64, f32) {
+    let mut s = surface_on(28, 24, level, threads);
+    let mut ids = Vec::new();
+    for (k, at) in [
+        [8.0, 0.0, 8.0],
+        [14.0, 0.0, 14.0],
+        [20.0, 0.0, 9.0],
+        [11.0, 0.0, 17.0],
+    ]
+    .into_iter()
+    .enumerate()
+    {
+        let mut b = if k % 2 == 0 {
+            Floater::sphere(0.6 + 0.2 * k as f32 / 2.0, 1.0, at)
+        } else {
+            Floater::cuboid([0.5, 0.3, 0.6], 1.0, at)
+        };
+        b.mass = 0.5 * s.buoyancy().density * b.shape.volume();
+        b.orientation = Quat::from_rotation_z(0.3 * k as f32);
+        b.angular_velocity = Vec3::new(0.4, 1.5, -0.2 * k as f32);
+        ids.push(s.add_floater(b).unwrap());
+    }
+    rock(&mut s, &ids, 240, 30, 2.5, 12.0)
+}
+
+#[test]
+fn small_bodies_give_the_same_bits_on_every_level_and_thread_count() {
+    let (reference, most) = small_bodies(springwater::SimdLevel::Scalar, 1);
+    println!("small bodies: hash {reference:#018x}, largest heel {most}°");
+    assert!(most > 5.0, "the bodies hardly rocked: {most}°");
+    for level in springwater::SimdLevel::ALL {
+        for threads in [1, 2] {
+            let (hash, _) = small_bodies(level, threads);
+            assert_eq!(hash, reference, "{level} on {threads} threads");
+        }
+    }
+    assert_eq!(reference, GOLDEN_SMALL, "{reference:#018x}");
 }
 
 #[test]
