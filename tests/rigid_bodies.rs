@@ -660,32 +660,33 @@ fn small_bodies(level: springwater::SimdLevel, threads: usize) -> (u64, f32) {
     rock(&mut s, &ids, 240, 30, 2.5, 12.0)
 }
 
-#[test]
-fn small_bodies_give_the_same_bits_on_every_level_and_thread_count() {
-    let (reference, most) = small_bodies(springwater::SimdLevel::Scalar, 1);
-    println!("small bodies: hash {reference:#018x}, largest heel {most}°");
+/// Runs `scene` on the scalar reference, checks that its bodies rocked (over 5°), that every
+/// level on 1 and 2 threads gives the same state hash, and that the hash is `golden`.
+fn same_bits_everywhere(
+    name: &str,
+    scene: fn(springwater::SimdLevel, usize) -> (u64, f32),
+    golden: u64,
+) {
+    let (reference, most) = scene(springwater::SimdLevel::Scalar, 1);
+    println!("{name}: hash {reference:#018x}, largest heel {most}°");
     assert!(most > 5.0, "the bodies hardly rocked: {most}°");
     for level in springwater::SimdLevel::ALL {
         for threads in [1, 2] {
-            let (hash, _) = small_bodies(level, threads);
+            let (hash, _) = scene(level, threads);
             assert_eq!(hash, reference, "{level} on {threads} threads");
         }
     }
-    assert_eq!(reference, GOLDEN_SMALL, "{reference:#018x}");
+    assert_eq!(reference, golden, "{reference:#018x}");
+}
+
+#[test]
+fn small_bodies_give_the_same_bits_on_every_level_and_thread_count() {
+    same_bits_everywhere("small bodies", small_bodies, GOLDEN_SMALL);
 }
 
 #[test]
 fn rocking_boats_give_the_same_bits_on_every_level_and_thread_count() {
-    let (reference, most) = rocking_boats(springwater::SimdLevel::Scalar, 1);
-    println!("rocking boats: hash {reference:#018x}, largest heel {most}°");
-    assert!(most > 5.0, "the bodies hardly rocked: {most}°");
-    for level in springwater::SimdLevel::ALL {
-        for threads in [1, 2] {
-            let (hash, _) = rocking_boats(level, threads);
-            assert_eq!(hash, reference, "{level} on {threads} threads");
-        }
-    }
-    assert_eq!(reference, GOLDEN_ROCKING, "{reference:#018x}");
+    same_bits_everywhere("rocking boats", rocking_boats, GOLDEN_ROCKING);
 }
 
 #[test]
