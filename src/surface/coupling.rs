@@ -148,13 +148,7 @@ impl Context<'_> {
         // The body's drag rate, capped at half of what that room allows over the cells it
         // covers (its waterplane, or half its wet area seen from above when under).
         let cells = pressure.plane.area.max(0.5 * seen) / (h * h);
-        let drag = body.drag as f64 * density as f64 * pressure.volume;
-        let world = World {
-            rho_g,
-            gravity: gravity as f64,
-            dt: self.seconds as f64,
-            drag_rate: drag.min(0.5 * room * cells.max(1.0)),
-        };
+        let world = self.world(body, pressure.volume, 0.5 * room * cells.max(1.0));
         Ok(rigid::step(
             &body.rigid(),
             pieces,
@@ -162,6 +156,20 @@ impl Context<'_> {
             world,
             &mut slot.forces,
         ))
+    }
+
+    /// What the rigid step of `body` needs of the water: its weight per volume, gravity,
+    /// the timestep, and the drag rate `k ρ V` for the displaced `volume`, at most
+    /// `drag_cap` (what the water's damping room allows under the body).
+    fn world(&self, body: &Floater, volume: f64, drag_cap: f64) -> World {
+        let Buoyancy { gravity, density } = self.buoyancy;
+        let drag = body.drag as f64 * density as f64 * volume;
+        World {
+            rho_g: density as f64 * gravity as f64,
+            gravity: gravity as f64,
+            dt: self.seconds as f64,
+            drag_rate: drag.min(drag_cap),
+        }
     }
 
     /// [`Context::step`] for a small body (the `small` module of [`crate::body`]): the
@@ -205,13 +213,7 @@ impl Context<'_> {
         slot.spreads.push(under.map(|u| u.2));
         // The whole drag lands on the four nodes under `B`: capped at half the room of
         // one cell.
-        let drag = body.drag as f64 * density as f64 * wet.volume;
-        let world = World {
-            rho_g,
-            gravity: gravity as f64,
-            dt: self.seconds as f64,
-            drag_rate: drag.min(0.5 * room),
-        };
+        let world = self.world(body, wet.volume, 0.5 * room);
         Ok(rigid::step(
             &body.rigid(),
             &slot.pieces,
