@@ -198,6 +198,14 @@ pub(crate) trait Vector:
     /// `f32` lanes per vector.
     const LANES: usize;
 
+    /// Whether the row kernel reads a chunk's three neighbour position triples before its
+    /// springs (`true`) or each just before its first use. The values and the arithmetic
+    /// are the same either way; only the machine code differs. The register levels do
+    /// best reading ahead (SSE2's pairs of registers spill more otherwise); the portable
+    /// lanes, plain arrays that the compiler vectorises on its own, run fewer
+    /// instructions with each read next to its use (`docs/performance.md`).
+    const READ_AHEAD: bool = true;
+
     /// Lane masks.
     type Mask: Copy + BitAnd<Output = Self::Mask> + BitAndAssign + Not<Output = Self::Mask>;
 

@@ -65,6 +65,8 @@ impl core::ops::Not for Mask8 {
 
 impl Vector for F32x8 {
     const LANES: usize = 8;
+    // Each neighbour read next to its use (see `Vector::READ_AHEAD`).
+    const READ_AHEAD: bool = false;
     type Mask = Mask8;
 
     #[inline(always)]

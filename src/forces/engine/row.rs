@@ -520,14 +520,21 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
         mut at: Chunk<'_, '_, '_, V, S, P>,
         west: &mut [V; 3],
     ) -> [V; 6] {
-        let (h0, here_east, d0, below_east) =
-            (at.here(), at.here_east(), at.below(), at.below_east());
-        let h_east = east3(h0, here_east);
+        // The neighbours are read here, or each where first used (`Vector::READ_AHEAD`;
+        // the zeros are never used).
+        let ahead = V::READ_AHEAD;
+        let (h0, here_east, d0, below_east) = if ahead {
+            (at.here(), at.here_east(), at.below(), at.below_east())
+        } else {
+            (at.here(), [V::zero(); 3], [V::zero(); 3], [V::zero(); 3])
+        };
+        let h_east = east3(h0, if ahead { here_east } else { at.here_east() });
         let e = self.spring::<EDGE, P>(c, &at, Family::E, h0, h_east);
+        let d0 = if ahead { d0 } else { at.below() };
         let s = self.spring::<EDGE, P>(c, &at, Family::S, h0, d0);
         // Shifted only here: made with `h_east`, its lanes stayed live across the E and S
         // springs, and SSE2's pairs of registers spilled more (`docs/performance.md`).
-        let d_east = east3(d0, below_east);
+        let d_east = east3(d0, if ahead { below_east } else { at.below_east() });
         let se = self.spring::<EDGE, P>(c, &at, Family::SE, h0, d_east);
         let sw = self.spring::<EDGE, P>(c, &at, Family::SW, d0, h_east);
         let node = at.exchange(s, se, sw);
