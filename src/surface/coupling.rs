@@ -104,8 +104,7 @@ impl Context<'_> {
         if is_small(&body.shape, self.spacing) {
             return self.step_small(body, mesh, slot);
         }
-        let Buoyancy { gravity, density } = self.buoyancy;
-        let rho_g = density as f64 * gravity as f64;
+        let rho_g = self.rho_g();
         let h = self.spacing as f64;
         let pieces = &mut slot.pieces;
         pieces.clear();
@@ -158,6 +157,11 @@ impl Context<'_> {
         ))
     }
 
+    /// The water's weight per volume, `ρ g`.
+    fn rho_g(&self) -> f64 {
+        self.buoyancy.density as f64 * self.buoyancy.gravity as f64
+    }
+
     /// What the rigid step of `body` needs of the water: its weight per volume, gravity,
     /// the timestep, and the drag rate `k ρ V` for the displaced `volume`, at most
     /// `drag_cap` (what the water's damping room allows under the body).
@@ -165,7 +169,7 @@ impl Context<'_> {
         let Buoyancy { gravity, density } = self.buoyancy;
         let drag = body.drag as f64 * density as f64 * volume;
         World {
-            rho_g: density as f64 * gravity as f64,
+            rho_g: self.rho_g(),
             gravity: gravity as f64,
             dt: self.seconds as f64,
             drag_rate: drag.min(drag_cap),
@@ -177,8 +181,7 @@ impl Context<'_> {
     /// one force at the centre of buoyancy `B`, and the drag there towards the water's
     /// velocity under `B`. `mesh` is a box's 12 triangles (a ball needs none).
     fn step_small(&self, body: &Floater, mesh: &Hull, slot: &mut Slot) -> Result<rigid::Moved> {
-        let Buoyancy { gravity, density } = self.buoyancy;
-        let rho_g = density as f64 * gravity as f64;
+        let rho_g = self.rho_g();
         let c = body.position;
         // Off the patch the water is calm, at height 0.
         let (height, slope) = self.waters.plane(c.x, c.z).unwrap_or((0.0, [0.0; 2]));
