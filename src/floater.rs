@@ -41,11 +41,14 @@
 //!   roll and pitch stiffness), which is stable for any mass, size and drag; the position
 //!   and orientation then move with the new velocities (symplectic Euler, like the water),
 //!   and the orientation is renormalised every step.
-//! * **Two-way.** Every wet triangle pushes minus its force into the water at its own
-//!   point with [`Surface::add_force_at`], for the same step: the force and the torque the
-//!   water gets are exactly minus the body's (to rounding). A body at rest dents the water
-//!   by its weight; a moving or rocking one makes waves. Water outside the patch is taken
-//!   as calm at height 0 and gets nothing back.
+//! * **Two-way.** Every wet triangle pushes minus its force onto the nodes under its own
+//!   point (the bilinear weights of [`Surface::add_force_at`]), for the same step, through
+//!   the water column: the lattice gets what changes of that push, and the column carries
+//!   the steady rest to the bottom (`W = R − C`, `C ← C + a W`; `docs/floating.md` and the
+//!   `column` module of the bodies' subsystem state it exactly). A body resting on calm
+//!   water leaves it flat and stays where it is; one dropped in, bobbing, rolling or moving
+//!   on makes waves. Water outside the patch is taken as calm at height 0 and gets nothing
+//!   back.
 //! * **The water's stability.** To the water, a body is a spring of stiffness `ρ_w g h²`
 //!   per cell under its waterline and a damper: [`Surface::critical_dt`] counts the spring
 //!   while bodies float (a body whose buoyancy would push the timestep past the limit is

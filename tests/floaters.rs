@@ -4,6 +4,7 @@
 mod common;
 
 use glam::Vec3;
+use springwater::internals::Tuning;
 use springwater::{Boundary, Buoyancy, Error, Floater, FloaterId, Params, Shape, Surface};
 
 /// `f` with `edit` applied (`Floater` is `#[non_exhaustive]`: no struct update syntax).
@@ -29,11 +30,12 @@ fn vertical_momentum(s: &Surface) -> f64 {
 }
 
 #[test]
-fn what_the_water_gets_is_minus_what_the_body_gets_every_step() {
+fn what_the_water_gets_is_minus_what_the_body_gets_less_what_the_column_carries() {
     // A free sheet without viscosity: the springs' forces cancel in pairs, so the water's
     // momentum changes only by the bodies' reactions. The body's momentum changes by its
-    // water force, gravity and push: the two water forces must be opposite every step
-    // (the body's in seconds, the water's in the lattice's units: `time_scale²` apart).
+    // water force, gravity and push; the water gets minus that force less what the water
+    // column carries, every step (the body's force in seconds, the water's in the
+    // lattice's units: `time_scale²` apart; see `docs/floating.md`).
     let p = Params::with_size(40, 40)
         .with_viscosity(0.0)
         .with_boundary(Boundary::Free);
@@ -52,6 +54,7 @@ fn what_the_water_gets_is_minus_what_the_body_gets_every_step() {
             s.push_floater(a, [576.0, 0.0, -288.0]).unwrap();
         }
         let before = vertical_momentum(&s);
+        let carried: f64 = s.water_column().iter().map(|e| e.1[1] as f64).sum();
         s.step().unwrap();
         let water = (vertical_momentum(&s) - before) / dt;
         let bodies: f64 = [a, b]
@@ -63,7 +66,7 @@ fn what_the_water_gets_is_minus_what_the_body_gets_every_step() {
         // The springs' forces cancel only to rounding, which grows as the free sheet
         // deforms: measured about 1e-6 per step on the same sheet without bodies, up to a
         // few 1e-4 late in this run. A reaction off by 1% would be 0.01 × |body| ≈ 0.03.
-        worst = worst.max((water + bodies).abs());
+        worst = worst.max((water + bodies + carried).abs());
     }
     println!("largest |water + body| over 300 steps: {worst:.2e}");
     assert!(felt / 300.0 > 1.0, "the bodies hardly touched the water");
@@ -103,12 +106,9 @@ fn a_released_body_settles_where_buoyancy_balances_its_weight() {
             "{id:?}: buoyancy {} vs weight {weight}",
             f.water_force.y
         );
-        // The water under it sits a little lower than calm (the body dents the surface).
+        // The water under it is calm: the water column carries the body's weight.
         let under = s.height_at(f.position.x, f.position.z).unwrap();
-        assert!(
-            under < 0.0 && under > -1.0,
-            "{id:?}: water under it at {under}"
-        );
+        assert!(under.abs() < 1e-3, "{id:?}: water under it at {under}");
         // Submerged: displaced volume × density = mass.
         if let Shape::Box { half_extents: e } = f.shape {
             let draft = f.mass / (s.buoyancy().density * 4.0 * e.x * e.z);
@@ -205,7 +205,9 @@ fn drive(speed: f32) -> (f32, f32) {
 fn a_body_faster_than_the_waves_leaves_a_wake_and_calm_water_ahead() {
     let (ahead, behind) = drive(2.0);
     println!("twice the ripple speed: ahead {ahead:.2e}, behind {behind:.2e}");
-    assert!(behind > 1e-2, "no wake: {behind}");
+    // (The water column carries what stays steady under the body: the wake is made by the
+    // load arriving ahead of it and leaving behind it; 4.6e-3 when measured.)
+    assert!(behind > 2e-3, "no wake: {behind}");
     assert!(
         ahead < 1e-3 * behind,
         "waves ran ahead: {ahead} vs {behind}"

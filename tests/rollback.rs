@@ -18,7 +18,7 @@ use springwater::{Floater, FloaterId, Params, SimdLevel, Snapshot, Surface};
 
 /// XXH3-64 state hash after the straight run of [`pool`] and [`FRAMES`] frames of
 /// [`play`], and after [`water_only`]: the same on every level, thread count and target.
-const GOLDEN_POOL: u64 = 0x71f6_0318_3884_23e0;
+const GOLDEN_POOL: u64 = 0xc8bf_1fbd_a7d4_ee8c;
 const GOLDEN_WATER: u64 = 0x3de9_fb3f_6657_cd7f;
 
 /// Frames of the short run with rollbacks: six of them.
@@ -79,7 +79,7 @@ fn records(len: usize) -> [std::ops::Range<usize>; 6] {
         0..12,
         16..24,
         80..96,
-        136..152,
+        136..160,
         len - 12..len - 4,
         len - 4..len,
     ]
@@ -110,10 +110,16 @@ fn saving_again_reuses_the_buffer_and_restoring_reuses_the_surface() {
         let [x, y, _] = s.positions();
         [x.as_ptr(), y.as_ptr(), s.velocities()[1].as_ptr()]
     };
+    let (mut capacity, mut at) = (capacity, at);
     for frame in 0..30 {
         play(&mut s, ids, frame);
         s.save_into(&mut saved);
-        assert_eq!((saved.capacity(), saved.as_ptr()), (capacity, at));
+        // The buffer grows only when the state does (the water column under the bodies
+        // holds the nodes they load); a save that fits reuses it.
+        if saved.len() <= capacity {
+            assert_eq!((saved.capacity(), saved.as_ptr()), (capacity, at));
+        }
+        (capacity, at) = (saved.capacity(), saved.as_ptr());
         assert_eq!(saved, s.to_bytes());
         // Restoring writes into the surface's own buffers (the step swaps its front and
         // back buffers, so compare right across the restore).

@@ -168,9 +168,9 @@ fn hull(s: &Surface, id: FloaterId) -> Arc<Hull> {
     }
 }
 
-/// Where the bodies' records start: after the 152 bytes of the header and 77 per node.
+/// Where the bodies' records start: after the 160 bytes of the header and 77 per node.
 fn bodies_at(s: &Surface) -> usize {
-    152 + 77 * s.node_count()
+    160 + 77 * s.node_count()
 }
 
 /// Bytes a mesh takes in the hull section: its two counts, 12 per vertex and per triangle.
@@ -192,7 +192,10 @@ fn rigid_bodies_and_shared_hulls_come_back_bit_for_bit() {
     let bytes = s.to_bytes();
     // 5 bodies of 176 bytes, and two meshes: the boats' once.
     let meshes = mesh_len(&boat_hull()) + mesh_len(&box_hull());
-    assert_eq!(bytes.len(), 196 + 77 * s.node_count() + 176 * 5 + meshes);
+    assert_eq!(
+        bytes.len(),
+        204 + 77 * s.node_count() + 176 * 5 + meshes + 32 * column_entries(&bytes)
+    );
 
     let loaded = Surface::from_bytes(&bytes).unwrap();
     let plain = Surface::from_snapshot(s.snapshot()).unwrap();
@@ -341,6 +344,17 @@ fn version_5_snapshots_load_upright_and_still() {
 }
 
 /// [`fleet`]'s surface saved, with `edit` made to the bytes and the checksum fixed.
+/// The water column's entry count in a snapshot's header (offset 152).
+fn column_entries(b: &[u8]) -> usize {
+    u64::from_le_bytes(b[152..160].try_into().unwrap()) as usize
+}
+
+/// Where the hull section ends: before the water column's entries and the 44 bytes of
+/// the window's origin, the clock and the checksum.
+fn hulls_end(b: &[u8]) -> usize {
+    b.len() - 44 - 32 * column_entries(b)
+}
+
 fn damaged(s: &Surface, edit: &dyn Fn(&mut Vec<u8>, usize)) -> Vec<u8> {
     let mut b = s.to_bytes();
     edit(&mut b, bodies_at(s));
@@ -392,7 +406,7 @@ fn damaged_hull_sections_are_refused_and_change_nothing() {
             "bytes after the last mesh, counted in both lengths",
             "after its last hull",
             Box::new(|b, _| {
-                let end = b.len() - 44;
+                let end = hulls_end(b);
                 b.splice(end..end, [0; 12]);
                 add_u64(b, 144, 12);
                 add_u64(b, 16, 12);
@@ -411,7 +425,7 @@ fn damaged_hull_sections_are_refused_and_change_nothing() {
             Box::new(move |b, at| {
                 let raft = section(at) + boat;
                 add_u32(b, raft + 4, -1);
-                let end = b.len() - 44;
+                let end = hulls_end(b);
                 b.drain(end - 12..end);
                 add_u64(b, 144, -12);
                 add_u64(b, 16, -12);
@@ -421,7 +435,7 @@ fn damaged_hull_sections_are_refused_and_change_nothing() {
             "the boat's mesh stored again for the raft",
             "repeats hull 0",
             Box::new(move |b, at| {
-                let (first, end) = (section(at), b.len() - 44);
+                let (first, end) = (section(at), hulls_end(b));
                 let copy = b[first..first + boat].to_vec();
                 let longer = boat as i64 - (end - first - boat) as i64;
                 b.splice(first + boat..end, copy);
@@ -620,7 +634,7 @@ fn a_mesh_shared_in_runs_and_apart_is_stored_once() {
     let bytes = s.to_bytes();
     assert_eq!(
         bytes.len(),
-        196 + 77 * s.node_count() + 176 * 6 + mesh_len(&mesh)
+        204 + 77 * s.node_count() + 176 * 6 + mesh_len(&mesh) + 32 * column_entries(&bytes)
     );
     let mut restored = s.clone();
     restored.step_n(2).unwrap();

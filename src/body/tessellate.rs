@@ -11,7 +11,8 @@
 //! * a sphere becomes an icosahedron whose faces are cut into `n²` triangles, every new
 //!   vertex pushed out onto the sphere, and the whole scaled so that its volume is the
 //!   sphere's exactly (the sphere's buoyancy, not the polyhedron's);
-//! * a box gets a grid of squares at most a cell wide on each face, two triangles each;
+//! * a box gets a grid of squares at most a cell wide on each face, an even number along
+//!   every edge, two triangles each with their diagonals alternating (mirror-symmetric);
 //! * a hull mesh has every triangle cut into `n²` (each edge into `n` equal pieces), with
 //!   `n` set by its longest edge, or is used as it is when its triangles are small enough.
 //!
@@ -206,7 +207,12 @@ pub(crate) fn sphere(radius: f64, cell: f64) -> Result<Hull> {
 
 /// A box of `half` extents with a grid of squares at most `cell` wide on every face.
 pub(crate) fn cuboid(half: DVec3, cell: f64) -> Result<Hull> {
-    let count = |e: f64| ((2.0 * e / cell).ceil().clamp(1.0, 256.0)) as usize;
+    // An even count of squares along every edge, their diagonals alternating like a
+    // chequerboard's: each face is then its own mirror image across both of its middle
+    // lines, and opposite faces are mirror images of each other, so on still water a box
+    // gets no side force and no torque (a force at each triangle's centroid moves the
+    // centre of pressure with the triangles' layout).
+    let count = |e: f64| 2 * ((e / cell).ceil().clamp(1.0, 128.0)) as usize;
     let (nx, ny, nz) = (count(half.x), count(half.y), count(half.z));
     // The coordinate of grid line `i` of `n` along an axis of half extent `e`: the same
     // expression on every face, so shared edges get the same bits.
@@ -240,8 +246,13 @@ pub(crate) fn cuboid(half: DVec3, cell: f64) -> Result<Hull> {
         for j in 0..n[v] as u32 {
             for i in 0..n[u] as u32 {
                 let k = first + j * row + i;
-                triangles.push([k, k + 1, k + row + 1]);
-                triangles.push([k, k + row + 1, k + row]);
+                if (i + j) % 2 == 0 {
+                    triangles.push([k, k + 1, k + row + 1]);
+                    triangles.push([k, k + row + 1, k + row]);
+                } else {
+                    triangles.push([k, k + 1, k + row]);
+                    triangles.push([k + 1, k + row + 1, k + row]);
+                }
             }
         }
     }
@@ -293,8 +304,8 @@ mod tests {
         let mesh = cuboid(DVec3::new(2.5, 0.5, 1.0), 1.0).unwrap();
         assert_eq!(mesh.volume(), 10.0);
         assert!(longest_of(&mesh) <= 2f64.sqrt() + 1e-9);
-        // 5 × 1, 1 × 2 and 5 × 2 squares on opposite faces, two triangles each.
-        assert_eq!(mesh.triangles().len(), 2 * 2 * (5 + 2 + 10));
+        // 6 × 2, 2 × 2 and 6 × 2 squares on opposite faces (even counts), two triangles each.
+        assert_eq!(mesh.triangles().len(), 2 * 2 * (12 + 4 + 12));
     }
 
     #[test]

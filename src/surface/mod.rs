@@ -7,16 +7,15 @@
 //! | `clock.rs` | the game's clock: frames of seconds into whole steps (`advance`) |
 //! | `edit.rs` | drops, forces, pins, per-node values and springs between steps |
 //! | `query.rs` | heights, normals and velocities at a point; forces at a point |
-//! | `floaters.rs` | floating bodies and the coupled step |
+//! | `bodies/` | the bodies' subsystem: floating bodies, the coupled step, the water column under them |
 //! | `window.rs` | the moving window and the floating origin |
 //! | `snapshot/` | snapshots: the whole state as bytes and back, `save_into`, `state_hash` |
 //! | `tuning.rs` | the engine's schedule knobs for tests and benchmarks (`internals`) |
 
+pub(crate) mod bodies;
 mod clock;
-mod coupling;
 mod disturbance;
 mod edit;
-mod floaters;
 pub(crate) mod query;
 pub use query::WaterSample;
 pub(crate) mod snapshot;
@@ -99,8 +98,8 @@ pub struct Surface {
     pub(crate) clock: clock::Clock,
     /// The host's threads the engine steps on; `None`: rayon's global pool.
     pub(crate) host: Option<Host>,
-    /// Floating bodies and their world.
-    pub(crate) floaters: floaters::Floaters,
+    /// Floating bodies, their world and the water column under them.
+    pub(crate) bodies: bodies::BodySet,
     /// Whole cells the window has travelled, `[cols, rows]` (see [`window`]).
     pub(crate) window_origin: [i64; 2],
     /// Whether a per-node mass, viscosity or pin may differ from its place's default (a
@@ -181,7 +180,7 @@ impl Surface {
             clock: Default::default(),
             params,
             host: None,
-            floaters: Default::default(),
+            bodies: Default::default(),
             window_origin: [0, 0],
             window_custom: false,
         }

@@ -3,7 +3,7 @@
 //! [`Surface::run`], which goes down one road:
 //!
 //! ```text
-//! run(n, dt) ── bodies? ──yes──▶ n × floating_step (floaters.rs) ─┐
+//! run(n, dt) ── bodies? ──yes──▶ n × floating_step (bodies/) ───┐
 //!     │                                                           │ one step at a time
 //!     no                                                          ▼
 //!     └────────────────────────────────────────────────▶ water(n, dt)
@@ -55,7 +55,7 @@ impl Surface {
     /// step at a time (they read the water between steps); without, the engine takes
     /// several per pass.
     pub(crate) fn run(&mut self, n: u64, dt: f32) -> Result<()> {
-        if self.floaters.bodies.is_empty() {
+        if self.bodies.is_idle() {
             return self.water(n, dt);
         }
         (0..n).try_for_each(|_| self.floating_step(dt))

@@ -1,7 +1,9 @@
 //! The engine's schedule knobs for the crate's tests, benchmarks and command line
 //! (`springwater::internals::Tuning`, behind the `internals` feature). A trait rather
 //! than methods, so that the feature adds a module and leaves [`Surface`]'s own methods
-//! as they are. None of them changes a result by a bit: only how the work is cut.
+//! as they are. None of them changes a result by a bit: only how the work is cut. One
+//! reader beside them, for the tests of what the water gets from floating bodies: the
+//! load the water column carries.
 
 use super::Surface;
 use crate::forces::engine::{Workspace, MAX_PASS_STEPS};
@@ -18,6 +20,11 @@ pub trait Tuning {
     /// bands colour 0, odd bands colour 1 (see [`crate::springs`]), as they stand at the
     /// start of a pass (the tiling says how they lean through its steps).
     fn bands(&self) -> impl Iterator<Item = Band>;
+    /// The water column under the bodies, node by node (sorted): the load each node
+    /// carries and the load waiting for the next step from `body_forces` (the lattice's
+    /// force units). The next step's external force on a node gets the bodies' push minus
+    /// what it carries (see `docs/floating.md`).
+    fn water_column(&self) -> Vec<(usize, [f32; 3], [f32; 3])>;
 }
 
 impl Tuning for Surface {
@@ -37,5 +44,13 @@ impl Tuning for Surface {
             .workspace
             .tiling(self.params.rows, self.workspace.pass_steps, workers);
         springs::bands(self.params.rows, tiling.band_rows)
+    }
+
+    fn water_column(&self) -> Vec<(usize, [f32; 3], [f32; 3])> {
+        let entries = self.bodies.column.entries();
+        entries
+            .iter()
+            .map(|e| (e.node, e.carried, e.pending))
+            .collect()
     }
 }

@@ -479,6 +479,9 @@ impl Surface {
             }
         }
 
+        // The load the water column carries moves with its water.
+        self.bodies.column.shift(|i| mv.destination(i));
+
         // Nodes the boundary now pins that were free (or new): at rest, like the ring of a
         // new surface.
         let pinned_now: Vec<usize> = if params_moved {
@@ -636,7 +639,7 @@ impl Surface {
             }
         }
         let (dx, dz) = (dcols as f64 * h as f64, drows as f64 * h as f64);
-        for (_, body) in &mut self.floaters.bodies {
+        for (_, body) in &mut self.bodies.bodies {
             body.position.x = (body.position.x as f64 - dx) as f32;
             body.position.z = (body.position.z as f64 - dz) as f32;
         }

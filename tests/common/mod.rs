@@ -103,13 +103,28 @@ pub fn same_bits_everywhere(build: impl Fn() -> Surface + Sync, run: impl Fn(&mu
     }
 }
 
-/// Rewrites the checksum so that content checks are reached.
-/// The snapshot of version 6 `v6` (of a surface with `n` nodes and `bodies` bodies, none
-/// with a hull) in version 5's layout, what the version 5 encoder wrote for the same
-/// state but the bodies' rotation: a header of 136 bytes (without the hull section's
-/// count and length), and of each body's 176 bytes the first 80 (the fields before the
-/// orientation), no hull section; length and checksum fixed.
-pub fn as_version_5(v6: &[u8], n: usize, bodies: usize) -> Vec<u8> {
+/// A snapshot of the current version (7) in version 6's layout, what the version 6
+/// encoder wrote for the same state without a water column: the header without the
+/// column's entry count (offset 152) and no column section; length and checksum fixed.
+pub fn as_version_6(v7: &[u8]) -> Vec<u8> {
+    assert_eq!(u32::from_le_bytes(v7[8..12].try_into().unwrap()), 7);
+    let column = u64::from_le_bytes(v7[152..160].try_into().unwrap()) as usize;
+    let tail = v7.len() - 44;
+    let mut b = [&v7[..152], &v7[160..tail - 32 * column], &v7[tail..]].concat();
+    b[8..12].copy_from_slice(&6u32.to_le_bytes());
+    let len = b.len() as u64;
+    b[16..24].copy_from_slice(&len.to_le_bytes());
+    fix_crc(&mut b);
+    b
+}
+
+/// The snapshot `current` (of a surface with `n` nodes and `bodies` bodies, none with a
+/// hull) in version 5's layout, what the version 5 encoder wrote for the same state but
+/// the bodies' rotation and the water column: a header of 136 bytes (without the hull
+/// section's count and length), and of each body's 176 bytes the first 80 (the fields
+/// before the orientation), no hull section; length and checksum fixed.
+pub fn as_version_5(current: &[u8], n: usize, bodies: usize) -> Vec<u8> {
+    let v6 = &as_version_6(current)[..];
     assert_eq!(v6[136..152], [0; 16], "no hull meshes");
     let at = 152 + 77 * n;
     let mut b = [&v6[..136], &v6[152..at]].concat();

@@ -37,20 +37,23 @@ use crate::params::{Boundary, Params};
 use crate::simd::Floats;
 use crate::springs::Springs;
 use crate::state::State;
+use crate::surface::bodies::Entry;
 use std::io::{Read, Write};
 use stream::{slices, Bytes, StateHash};
 use validate::Contents;
 
 /// The first eight bytes of every snapshot.
 pub(crate) const MAGIC: [u8; 8] = *b"SPRWATER";
-/// The format version this build writes. It reads versions 1 to 6 (see [`Snapshot`]).
-pub(crate) const VERSION: u32 = 6;
+/// The format version this build writes. It reads versions 1 to 7 (see [`Snapshot`]).
+pub(crate) const VERSION: u32 = 7;
 /// Bytes before the per-node arrays in versions 1 and 2.
 const HEADER_V2: usize = 112;
 /// Bytes before the per-node arrays in versions 3 to 5.
 const HEADER_V5: usize = 136;
+/// Bytes before the per-node arrays in version 6.
+const HEADER_V6: usize = 152;
 /// Bytes before the per-node arrays.
-const HEADER: usize = 152;
+const HEADER: usize = 160;
 /// Trailing checksum.
 const CRC: usize = 4;
 
@@ -69,17 +72,17 @@ const CRC: usize = 4;
 /// data's arrays may be edited first (its bounds and flags follow them, see
 /// [`Surface::from_snapshot`]).
 ///
-/// # Format (version 6)
+/// # Format (version 7)
 ///
 /// Little-endian throughout; `n = cols × rows`, `f` floating bodies, `h` hull meshes in
-/// `m` bytes. Per-node arrays hold exactly `n` values (no SIMD padding); spring tables are
+/// `m` bytes, `k` entries of the water column. Per-node arrays hold exactly `n` values (no SIMD padding); spring tables are
 /// indexed by origin node, with `0.0` for springs that do not exist (E from the last
 /// column, S from the last row, …).
 ///
 /// | offset | size | field |
 /// |---|---|---|
 /// | 0 | 8 | magic `b"SPRWATER"` |
-/// | 8 | 4 | format version `u32` (6; versions 1 to 5 are read too) |
+/// | 8 | 4 | format version `u32` (7; versions 1 to 6 are read too) |
 /// | 12 | 4 | flags `u32`: bit 0 = external forces pending; other bits 0 |
 /// | 16 | 8 | total length in bytes `u64`, checksum included |
 /// | 24 | 8, 8 | `cols`, `rows` as `u64` |
@@ -96,12 +99,14 @@ const CRC: usize = 4;
 /// | 128 | 2 × 4 | buoyancy: gravity (world units per second²), water density (`f32`) |
 /// | 136 | 8 | hull meshes `h` (`u64`) |
 /// | 144 | 8 | the hull section's length in bytes `m` (`u64`) |
-/// | 152 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z (the lattice's units, model time) |
+/// | 152 | 8 | entries of the water column `k` (`u64`) |
+/// | 160 | 9 × 4n | positions x, y, z; velocities x, y, z; pending forces x, y, z (the lattice's units, model time) |
 /// | | 2 × 4n | mass, viscosity per node |
 /// | | n | pinned per node, `u8` 0 or 1 |
 /// | | 8 × 4n | rest length then stiffness, for families E, S, SE, SW |
 /// | | 176 f | the bodies, ids increasing (table below) |
 /// | | m | the hull section: the `h` meshes, each its vertex count `v` and triangle count `t` (`u32`), `v` vertices (three `f32`, the body's frame), `t` triangles (three `u32` vertex indices, counter-clockwise seen from outside); `m = Σ (8 + 12 v + 12 t)` |
+/// | | 32 k | the water column under the bodies, nodes increasing: each its node (`u64`), the load it carries, the load waiting for the next step (three `f32` each, the lattice's force units) |
 /// | end − 44 | 2 × 8 | the window's origin in cells, columns then rows (`i64`, [`Surface::origin_cells`]) |
 /// | end − 28 | 8 | model time [`Surface::advance`] owes and has not stepped (`f64`) |
 /// | end − 20 | 4, 4 | the step cap `u32` and what happens past it `u32`: 0 = drop, 1 = carry ([`Surface::set_step_cap`]) |
@@ -236,6 +241,10 @@ pub struct Snapshot {
     /// Seconds of the game's clock the cap has dropped so far.
     #[cfg_attr(feature = "serde", serde(default))]
     pub dropped_seconds: f64,
+    /// The water column under the bodies: the nodes that carry or await a load, sorted
+    /// by node (see the `column` module of the bodies' subsystem).
+    #[cfg_attr(feature = "serde", serde(default))]
+    pub(crate) column: Vec<Entry>,
 }
 
 #[cfg(feature = "serde")]
@@ -287,11 +296,12 @@ pub(crate) struct Scalars {
 impl Snapshot {
     /// The first eight bytes of every binary snapshot.
     pub const MAGIC: [u8; 8] = MAGIC;
-    /// The binary format version this build writes. It reads this one and versions 1 to 5
+    /// The binary format version this build writes. It reads this one and versions 1 to 6
     /// (version 1 had no `time_scale`, version 3 no window origin: such snapshots get the
     /// default and `[0, 0]`; versions up to 4 kept bodies and accelerations in model time,
     /// converted to seconds on loading; bodies of versions up to 5 did not rotate and load
-    /// upright and not spinning).
+    /// upright and not spinning; versions up to 6 had no water column and load with an
+    /// empty one).
     pub const VERSION: u32 = VERSION;
 
     /// Encodes the snapshot in the binary format of the module docs.
@@ -375,6 +385,7 @@ impl Snapshot {
             rest: std::array::from_fn(|f| &self.rest[f][..]),
             stiffness: std::array::from_fn(|f| &self.stiffness[f][..]),
             bodies: &self.floaters,
+            column: &self.column,
         }
         .validate()
     }
@@ -465,7 +476,8 @@ impl Surface {
         let scalars = snap.scalars();
         let mut surface = Surface::from_parts(p, state, springs, scalars.bounds, (0, 0.0));
         surface.take_scalars(&scalars);
-        surface.floaters.bodies = snap.floaters;
+        surface.bodies.bodies = snap.floaters;
+        surface.bodies.column.set_entries(snap.column);
         Ok(surface)
     }
 
@@ -475,8 +487,8 @@ impl Surface {
         self.steps = s.steps;
         self.time = s.model_time;
         [self.min_mass, self.max_stiffness, self.max_viscosity] = s.bounds;
-        self.floaters.next_id = s.next_floater_id;
-        self.floaters.buoyancy = s.buoyancy;
+        self.bodies.next_id = s.next_floater_id;
+        self.bodies.buoyancy = s.buoyancy;
         self.window_origin = s.origin_cells;
         self.clock.owed = s.owed_time;
         (self.clock.max_steps, self.clock.overflow) = s.step_cap;

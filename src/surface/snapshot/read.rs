@@ -10,10 +10,11 @@
 
 use super::bodies::{Bodies, Hulls, PER_BODY, PER_TRANSLATING};
 use super::reader::Reader;
-use super::{bad, Scalars, Snapshot, CRC, HEADER, HEADER_V2, HEADER_V5, MAGIC, VERSION};
+use super::{bad, Scalars, Snapshot, CRC, HEADER, HEADER_V2, HEADER_V5, HEADER_V6, MAGIC, VERSION};
 use crate::error::Result;
 use crate::floater::Buoyancy;
 use crate::params::{Boundary, Params, MAX_NODES};
+use crate::surface::bodies::Entry;
 use crate::surface::{Overflow, Surface};
 
 /// Bytes per node: 11 `f32` arrays, 1 `u8`, 8 `f32` spring arrays.
@@ -29,17 +30,24 @@ pub(super) fn header_len(version: u32) -> usize {
     match version {
         ..=2 => HEADER_V2,
         3..=5 => HEADER_V5,
+        6 => HEADER_V6,
         _ => HEADER,
     }
 }
 
-/// Snapshot size in bytes for `nodes` nodes, `floaters` bodies and a hull section of
-/// `hull_bytes` (0 before version 6) in a format version's layout, or `None` on overflow.
+/// Bytes of one entry of the water column, from version 7: its node (`u64`), the load it
+/// carries and the load waiting (three `f32` each).
+pub(super) const PER_COLUMN_ENTRY: usize = 8 + 24;
+
+/// Snapshot size in bytes for `nodes` nodes, `floaters` bodies, a hull section of
+/// `hull_bytes` (0 before version 6) and `column` entries of the water column (0 before
+/// version 7) in a format version's layout, or `None` on overflow.
 pub(super) fn encoded_len(
     version: u32,
     nodes: usize,
     floaters: usize,
     hull_bytes: u64,
+    column: u64,
 ) -> Option<usize> {
     let per_body = if version < 6 {
         PER_TRANSLATING
@@ -51,6 +59,11 @@ pub(super) fn encoded_len(
         .checked_mul(PER_NODE)?
         .checked_add(floaters.checked_mul(per_body)?)?
         .checked_add(usize::try_from(hull_bytes).ok()?)?
+        .checked_add(
+            usize::try_from(column)
+                .ok()?
+                .checked_mul(PER_COLUMN_ENTRY)?,
+        )?
         .checked_add(header_len(version) + tail + CRC)
 }
 
@@ -100,16 +113,21 @@ pub(super) fn check_header(bytes: &[u8]) -> Result<usize> {
     } else {
         Reader::at(bytes, 144).u64()
     };
+    let column = if version < 7 {
+        0
+    } else {
+        Reader::at(bytes, 152).u64()
+    };
     let Some(nodes) = cols.checked_mul(rows).filter(|&n| n <= MAX_NODES as u64) else {
         return Err(bad(format!(
             "grid {cols}x{rows} is larger than any surface (at most {MAX_NODES} nodes)"
         )));
     };
-    let expected = encoded_len(version, nodes as usize, floaters, hull_bytes);
+    let expected = encoded_len(version, nodes as usize, floaters, hull_bytes, column);
     if expected.map(|e| e as u64) != Some(total) {
         let needs = expected.map_or("more than fits in memory".into(), |e| e.to_string());
         return Err(bad(format!(
-            "inconsistent lengths: the header says {total} bytes, a {cols}x{rows} grid with {floaters} floaters and {hull_bytes} bytes of hull meshes needs {needs}"
+            "inconsistent lengths: the header says {total} bytes, a {cols}x{rows} grid with {floaters} floaters, {hull_bytes} bytes of hull meshes and {column} water column entries needs {needs}"
         )));
     }
     Ok(total as usize)
@@ -218,6 +236,8 @@ pub(super) struct World {
     pub buoyancy: Buoyancy,
     pub hulls: u64,
     pub hull_bytes: u64,
+    /// Entries of the water column (from version 7).
+    pub column: u64,
 }
 
 pub(super) fn world(r: &mut Reader<'_>, version: u32) -> World {
@@ -229,6 +249,7 @@ pub(super) fn world(r: &mut Reader<'_>, version: u32) -> World {
     } else {
         (r.u64(), r.u64())
     };
+    let column = if version < 7 { 0 } else { r.u64() };
     World {
         width,
         bodies,
@@ -236,6 +257,7 @@ pub(super) fn world(r: &mut Reader<'_>, version: u32) -> World {
         buoyancy: Buoyancy { gravity, density },
         hulls,
         hull_bytes,
+        column,
     }
 }
 
@@ -296,6 +318,32 @@ pub(super) fn bodies<'a>(r: &mut Reader<'a>, world: &World, version: u32) -> Bod
         bytes: r.take(world.hull_bytes as usize),
     };
     Bodies::Rigid { records, hulls }
+}
+
+/// The water column's entries, from version 7 (after the bodies), borrowed; their count
+/// was checked against the total length (`check_header`).
+#[derive(Clone, Copy)]
+pub(crate) struct ColumnBytes<'a>(&'a [u8]);
+
+impl ColumnBytes<'_> {
+    /// No entries (versions before 7).
+    pub const NONE: ColumnBytes<'static> = ColumnBytes(&[]);
+
+    /// Decodes the entries into `out` (cleared first, its capacity reused).
+    pub fn decode_into(self, out: &mut Vec<Entry>) {
+        out.clear();
+        out.extend(self.0.chunks_exact(PER_COLUMN_ENTRY).map(|e| {
+            let mut r = Reader::at(e, 0);
+            let node = r.u64() as usize;
+            let carried = [(); 3].map(|_| r.f32());
+            let pending = [(); 3].map(|_| r.f32());
+            Entry::stored(node, carried, pending)
+        }));
+    }
+}
+
+pub(super) fn column<'a>(r: &mut Reader<'a>, world: &World) -> ColumnBytes<'a> {
+    ColumnBytes(r.take(world.column as usize * PER_COLUMN_ENTRY))
 }
 
 /// The 40 bytes before the checksum, from version 4: the window's origin and the clock.
@@ -361,6 +409,7 @@ pub(crate) struct Layout<'a> {
     pub world: World,
     pub nodes: Nodes<'a>,
     pub bodies: Bodies<'a>,
+    pub column: ColumnBytes<'a>,
     pub tail: Tail,
 }
 
@@ -371,12 +420,14 @@ impl<'a> Layout<'a> {
         let n = head.params.cols * head.params.rows; // bounded by check_header
         let nodes = nodes(r, n)?;
         let bodies = bodies(r, &world, version);
+        let column = column(r, &world);
         let tail = tail(r)?;
         Ok(Layout {
             head,
             world,
             nodes,
             bodies,
+            column,
             tail,
         })
     }
@@ -414,6 +465,8 @@ impl<'a> Layout<'a> {
         let s = self.scalars()?;
         let mut floaters = Vec::new();
         self.bodies.decode_into(&mut floaters)?;
+        let mut column = Vec::new();
+        self.column.decode_into(&mut column);
         let n = &self.nodes;
         let vecs = |a: [Le<'_>; 3]| a.map(Le::to_vec);
         Ok(Snapshot {
@@ -439,6 +492,7 @@ impl<'a> Layout<'a> {
             owed_time: s.owed_time,
             step_cap: s.step_cap,
             dropped_seconds: s.dropped_seconds,
+            column,
         })
     }
 }

@@ -18,6 +18,7 @@ use crate::grid::Family;
 use crate::params::Params;
 use crate::springs::Springs;
 use crate::state::NodeTable;
+use crate::surface::bodies::Entry;
 use crate::surface::Surface;
 
 impl Surface {
@@ -32,12 +33,14 @@ impl Surface {
         let saved = Layout::read(&mut r, version)?;
         let scalars = saved.scalars()?;
         let nodes = &saved.nodes;
-        let old = self.floaters.bodies.len();
-        let checked = saved.bodies.decode_into(&mut self.floaters.bodies);
-        let checked =
-            checked.and_then(|()| Self::check(&saved, &scalars, &self.floaters.bodies[old..]));
+        let old = self.bodies.bodies.len();
+        let checked = saved.bodies.decode_into(&mut self.bodies.bodies);
+        let column = self.bodies.column.spare();
+        saved.column.decode_into(column);
+        let checked = checked
+            .and_then(|()| Self::check(&saved, &scalars, &self.bodies.bodies[old..], column));
         if checked.is_err() || !same_model(&self.params, &scalars.params) {
-            self.floaters.bodies.truncate(old);
+            self.bodies.bodies.truncate(old);
             return checked.map(|()| false);
         }
         // Checked: from here on nothing can fail.
@@ -76,13 +79,19 @@ impl Surface {
                 std::array::from_fn(|f| coef[f].as_slice()),
             );
         }
-        self.floaters.bodies.drain(..old);
+        self.bodies.bodies.drain(..old);
+        self.bodies.column.take_spare();
         self.take_scalars(&scalars);
         Ok(true)
     }
 
     /// Validates a saved state whose bodies are decoded (see [`Contents::validate`]).
-    fn check(saved: &Layout<'_>, scalars: &Scalars, bodies: &[(FloaterId, Floater)]) -> Result<()> {
+    fn check(
+        saved: &Layout<'_>,
+        scalars: &Scalars,
+        bodies: &[(FloaterId, Floater)],
+        column: &[Entry],
+    ) -> Result<()> {
         let nodes = &saved.nodes;
         Contents {
             scalars,
@@ -95,6 +104,7 @@ impl Surface {
             rest: nodes.rest,
             stiffness: nodes.stiffness,
             bodies,
+            column,
         }
         .validate()
     }

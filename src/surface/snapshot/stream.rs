@@ -18,6 +18,7 @@ use crate::floater::{FloaterId, Shape};
 use crate::grid::{Family, Grid};
 use crate::params::Boundary;
 use crate::state::NodeTable;
+use crate::surface::bodies::Entry;
 use crate::surface::{Overflow, Surface};
 use crate::Floater;
 
@@ -96,13 +97,16 @@ pub(super) struct Fields<'a> {
     pub bodies: &'a [(FloaterId, Floater)],
     /// The bodies' distinct hull meshes.
     pub hulls: HullTable<'a>,
+    /// The water column under the bodies, sorted by node.
+    pub column: &'a [Entry],
 }
 
 impl Fields<'_> {
     /// The length of the encoding, checksum included.
     pub fn encoded_len(&self) -> usize {
         let (nodes, bodies) = (self.grid.node_count(), self.bodies.len());
-        encoded_len(VERSION, nodes, bodies, self.hulls.bytes)
+        let column = self.column.len() as u64;
+        encoded_len(VERSION, nodes, bodies, self.hulls.bytes, column)
             .expect("a snapshot of an allocated surface fits in memory")
     }
 
@@ -141,6 +145,8 @@ impl Fields<'_> {
         // (and water without bodies hashes as it did before hulls were stored).
         sink.record(&self.hulls.count.to_le_bytes());
         sink.record(&self.hulls.bytes.to_le_bytes());
+        // Framing too: the entries are state, and water without bodies has none.
+        sink.record(&(self.column.len() as u64).to_le_bytes());
         for a in self
             .positions
             .iter()
@@ -163,6 +169,11 @@ impl Fields<'_> {
             self.values(sink, self.stiffness[f]);
         }
         self.bodies(sink);
+        for e in self.column {
+            sink.state(&(e.node as u64).to_le_bytes());
+            floats(sink, &e.carried);
+            floats(sink, &e.pending);
+        }
         for c in s.origin_cells {
             sink.state(&c.to_le_bytes());
         }
@@ -317,8 +328,8 @@ impl Surface {
                 model_time: self.time,
                 bounds: [self.min_mass, self.max_stiffness, self.max_viscosity],
                 forces_pending: s.ext_pending,
-                next_floater_id: self.floaters.next_id,
-                buoyancy: self.floaters.buoyancy,
+                next_floater_id: self.bodies.next_id,
+                buoyancy: self.bodies.buoyancy,
                 origin_cells: self.window_origin,
                 owed_time: self.clock.owed,
                 step_cap: (self.clock.max_steps, self.clock.overflow),
@@ -332,8 +343,9 @@ impl Surface {
             pinned: &s.pinned,
             rest,
             stiffness,
-            bodies: &self.floaters.bodies,
-            hulls: HullTable::of(&self.floaters.bodies),
+            bodies: &self.bodies.bodies,
+            hulls: HullTable::of(&self.bodies.bodies),
+            column: self.bodies.column.entries(),
         }
     }
 }
@@ -355,6 +367,7 @@ impl Snapshot {
             stiffness: std::array::from_fn(|f| Values::Nodes(&self.stiffness[f])),
             bodies: &self.floaters,
             hulls: HullTable::of(&self.floaters),
+            column: &self.column,
         }
     }
 }

@@ -15,6 +15,7 @@ use crate::error::Result;
 use crate::floater::{Floater, FloaterId};
 use crate::grid::{Family, Grid};
 use crate::params;
+use crate::surface::bodies::Entry;
 use crate::surface::{Surface, MAX_ORIGIN_CELLS};
 use std::ops::Range;
 
@@ -155,6 +156,8 @@ pub(super) struct Contents<'a, F, P> {
     pub rest: [F; 4],
     pub stiffness: [F; 4],
     pub bodies: &'a [(FloaterId, Floater)],
+    /// The water column's entries.
+    pub column: &'a [Entry],
 }
 
 /// The columns of row `r` whose spring of `family` exists (the others store zeros).
@@ -186,8 +189,30 @@ where
         self.nodes(grid.node_count())?;
         self.springs(grid)?;
         self.bodies()?;
+        self.column(grid.node_count())?;
         self.clock_and_window()?;
         self.timestep()
+    }
+
+    /// The column's nodes are on the grid and increase; its loads are finite.
+    fn column(&self, n: usize) -> Result<()> {
+        let mut last = None;
+        for e in self.column {
+            if e.node >= n || last.is_some_and(|l| l >= e.node) {
+                return Err(bad(format!(
+                    "the water column's node {} is off the grid of {n} nodes or out of order",
+                    e.node
+                )));
+            }
+            if !e.carried.iter().chain(&e.pending).all(|v| v.is_finite()) {
+                return Err(bad(format!(
+                    "the water column's load at node {} is not finite",
+                    e.node
+                )));
+            }
+            last = Some(e.node);
+        }
+        Ok(())
     }
 
     /// Every array holds one finite value per node.

@@ -8,13 +8,14 @@
 //! | 3 | the frame width, bodies and buoyancy (header of 136 bytes), the bodies after the arrays | the window's origin `[0, 0]`, a fresh clock |
 //! | 4 | the window's origin and the clock before the checksum | the acceleration, buoyancy and bodies from model time to seconds |
 //! | 5 | (the layout of 4, in seconds) | bodies upright, not spinning, not twisted, with their shape's inertia |
-//! | 6 | rigid bodies (orientation, angular velocity, torques, inertia; 176 bytes each), hull meshes after them (header of 152 bytes) | (current) |
+//! | 6 | rigid bodies (orientation, angular velocity, torques, inertia; 176 bytes each), hull meshes after them (header of 152 bytes) | an empty water column |
+//! | 7 | the water column under the bodies (its entry count at offset 152, header of 160 bytes; its entries after the hull meshes) | (current) |
 //!
 //! Each step is written once, so a snapshot of version 1 passes every upgrade in turn and
 //! a new version adds one decoder and one upgrade.
 
 use super::bodies::Bodies;
-use super::read::{self, Head, Layout, Nodes, Tail, World};
+use super::read::{self, ColumnBytes, Head, Layout, Nodes, Tail, World};
 use super::reader::Reader;
 use super::{bad, Snapshot};
 use crate::error::Result;
@@ -32,7 +33,8 @@ pub(super) fn decode(version: u32, mut r: Reader<'_>) -> Result<Snapshot> {
         3 => v5_to_6(v4_to_5(v3_to_4(v3(r)?))?),
         4 => v5_to_6(v4_to_5(Layout::read(r, 4)?)?),
         5 => v5_to_6(v5(r)?),
-        _ => v6(r)?,
+        6 => v6(r)?,
+        _ => v7(r)?,
     };
     debug_assert!(r.at_end(), "version {version} read to its end");
     Ok(snapshot)
@@ -87,6 +89,7 @@ fn v2_to_3(v2: V2<'_>) -> Result<V3<'_>> {
         buoyancy: Buoyancy::default(),
         hulls: 0,
         hull_bytes: 0,
+        column: 0,
     };
     Ok(V3 {
         head: v2.head,
@@ -117,6 +120,7 @@ fn v3_to_4(v3: V3<'_>) -> Layout<'_> {
         world: v3.world,
         nodes: v3.nodes,
         bodies: v3.bodies,
+        column: ColumnBytes::NONE,
         tail: Tail::FRESH,
     }
 }
@@ -153,9 +157,16 @@ fn v5_to_6(mut snap: Snapshot) -> Snapshot {
     snap
 }
 
-/// Version 6, the current one: rigid bodies and their hull meshes.
+/// Version 6: rigid bodies and their hull meshes. Upgraded to 7 with an empty water
+/// column (a body resting in it then loads the water at first, and the column takes the
+/// load up over a few seconds).
 fn v6(r: &mut Reader<'_>) -> Result<Snapshot> {
     Layout::read(r, 6)?.to_snapshot()
+}
+
+/// Version 7, the current one: the water column under the bodies.
+fn v7(r: &mut Reader<'_>) -> Result<Snapshot> {
+    Layout::read(r, 7)?.to_snapshot()
 }
 
 /// The acceleration, buoyancy and bodies of a snapshot of version 4 or older, stored in

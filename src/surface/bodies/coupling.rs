@@ -10,14 +10,15 @@
 //! back: bodies step in parallel but their reactions go into the water one body after
 //! another in the order the bodies were added, so the bits do not depend on the threads.
 
-use super::query::{Spread, Waters};
-use super::Surface;
+use super::column;
 use crate::body::rigid::{self, Piece, World};
 use crate::body::small::{self, Plane};
 use crate::body::{Hull, HullScratch};
 use crate::error::{Error, Result};
 use crate::floater::{self, BodyForces, Buoyancy, Floater, Shape};
 use crate::jobs::{self, Runner};
+use crate::surface::query::{Spread, Waters};
+use crate::surface::Surface;
 use glam::{DVec3, Vec3};
 use std::sync::Arc;
 
@@ -33,6 +34,8 @@ pub(crate) struct Coupling {
     slots: Vec<Slot>,
     /// The workspace of [`Surface::body_forces`].
     foreign_slot: Slot,
+    /// What the water gets in this step, node by node (from the column).
+    water: Vec<(usize, [f32; 3])>,
     /// External forces of the nodes the reactions touched, before they did, and the
     /// pending flag and length of the list of pushed nodes.
     log: Vec<(usize, [f32; 3])>,
@@ -109,9 +112,16 @@ impl Context<'_> {
         let pieces = &mut slot.pieces;
         pieces.clear();
         let waters = &self.waters;
+        // A ball is the same in every orientation: its mesh stays aligned with the world's
+        // axes (mirror-symmetric in x and z), so the ball's spin never turns the facets of
+        // its tessellation under the water (a rolling polyhedron would walk).
+        let orientation = match body.shape {
+            Shape::Sphere { .. } => glam::Quat::IDENTITY,
+            _ => body.orientation,
+        };
         let pressure = mesh.pressed(
             body.position,
-            body.orientation,
+            orientation,
             rho_g,
             // Off the patch the water is calm, at height 0.
             |x, z| waters.height(x, z).unwrap_or(0.0),
@@ -266,25 +276,33 @@ impl Surface {
     /// forces, the water takes its step, and the bodies move only if it succeeded. On any
     /// error the surface is unchanged, bodies and pending forces included.
     pub(crate) fn floating_step(&mut self, dt: f32) -> Result<()> {
-        let mut c = std::mem::take(&mut self.floaters.scratch);
-        let coupled = self
-            .couple(dt, &mut c)
-            .and_then(|()| self.push_shares(&mut c, false));
+        let mut c = std::mem::take(&mut self.bodies.scratch);
+        let n = self.node_count();
+        let coupled = self.couple(dt, &mut c).and_then(|()| {
+            let shares = c.slots.iter().flat_map(|slot| &slot.shares);
+            self.bodies.column.gather(shares, n, &mut c.water);
+            self.push_water(&mut c)
+        });
         let coupled = coupled.and_then(|()| self.water(1, dt).inspect_err(|_| self.undo(&c)));
-        if coupled.is_ok() {
-            for ((_, body), slot) in self.floaters.bodies.iter_mut().zip(&mut c.slots) {
-                if let Some(moved) = slot.moved.take() {
-                    *body = moved;
+        match coupled {
+            Ok(()) => {
+                for ((_, body), slot) in self.bodies.bodies.iter_mut().zip(&mut c.slots) {
+                    if let Some(moved) = slot.moved.take() {
+                        *body = moved;
+                    }
                 }
+                let seconds = dt / self.params.time_scale;
+                self.bodies.column.commit(column::rate(seconds));
             }
+            Err(_) => self.bodies.column.discard(),
         }
-        self.floaters.scratch = c;
+        self.bodies.scratch = c;
         coupled
     }
 
     /// Makes every body's mesh match its shape (after a restore or a change of shape).
     fn fit_meshes(&self, c: &mut Coupling) -> Result<()> {
-        let bodies = &self.floaters.bodies;
+        let bodies = &self.bodies.bodies;
         c.meshes.truncate(bodies.len());
         for (k, (_, body)) in bodies.iter().enumerate() {
             let fits = matches!(c.meshes.get(k), Some((shape, _)) if same(shape, &body.shape));
@@ -299,7 +317,7 @@ impl Surface {
     fn context(&self, seconds: f32) -> Context<'_> {
         Context {
             waters: self.waters(),
-            buoyancy: self.floaters.buoyancy,
+            buoyancy: self.bodies.buoyancy,
             scale: self.params.time_scale,
             spacing: self.params.spacing,
             seconds,
@@ -312,7 +330,7 @@ impl Surface {
     /// the bodies step `dt / time_scale` seconds.
     fn couple(&self, dt: f32, c: &mut Coupling) -> Result<()> {
         self.fit_meshes(c)?;
-        let bodies = &self.floaters.bodies;
+        let bodies = &self.bodies.bodies;
         c.slots.resize_with(bodies.len(), Slot::default);
         let cx = self.context(dt / self.params.time_scale);
         let meshes = &c.meshes;
@@ -346,20 +364,15 @@ impl Surface {
         Ok(())
     }
 
-    /// Adds the bodies' shares (`c.slots`, in the bodies' order), or the foreign body's, to
-    /// the external forces (logged in `c.log`). Refused, with nothing changed, if a node's
-    /// force would not be finite.
-    fn push_shares(&mut self, c: &mut Coupling, foreign: bool) -> Result<()> {
+    /// Adds what the water gets (`c.water`, from the column) to the external forces
+    /// (logged in `c.log`). Refused, with nothing changed, if a node's force would not be
+    /// finite.
+    fn push_water(&mut self, c: &mut Coupling) -> Result<()> {
         c.log.clear();
         c.pending = self.state.ext_pending;
         c.listed = self.state.ext_nodes.as_ref().map(Vec::len);
         let ext = &mut self.state.ext;
-        let slots = if foreign {
-            std::slice::from_ref(&c.foreign_slot)
-        } else {
-            &c.slots[..]
-        };
-        for &(i, f) in slots.iter().flat_map(|slot| &slot.shares) {
+        for &(i, f) in &c.water {
             c.log.push((i, [ext[0][i], ext[1][i], ext[2][i]]));
             for (k, v) in f.into_iter().enumerate() {
                 ext[k][i] += v;
@@ -384,7 +397,7 @@ impl Surface {
         Ok(())
     }
 
-    /// Undoes [`push_shares`](Self::push_shares): the nodes in `c.log` get their old
+    /// Undoes [`push_water`](Self::push_water): the nodes in `c.log` get their old
     /// forces back, newest first (so every touched node gets its old bits), and the flag
     /// and list of pending forces go back too, unless the list overflowed (`None`, clear
     /// every force, is then still correct).
@@ -452,11 +465,15 @@ impl Surface {
             push_torque: Vec3::ZERO,
             ..self.admit(body.clone(), Vec3::ZERO, Vec3::ZERO)?
         };
-        let mut c = std::mem::take(&mut self.floaters.scratch);
+        let mut c = std::mem::take(&mut self.bodies.scratch);
+        let n = self.node_count();
         let out = self
             .foreign_forces(&body, seconds, &mut c)
-            .and_then(|forces| self.push_shares(&mut c, true).map(|()| forces));
-        self.floaters.scratch = c;
+            .and_then(|forces| {
+                let shares = &c.foreign_slot.shares;
+                self.bodies.column.hold(shares, n).map(|()| forces)
+            });
+        self.bodies.scratch = c;
         out
     }
 

@@ -1,26 +1,47 @@
-//! The floating bodies of a [`Surface`]: adding, reading and pushing them, and the coupled
-//! step that moves them with the water (the model is explained in [`crate::floater`]).
+//! The bodies' subsystem of a [`Surface`]: the floating bodies, their world, and the water
+//! column under them (the model is explained in [`crate::floater`]).
+//!
+//! | file | owns |
+//! |---|---|
+//! | `mod.rs` | the bodies' data ([`BodySet`]) and the public calls that add, read and push them |
+//! | `coupling.rs` | the coupled step: the water under each body, the bodies' steps, their reactions; [`Surface::body_forces`] |
+//! | `column.rs` | the water column: what of the bodies' push the lattice gets, and what it carries to the bottom |
 
-use super::coupling::{self, Coupling};
+mod column;
+mod coupling;
+
+pub(crate) use column::{Column, Entry};
+
 use super::Surface;
 use crate::body::rigid;
 use crate::error::{Error, Result};
 use crate::floater::{self, Buoyancy, Floater, FloaterId};
 use crate::params;
+use coupling::Coupling;
 use glam::Vec3;
 
-/// The bodies of one surface, their world and the scratch of the coupled step.
+/// The bodies of one surface, their world, the water column under them, and the scratch
+/// of the coupled step.
 #[derive(Debug, Clone, Default)]
-pub(crate) struct Floaters {
+pub(crate) struct BodySet {
     /// Bodies in the order they were added (ids increase along it).
     pub bodies: Vec<(FloaterId, Floater)>,
     /// The id the next added body gets.
     pub next_id: u64,
     pub buoyancy: Buoyancy,
-    pub scratch: Coupling,
+    /// What the water under the bodies carries and awaits (state).
+    pub column: Column,
+    /// Buffers of the coupled step (not state).
+    scratch: Coupling,
 }
 
-impl Floaters {
+impl BodySet {
+    /// Whether a step has nothing of the bodies to do: no body, and no load carried or
+    /// waiting in the column.
+    pub fn is_idle(&self) -> bool {
+        self.bodies.is_empty() && self.column.is_empty()
+    }
+
     fn index(&self, id: FloaterId) -> Result<usize> {
         self.bodies
             .binary_search_by_key(&id, |&(id, _)| id)
@@ -42,17 +63,17 @@ impl Surface {
     /// The orientation is stored normalised.
     pub fn add_floater(&mut self, body: Floater) -> Result<FloaterId> {
         let body = self.admit(body, Vec3::ZERO, Vec3::ZERO)?;
-        params::check_dt(self.params.dt, self.limit_with(self.floaters.buoyancy))?;
+        params::check_dt(self.params.dt, self.limit_with(self.bodies.buoyancy))?;
         let mesh = coupling::wet_mesh(&body.shape, self.params.spacing)?;
-        let id = FloaterId(self.floaters.next_id);
-        self.floaters.next_id = id.0.checked_add(1).ok_or(Error::InvalidParam {
+        let id = FloaterId(self.bodies.next_id);
+        self.bodies.next_id = id.0.checked_add(1).ok_or(Error::InvalidParam {
             name: "floater id",
             value: id.0 as f64,
             expected: "fewer than 2^64 − 1 floaters ever added to one surface",
         })?;
-        let k = self.floaters.bodies.len();
-        self.floaters.scratch.keep_mesh(k, &body.shape, mesh);
-        self.floaters.bodies.push((id, body));
+        let k = self.bodies.bodies.len();
+        self.bodies.scratch.keep_mesh(k, &body.shape, mesh);
+        self.bodies.bodies.push((id, body));
         Ok(id)
     }
 
@@ -72,35 +93,35 @@ impl Surface {
 
     /// Removes a body and returns it.
     pub fn remove_floater(&mut self, id: FloaterId) -> Result<Floater> {
-        let k = self.floaters.index(id)?;
-        self.floaters.scratch.forget_mesh(k);
-        Ok(self.floaters.bodies.remove(k).1)
+        let k = self.bodies.index(id)?;
+        self.bodies.scratch.forget_mesh(k);
+        Ok(self.bodies.bodies.remove(k).1)
     }
 
     /// A body's current state.
     pub fn floater(&self, id: FloaterId) -> Result<&Floater> {
-        let k = self.floaters.index(id)?;
-        Ok(&self.floaters.bodies[k].1)
+        let k = self.bodies.index(id)?;
+        Ok(&self.bodies.bodies[k].1)
     }
 
     /// Replaces a body's state (teleport it, turn it, change its mass or shape); its
     /// read-only [`Floater::water_force`] and [`Floater::water_torque`] are kept.
     /// Validated like [`Surface::add_floater`]; on error nothing changes.
     pub fn set_floater(&mut self, id: FloaterId, body: Floater) -> Result<()> {
-        let k = self.floaters.index(id)?;
-        let old = &self.floaters.bodies[k].1;
+        let k = self.bodies.index(id)?;
+        let old = &self.bodies.bodies[k].1;
         let body = self.admit(body, old.water_force, old.water_torque)?;
-        if body.shape != self.floaters.bodies[k].1.shape {
+        if body.shape != self.bodies.bodies[k].1.shape {
             let mesh = coupling::wet_mesh(&body.shape, self.params.spacing)?;
-            self.floaters.scratch.keep_mesh(k, &body.shape, mesh);
+            self.bodies.scratch.keep_mesh(k, &body.shape, mesh);
         }
-        self.floaters.bodies[k].1 = body;
+        self.bodies.bodies[k].1 = body;
         Ok(())
     }
 
     /// Every body with its id, in the order they were added.
     pub fn floaters(&self) -> impl ExactSizeIterator<Item = (FloaterId, &Floater)> {
-        self.floaters.bodies.iter().map(|(id, f)| (*id, f))
+        self.bodies.bodies.iter().map(|(id, f)| (*id, f))
     }
 
     /// Adds `force` through a body's centre of mass (mass units × world units per second²,
@@ -123,8 +144,8 @@ impl Surface {
         for c in at.to_array() {
             params::finite("push point", c)?;
         }
-        let k = self.floaters.index(id)?;
-        let offset = at - self.floaters.bodies[k].1.position;
+        let k = self.bodies.index(id)?;
+        let offset = at - self.bodies.bodies[k].1.position;
         self.push_wrench(id, force, offset.cross(force))
     }
 
@@ -135,8 +156,8 @@ impl Surface {
     }
 
     fn push_wrench(&mut self, id: FloaterId, force: Vec3, torque: Vec3) -> Result<()> {
-        let k = self.floaters.index(id)?;
-        let body = &self.floaters.bodies[k].1;
+        let k = self.bodies.index(id)?;
+        let body = &self.bodies.bodies[k].1;
         let push = body.push + force;
         let push_torque = body.push_torque + torque;
         for c in force.to_array().into_iter().chain(push.to_array()) {
@@ -145,7 +166,7 @@ impl Surface {
         for c in torque.to_array().into_iter().chain(push_torque.to_array()) {
             params::finite("floater push torque", c)?;
         }
-        let body = &mut self.floaters.bodies[k].1;
+        let body = &mut self.bodies.bodies[k].1;
         body.push = push;
         body.push_torque = push_torque;
         Ok(())
@@ -153,7 +174,7 @@ impl Surface {
 
     /// Gravity (world units per second²) and water density for the bodies.
     pub fn buoyancy(&self) -> Buoyancy {
-        self.floaters.buoyancy
+        self.bodies.buoyancy
     }
 
     /// Sets gravity and water density for the bodies. Refused (nothing changes) when a
@@ -161,10 +182,10 @@ impl Surface {
     /// smaller timestep than `params().dt`.
     pub fn set_buoyancy(&mut self, buoyancy: Buoyancy) -> Result<()> {
         buoyancy.validate()?;
-        if !self.floaters.bodies.is_empty() {
+        if !self.bodies.bodies.is_empty() {
             params::check_dt(self.params.dt, self.limit_with(buoyancy))?;
         }
-        self.floaters.buoyancy = buoyancy;
+        self.bodies.buoyancy = buoyancy;
         Ok(())
     }
 
@@ -180,10 +201,10 @@ impl Surface {
 
     /// The waterline stiffness the bodies add to a node (0 without bodies).
     pub(crate) fn floater_stiffness(&self) -> f32 {
-        if self.floaters.bodies.is_empty() {
+        if self.bodies.bodies.is_empty() {
             0.0
         } else {
-            self.floaters
+            self.bodies
                 .buoyancy
                 .node_stiffness(self.params.spacing, self.params.time_scale)
         }
