@@ -220,3 +220,31 @@ fn a_body_resting_on_still_water_leaves_it_flat() {
     // Without the column the raft's weight dents the membrane by about a cell.
     assert!(deepest < 1e-3, "the water is dented by {deepest}");
 }
+
+/// The boat's speed after coasting `steps` steps on still water from 4 units per second
+/// along `heading` (the boat's length is along x).
+fn coast(heading: Vec3, steps: u64) -> f32 {
+    let mut s = Surface::new(Params::with_size(96, 96)).unwrap();
+    for node in 0..96 * 96 {
+        s.set_pinned(node, true).unwrap();
+    }
+    let hull = boat();
+    let mass = 0.5 * s.buoyancy().density * hull.volume();
+    let id = s
+        .add_floater(Floater::with_hull(hull, mass, [48.0, 0.0, 48.0]))
+        .unwrap();
+    s.step_n(600).unwrap();
+    let mut b = s.floater(id).unwrap().clone();
+    b.velocity = heading * 4.0;
+    s.set_floater(id, b).unwrap();
+    s.step_n(steps).unwrap();
+    let v = s.floater(id).unwrap().velocity;
+    Vec3::new(v.x, 0.0, v.z).length()
+}
+
+#[test]
+fn a_boat_has_a_keel_it_coasts_forward_longer_than_sideways() {
+    let (ahead, abeam) = (coast(Vec3::X, 30), coast(Vec3::Z, 30));
+    println!("after half a second from 4 units/s: forward {ahead:.3}, sideways {abeam:.3}");
+    assert!(ahead > 2.0 * abeam, "forward {ahead}, sideways {abeam}");
+}

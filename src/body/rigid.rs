@@ -9,12 +9,19 @@
 //! of mass, `dᵢ = pᵢ − c`, `u = (v, ω)` the body's velocity and angular velocity:
 //!
 //! * **Pressure** `fᵢ` at `pᵢ`: buoyancy, and on waves the push of the slope.
-//! * **Drag** pulls each piece towards the water's velocity `wᵢ` under it:
-//!   `gᵢ = rᵢ (wᵢ − v − ω × dᵢ)`, the rates `rᵢ = R Aᵢ / Σ A` sharing out the body's rate
-//!   `R = k ρ V` (the drag rate `k` times the displaced water's mass) by wet area. Written
-//!   with `Jᵢ = [1, −[dᵢ]×]` (the map from `u` to the piece's velocity), the drag's force
-//!   and torque are `Σ Jᵢᵀ gᵢ = s − D u` with the damping matrix `D = Σ rᵢ JᵢᵀJᵢ`
-//!   (symmetric, positive semidefinite) and `s = Σ rᵢ Jᵢᵀ wᵢ`.
+//! * **Drag** pulls each piece towards the water's velocity `wᵢ` under it, by how much of
+//!   the piece faces the motion: `gᵢ = Gᵢ (wᵢ − v − ω × dᵢ)` with
+//!   `Gᵢ = rᵢ (F nᵢnᵢᵀ + S (1 − nᵢnᵢᵀ))`, `nᵢ` the piece's outward normal. The form part
+//!   `F` = [`FORM`] pushes along the normal (water meeting a face head on), the skin part
+//!   `S` = [`SKIN`] along the face (water sliding past it); `F + 2S = 3`, so a body whose
+//!   faces point every way (a ball) is slowed as by the rate `rᵢ` in every direction, and
+//!   a hull is slowed far more sideways than along its length: its keel. The rates
+//!   `rᵢ = R Aᵢ / Σ A` share out the body's rate `R = k ρ V` (the drag rate `k` times the
+//!   displaced water's mass) by wet area; a piece without a normal (the one point of a
+//!   small body) has `Gᵢ = rᵢ 1`. Written with `Jᵢ = [1, −[dᵢ]×]` (the map from `u` to the
+//!   piece's velocity), the drag's force and torque are `Σ Jᵢᵀ gᵢ = s − D u` with the
+//!   damping matrix `D = Σ JᵢᵀGᵢJᵢ` (symmetric, positive semidefinite) and
+//!   `s = Σ Jᵢᵀ Gᵢ wᵢ`.
 //! * **Gravity** `−m g ŷ` through `c`, and the caller's push and torque.
 //!
 //! # Why implicit, and how
@@ -96,6 +103,11 @@ pub(crate) fn outer(a: DVec3, b: DVec3) -> DMat3 {
     DMat3::from_cols(a * b.x, a * b.y, a * b.z)
 }
 
+/// The form part of the drag: along a piece's normal, per unit of its share of the rate.
+pub(crate) const FORM: f64 = 2.8;
+/// The skin part of the drag: along a piece's face (`FORM + 2 SKIN = 3`).
+pub(crate) const SKIN: f64 = 0.1;
+
 /// A wet piece of the hull (from the `hydrostatics` module), with the water under it.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct Piece {
@@ -107,6 +119,21 @@ pub(crate) struct Piece {
     pub area: f64,
     /// Water velocity under the point, world units per second.
     pub flow: DVec3,
+    /// Outward unit normal, or zero for a piece that drags alike in every direction.
+    pub normal: DVec3,
+}
+
+impl Piece {
+    /// The piece's drag matrix per unit of its rate: `F n nᵀ + S (1 − n nᵀ)`, or `1`
+    /// without a normal.
+    fn drag(&self) -> DMat3 {
+        let n = self.normal;
+        if n == DVec3::ZERO {
+            return DMat3::IDENTITY;
+        }
+        let along = outer(n, n);
+        along * FORM + (DMat3::IDENTITY - along) * SKIN
+    }
 }
 
 /// The water's section through the body: area and moments, world `(x, z)`.
@@ -215,18 +242,24 @@ pub(crate) fn step(
         0.0
     };
     let (mut f0, mut t0) = (DVec3::ZERO, DVec3::ZERO);
-    let (mut rate, mut rate_d, mut rate_dd) = (0.0, DVec3::ZERO, DMat3::ZERO);
+    // D's blocks: Σ G, −Σ G [d]×, Σ [d]× G and −Σ [d]× G [d]×.
+    let (mut d_vv, mut d_vw, mut d_wv, mut d_ww) =
+        (DMat3::ZERO, DMat3::ZERO, DMat3::ZERO, DMat3::ZERO);
     let (mut src_f, mut src_t) = (DVec3::ZERO, DVec3::ZERO);
     for p in pieces {
         let d = p.point - c;
         f0 += p.force;
         t0 += d.cross(p.force);
-        let ri = per_area * p.area;
-        rate += ri;
-        rate_d += d * ri;
-        rate_dd += (DMat3::IDENTITY * d.length_squared() - outer(d, d)) * ri;
-        src_f += p.flow * ri;
-        src_t += d.cross(p.flow) * ri;
+        let g = p.drag() * (per_area * p.area);
+        let dx = skew(d);
+        let (g_dx, dx_g) = (g * dx, dx * g);
+        d_vv += g;
+        d_vw -= g_dx;
+        d_wv += dx_g;
+        d_ww -= dx * g_dx;
+        let pull = g * p.flow;
+        src_f += pull;
+        src_t += d.cross(pull);
     }
 
     // The waterplane's moments about c, and its stiffness K on (v_y, ω_x, ω_z).
@@ -242,17 +275,12 @@ pub(crate) fn step(
     let mut sys = [[0.0f64; 7]; 6];
     let h2 = dt * dt;
     for i in 0..3 {
-        sys[i][i] = m + dt * rate;
+        sys[i][i] = m;
         for j in 0..3 {
-            sys[3 + i][3 + j] = inertia.col(j)[i] + dt * rate_dd.col(j)[i];
-        }
-    }
-    // D's off-diagonal blocks: −[Σ r d]× above, [Σ r d]× below.
-    let cross = skew(rate_d);
-    for i in 0..3 {
-        for j in 0..3 {
-            sys[i][3 + j] = -dt * cross.col(j)[i];
-            sys[3 + i][j] = dt * cross.col(j)[i];
+            sys[i][j] += dt * d_vv.col(j)[i];
+            sys[i][3 + j] = dt * d_vw.col(j)[i];
+            sys[3 + i][j] = dt * d_wv.col(j)[i];
+            sys[3 + i][3 + j] = inertia.col(j)[i] + dt * d_ww.col(j)[i];
         }
     }
     let stiff = [
@@ -289,7 +317,7 @@ pub(crate) fn step(
     };
     for p in pieces {
         let d = p.point - c;
-        let drag = (p.flow - v1 - w1.cross(d)) * (per_area * p.area);
+        let drag = p.drag() * ((p.flow - v1 - w1.cross(d)) * (per_area * p.area));
         feel(p.point, p.force + drag);
     }
     if a > 0.0 {

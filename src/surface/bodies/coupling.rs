@@ -132,6 +132,8 @@ impl Context<'_> {
                     force,
                     area,
                     flow: DVec3::ZERO,
+                    // The pressure pushes the face inwards, against its outward normal.
+                    normal: -force.normalize_or_zero(),
                 })
             },
         )?;
@@ -155,9 +157,11 @@ impl Context<'_> {
             }
         }
         // The body's drag rate, capped at half of what that room allows over the cells it
-        // covers (its waterplane, or half its wet area seen from above when under).
+        // covers (its waterplane, or half its wet area seen from above when under), and
+        // so that a piece's form drag, `FORM` times its share, stays within it.
         let cells = pressure.plane.area.max(0.5 * seen) / (h * h);
-        let world = self.world(body, pressure.volume, 0.5 * room * cells.max(1.0));
+        let cap = 0.5 * room * cells.max(1.0) / rigid::FORM;
+        let world = self.world(body, pressure.volume, cap);
         Ok(rigid::step(
             &body.rigid(),
             pieces,
@@ -221,6 +225,8 @@ impl Context<'_> {
             force: wet.force,
             area: 1.0,
             flow,
+            // One point for the whole body: it drags alike in every direction.
+            normal: DVec3::ZERO,
         });
         slot.spreads.clear();
         slot.spreads.push(under.map(|u| u.2));
