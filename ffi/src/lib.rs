@@ -74,6 +74,11 @@ mod bodies;
 // The host's job system.
 mod jobs;
 
+// For WebAssembly hosts only (the npm package in web/): buffers and disturbances. Not in
+// the header.
+#[cfg(target_family = "wasm")]
+mod wasm;
+
 // The thread's last error message and the names of status codes.
 mod errors;
 
@@ -97,3 +102,5 @@ pub use snapshots::*;
 pub use status::*;
 pub use surface::*;
 pub use window::*;
+#[cfg(target_family = "wasm")]
+pub use wasm::*;
