@@ -578,7 +578,7 @@ class WaterSurface {
   save() {
     return this.saveInto();
   }
-  /** Puts back a snapshot's state (from any surface of the same size). */
+  /** Replaces the state with a snapshot's (its size and bodies too), keeping the SIMD level and LOD parameters. */
   restore(bytes) {
     const data = asBytes(bytes);
     if (this.#freed) this.#call("sw_surface_node_count", this.#lib.scratch);
@@ -751,6 +751,7 @@ class Hull {
     const lib = this.#lib;
     const [x, y, z] = vec(position, 3, "position");
     const s = lib.scratch;
+    lib.view().setUint32(s, FLOATER_SIZE, true);
     lib.check(lib.x.sw_floater_hull(this.handle, mass, x, y, z, s));
     const body = readFloater.call(lib, s);
     Object.defineProperty(body, "hull", { value: this, enumerable: false });
@@ -773,6 +774,7 @@ class Hull {
  */
 class Rain {
   #lib;
+  #rate;
   id = 0;
   constructor(rate, seed = 1, { radius = [1.5, 3], depth = 0.6 } = {}) {
     const lib = new.target.lib;
@@ -780,10 +782,15 @@ class Rain {
     const s = lib.scratch;
     lib.check(lib.x.sw_wasm_rain_create(rate, BigInt(seed), radius[0], radius[1], depth, s));
     this.id = lib.u32(s);
+    this.#rate = rate;
   }
   /** Drops per second (0 stops the rain). */
+  get rate() {
+    return this.#rate;
+  }
   set rate(rate) {
     this.#lib.check(this.#lib.x.sw_wasm_rain_set_rate(this.id, rate));
+    this.#rate = rate;
   }
   free() {
     this.#lib.x.sw_wasm_disturbance_destroy(this.id);
