@@ -1,5 +1,5 @@
 // springwater for JavaScript: the library's C ABI (springwater-ffi, built for
-// wasm32-unknown-unknown) wrapped in classes, as the C# package wraps the same functions.
+// wasm32-wasip1) wrapped in classes, as the C# package wraps the same functions.
 // Every call goes to the library; this file only moves numbers in and out of wasm memory
 // and turns a refused call's status into an Error carrying the library's message.
 
@@ -61,8 +61,64 @@ export async function load(options = {}) {
     throw new Error("this engine does not run WebAssembly SIMD128");
   }
   const module = await compile(options.wasm ?? WASM[simd]);
-  const instance = await WebAssembly.instantiate(module, {});
+  let memory = null;
+  const instance = await WebAssembly.instantiate(module, system(module, () => memory));
+  memory = instance.exports.memory;
   return new Springwater(instance.exports, simd);
+}
+
+// The few WASI functions the module imports (it is built for wasm32-wasip1, whose C
+// library gives the same math bits as the native builds): random bytes for hash maps'
+// seeds, an empty environment, stderr to the console (a panic's message), and exit as an
+// exception. Anything else it might import answers "not supported".
+function system(module, memory) {
+  const wasi = {};
+  const bytes = () => new Uint8Array(memory().buffer);
+  const u32 = () => new DataView(memory().buffer);
+  let stderr = "";
+  const implemented = {
+    random_get(p, n) {
+      // (Seeds of hash maps, whose order the library's results never depend on.)
+      const out = bytes().subarray(p, p + n);
+      if (globalThis.crypto?.getRandomValues) {
+        for (let i = 0; i < n; i += 65536) crypto.getRandomValues(out.subarray(i, Math.min(n, i + 65536)));
+      } else {
+        for (let i = 0; i < n; i++) out[i] = (Math.random() * 256) | 0;
+      }
+      return 0;
+    },
+    environ_sizes_get(count, size) {
+      u32().setUint32(count, 0, true);
+      u32().setUint32(size, 0, true);
+      return 0;
+    },
+    environ_get() {
+      return 0;
+    },
+    fd_write(fd, iovs, n, written) {
+      const d = u32();
+      let total = 0;
+      for (let k = 0; k < n; k++) {
+        const p = d.getUint32(iovs + 8 * k, true);
+        const len = d.getUint32(iovs + 8 * k + 4, true);
+        stderr += new TextDecoder().decode(bytes().slice(p, p + len));
+        total += len;
+      }
+      const lines = stderr.split("\n");
+      stderr = lines.pop();
+      for (const line of lines) (fd === 1 ? console.log : console.error)(`springwater: ${line}`);
+      d.setUint32(written, total, true);
+      return 0;
+    },
+    proc_exit(code) {
+      throw new Error(`springwater exited with code ${code}`);
+    },
+  };
+  for (const { module: from, name } of WebAssembly.Module.imports(module)) {
+    if (from !== "wasi_snapshot_preview1") throw new Error(`unexpected import ${from}.${name}`);
+    wasi[name] = implemented[name] ?? (() => 52); // ENOSYS
+  }
+  return { wasi_snapshot_preview1: wasi };
 }
 
 async function compile(source) {

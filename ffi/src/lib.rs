@@ -101,6 +101,6 @@ pub use queries::*;
 pub use snapshots::*;
 pub use status::*;
 pub use surface::*;
-pub use window::*;
 #[cfg(target_family = "wasm")]
 pub use wasm::*;
+pub use window::*;

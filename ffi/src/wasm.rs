@@ -74,7 +74,9 @@ fn finite_positive(what: &str, value: f32) -> Result<(), Failure> {
     if value.is_finite() && value > 0.0 {
         Ok(())
     } else {
-        Err(Failure::invalid(format!("{what} is {value}, expected a finite number > 0")))
+        Err(Failure::invalid(format!(
+            "{what} is {value}, expected a finite number > 0"
+        )))
     }
 }
 

@@ -10,7 +10,11 @@ use springwater::{Floater, Params, Surface};
 use std::path::PathBuf;
 
 fn floats(v: &Value) -> Vec<f32> {
-    v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap() as f32).collect()
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap() as f32)
+        .collect()
 }
 
 fn vec3(v: &Value) -> Vec3 {
@@ -91,7 +95,11 @@ fn run(scene: &Value) -> u64 {
             .advance_with(frame, &mut (&mut rain, &mut wake))
             .unwrap();
     }
-    assert!(rain.fallen() > 10, "the scene's rain fell {} drops", rain.fallen());
+    assert!(
+        rain.fallen() > 10,
+        "the scene's rain fell {} drops",
+        rain.fallen()
+    );
     water.state_hash()
 }
 
@@ -102,7 +110,10 @@ fn the_web_scene_reaches_the_hash_the_npm_package_checks() {
     let mut scene: Value = serde_json::from_str(&text).unwrap();
     let hash = run(&scene).to_string();
     if std::env::var_os("SPRINGWATER_BLESS").is_some() {
-        let old = format!("\"stateHash\": \"{}\"", scene["stateHash"].as_str().unwrap());
+        let old = format!(
+            "\"stateHash\": \"{}\"",
+            scene["stateHash"].as_str().unwrap()
+        );
         let new = format!("\"stateHash\": \"{hash}\"");
         std::fs::write(&path, text.replace(&old, &new)).unwrap();
         scene["stateHash"] = Value::String(hash.clone());
