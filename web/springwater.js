@@ -837,8 +837,10 @@ class Rain {
     this.#lib = lib;
     const s = lib.scratch;
     lib.check(lib.x.sw_wasm_rain_create(rate, BigInt(seed), radius[0], radius[1], depth, s));
-    this.id = lib.u32(s);
+    const id = lib.u32(s);
+    this.id = id;
     this.#rate = rate;
+    lib.finalizers.register(this, () => lib.x.sw_wasm_disturbance_destroy(id), this);
   }
   /** Drops per second (0 stops the rain). */
   get rate() {
@@ -849,6 +851,7 @@ class Rain {
     this.#rate = rate;
   }
   free() {
+    this.#lib.finalizers.unregister(this);
     this.#lib.x.sw_wasm_disturbance_destroy(this.id);
   }
   [Symbol.dispose]() {
@@ -871,9 +874,12 @@ class Wake {
     lib.withInput(xz, (p, n) => {
       lib.check(lib.x.sw_wasm_wake_create(p, n >> 1, speed, radius, strength, lib.scratch));
     });
-    this.id = lib.u32(lib.scratch);
+    const id = lib.u32(lib.scratch);
+    this.id = id;
+    lib.finalizers.register(this, () => lib.x.sw_wasm_disturbance_destroy(id), this);
   }
   free() {
+    this.#lib.finalizers.unregister(this);
     this.#lib.x.sw_wasm_disturbance_destroy(this.id);
   }
   [Symbol.dispose]() {

@@ -108,8 +108,10 @@ const material = new THREE.ShaderMaterial({
       float fresnel = 0.02 + 0.98 * pow(1.0 - cosi, 5.0);
       vec3 r = reflect(-v, n);
       vec3 sky = mix(vec3(0.45, 0.6, 0.75), vec3(0.85, 0.92, 1.0), clamp(r.y, 0.0, 1.0));
-      float glint = pow(max(dot(r, sun), 0.0), 300.0) * 2.0;
-      gl_FragColor = vec4(mix(through, sky, fresnel) + glint, 1.0);
+      float glint = pow(max(dot(r, sun), 0.0), 120.0) * 1.5;
+      // Slopes facing the sun lighter, slopes away darker: the rings show.
+      float shade = clamp(1.0 + 6.0 * (dot(n, sun) - sun.y), 0.55, 1.6);
+      gl_FragColor = vec4(mix(through * shade, sky, fresnel) + glint, 1.0);
       #include <colorspace_fragment>
     }`,
 });
