@@ -74,6 +74,11 @@ mod bodies;
 // The host's job system.
 mod jobs;
 
+// For WebAssembly hosts only (the npm package in web/): buffers and disturbances. Not in
+// the header.
+#[cfg(target_family = "wasm")]
+mod wasm;
+
 // The thread's last error message and the names of status codes.
 mod errors;
 
@@ -96,4 +101,6 @@ pub use queries::*;
 pub use snapshots::*;
 pub use status::*;
 pub use surface::*;
+#[cfg(target_family = "wasm")]
+pub use wasm::*;
 pub use window::*;

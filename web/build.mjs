@@ -1,0 +1,45 @@
+// Builds the package's two WebAssembly files from the C ABI crate (springwater-ffi) with
+// cargo: the SIMD128 build (`+simd128`) and the portable one, into wasm/.
+//   node build.mjs            (npm run build)
+// Needs the Rust target: rustup target add wasm32-wasip1. The builds go to ../target/web
+// (CARGO_TARGET_DIR overrides), release, one codegen unit, LTO, stripped.
+//
+// Why wasm32-wasip1 and not wasm32-unknown-unknown: the library's exponentials (drops,
+// wakes) call the C library's expf, and wasm32-unknown-unknown has none, so Rust's own
+// port stands in and rounds some results differently: its heights differ from the native
+// ones in the last bits. wasm32-wasip1 links wasi-libc, whose expf gives the native bits
+// (CI checks the command line's CSVs across x86-64, AArch64 and wasm32-wasip1). The module
+// imports five WASI functions (random bytes, environment, stderr, exit), which
+// springwater.js provides in a few lines, in browsers too.
+import { execFileSync } from "node:child_process";
+import { copyFileSync, mkdirSync, statSync } from "node:fs";
+import { fileURLToPath } from "node:url";
+
+const here = fileURLToPath(new URL(".", import.meta.url));
+const root = fileURLToPath(new URL("..", import.meta.url));
+const base = process.env.CARGO_TARGET_DIR ?? `${root}target/web`;
+mkdirSync(`${here}wasm`, { recursive: true });
+
+for (const [name, flags] of [["simd128", "-C target-feature=+simd128"], ["portable", ""]]) {
+  const targetDir = `${base}/${name}`;
+  execFileSync(
+    "cargo",
+    ["build", "--release", "--locked", "-p", "springwater-ffi", "--target", "wasm32-wasip1"],
+    {
+      cwd: root,
+      stdio: "inherit",
+      env: {
+        ...process.env,
+        CARGO_TARGET_DIR: targetDir,
+        RUSTFLAGS: flags,
+        CARGO_PROFILE_RELEASE_DEBUG: "0",
+        CARGO_PROFILE_RELEASE_STRIP: "true",
+        CARGO_PROFILE_RELEASE_LTO: "true",
+        CARGO_PROFILE_RELEASE_CODEGEN_UNITS: "1",
+      },
+    },
+  );
+  const out = `${here}wasm/springwater-${name}.wasm`;
+  copyFileSync(`${targetDir}/wasm32-wasip1/release/springwater_ffi.wasm`, out);
+  console.log(`wasm/springwater-${name}.wasm: ${statSync(out).size} bytes`);
+}
