@@ -21,7 +21,9 @@
 //!   small body) has `Gᵢ = rᵢ 1`. Written with `Jᵢ = [1, −[dᵢ]×]` (the map from `u` to the
 //!   piece's velocity), the drag's force and torque are `Σ Jᵢᵀ gᵢ = s − D u` with the
 //!   damping matrix `D = Σ JᵢᵀGᵢJᵢ` (symmetric, positive semidefinite) and
-//!   `s = Σ Jᵢᵀ Gᵢ wᵢ`.
+//!   `s = Σ Jᵢᵀ Gᵢ wᵢ`. Since `Gᵢ = rᵢ S 1 + rᵢ (F − S) nᵢnᵢᵀ`, `D` is built as the
+//!   isotropic sum of the rates `rᵢ S` plus the rank-one terms `rᵢ (F − S) aᵢaᵢᵀ` with
+//!   `aᵢ = Jᵢᵀ nᵢ = (nᵢ, dᵢ × nᵢ)`.
 //! * **Gravity** `−m g ŷ` through `c`, and the caller's push and torque.
 //!
 //! # Why implicit, and how
@@ -124,15 +126,20 @@ pub(crate) struct Piece {
 }
 
 impl Piece {
-    /// The piece's drag matrix per unit of its rate: `F n nᵀ + S (1 − n nᵀ)`, or `1`
-    /// without a normal.
-    fn drag(&self) -> DMat3 {
-        let n = self.normal;
-        if n == DVec3::ZERO {
-            return DMat3::IDENTITY;
+    /// The piece's drag at rate `r` as its isotropic rate and the rate along its normal:
+    /// `G = iso 1 + along n nᵀ` (`(r S, r (F − S))`, or `(r, 0)` without a normal).
+    fn rates(&self, r: f64) -> (f64, f64) {
+        if self.normal == DVec3::ZERO {
+            (r, 0.0)
+        } else {
+            (r * SKIN, r * (FORM - SKIN))
         }
-        let along = outer(n, n);
-        along * FORM + (DMat3::IDENTITY - along) * SKIN
+    }
+
+    /// The drag force `G u` on the piece moving at `u` relative to the water, at rate `r`.
+    fn drag(&self, r: f64, u: DVec3) -> DVec3 {
+        let (iso, along) = self.rates(r);
+        u * iso + self.normal * (along * self.normal.dot(u))
     }
 }
 
@@ -242,24 +249,32 @@ pub(crate) fn step(
         0.0
     };
     let (mut f0, mut t0) = (DVec3::ZERO, DVec3::ZERO);
-    // D's blocks: Σ G, −Σ G [d]×, Σ [d]× G and −Σ [d]× G [d]×.
-    let (mut d_vv, mut d_vw, mut d_wv, mut d_ww) =
-        (DMat3::ZERO, DMat3::ZERO, DMat3::ZERO, DMat3::ZERO);
+    // The isotropic part of D (Σ rate, Σ rate d, Σ rate (|d|² 1 − d dᵀ)), its rank-one
+    // part (Σ along a aᵀ, a = (n, d × n), a 6 × 6 sum), and the source.
+    let (mut rate, mut rate_d, mut rate_dd) = (0.0, DVec3::ZERO, DMat3::ZERO);
+    let mut ranked = [[0.0f64; 6]; 6];
     let (mut src_f, mut src_t) = (DVec3::ZERO, DVec3::ZERO);
     for p in pieces {
         let d = p.point - c;
         f0 += p.force;
         t0 += d.cross(p.force);
-        let g = p.drag() * (per_area * p.area);
-        let dx = skew(d);
-        let (g_dx, dx_g) = (g * dx, dx * g);
-        d_vv += g;
-        d_vw -= g_dx;
-        d_wv += dx_g;
-        d_ww -= dx * g_dx;
-        let pull = g * p.flow;
+        let (iso, along) = p.rates(per_area * p.area);
+        rate += iso;
+        rate_d += d * iso;
+        rate_dd += (DMat3::IDENTITY * d.length_squared() - outer(d, d)) * iso;
+        let pull = p.drag(per_area * p.area, p.flow);
         src_f += pull;
         src_t += d.cross(pull);
+        if along != 0.0 {
+            let (n, m) = (p.normal, d.cross(p.normal));
+            let a = [n.x, n.y, n.z, m.x, m.y, m.z];
+            for (i, row) in ranked.iter_mut().enumerate() {
+                let ai = along * a[i];
+                for (j, value) in row.iter_mut().enumerate().skip(i) {
+                    *value += ai * a[j];
+                }
+            }
+        }
     }
 
     // The waterplane's moments about c, and its stiffness K on (v_y, ω_x, ω_z).
@@ -275,12 +290,26 @@ pub(crate) fn step(
     let mut sys = [[0.0f64; 7]; 6];
     let h2 = dt * dt;
     for i in 0..3 {
-        sys[i][i] = m;
+        sys[i][i] = m + dt * rate;
         for j in 0..3 {
-            sys[i][j] += dt * d_vv.col(j)[i];
-            sys[i][3 + j] = dt * d_vw.col(j)[i];
-            sys[3 + i][j] = dt * d_wv.col(j)[i];
-            sys[3 + i][3 + j] = inertia.col(j)[i] + dt * d_ww.col(j)[i];
+            sys[3 + i][3 + j] = inertia.col(j)[i] + dt * rate_dd.col(j)[i];
+        }
+    }
+    // The isotropic part's off-diagonal blocks: −[Σ r d]× above, [Σ r d]× below.
+    let cross = skew(rate_d);
+    for i in 0..3 {
+        for j in 0..3 {
+            sys[i][3 + j] = -dt * cross.col(j)[i];
+            sys[3 + i][j] = dt * cross.col(j)[i];
+        }
+    }
+    // The rank-one part, symmetric (its upper triangle summed).
+    for i in 0..6 {
+        for j in i..6 {
+            sys[i][j] += dt * ranked[i][j];
+            if i != j {
+                sys[j][i] += dt * ranked[i][j];
+            }
         }
     }
     let stiff = [
@@ -317,7 +346,7 @@ pub(crate) fn step(
     };
     for p in pieces {
         let d = p.point - c;
-        let drag = p.drag() * ((p.flow - v1 - w1.cross(d)) * (per_area * p.area));
+        let drag = p.drag(per_area * p.area, p.flow - v1 - w1.cross(d));
         feel(p.point, p.force + drag);
     }
     if a > 0.0 {

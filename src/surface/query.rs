@@ -211,6 +211,11 @@ impl Waters<'_> {
 
     /// The four nodes a force at `(x, z)` spreads onto and their bilinear weights (those
     /// [`Surface::add_force_at`] uses), or `None` off the footprint.
+    /// Nodes per row of the grid.
+    pub fn cols(&self) -> usize {
+        self.view.cols()
+    }
+
     pub fn spread(&self, x: f32, z: f32) -> Option<Spread> {
         let s = self.sample(x, z)?;
         Some((s.corners(self.view.cols()), s.weights()))

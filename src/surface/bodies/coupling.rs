@@ -46,6 +46,9 @@ pub(crate) struct Coupling {
 /// How many meshes of bodies another engine owns are kept.
 const FOREIGN_MESHES: usize = 16;
 
+/// Up to this many forces, a body's shares are merged in a list (see [`Context::shares`]).
+const FEW_FORCES: usize = 8;
+
 /// Bodies per task when they step in parallel.
 const BODIES_PER_TASK: usize = 16;
 
@@ -79,9 +82,11 @@ struct Slot {
     /// The forces the body feels and where (the water gets minus each): first one per
     /// piece, then the waterplane's.
     forces: Vec<(DVec3, DVec3)>,
-    /// The water's share of the body's reactions, node by node (in the order the nodes
-    /// were first touched), in the lattice's units.
+    /// The water's share of the body's reactions, node by node (row by row), in the
+    /// lattice's units.
     shares: Vec<(usize, [f32; 3])>,
+    /// The nodes under the body, a window of rows, while the shares are summed.
+    window: Vec<Option<[f32; 3]>>,
     /// The body after its step, or `None` if it failed (not finite, out of range).
     moved: Option<Floater>,
 }
@@ -244,34 +249,71 @@ impl Context<'_> {
 
     /// Each node's share of minus every force the body of `slot` feels, times `factor`,
     /// in the lattice's units, summed node by node into `slot.shares` (forces off the patch
-    /// push nothing). A body's forces fall on a few nodes, so a short list searched from
-    /// its end is the map.
+    /// push nothing), each node's in the order of the forces. A small body's few forces
+    /// fall on a few nodes, searched in a short list; a larger body's are summed in a
+    /// window of the grid around it, where a node is found by its place.
     fn shares(&self, slot: &mut Slot, factor: f64) {
         let Slot {
             spreads,
             forces,
             shares,
+            window,
             ..
         } = slot;
         shares.clear();
+        // The pieces' spreads were found with the water under them; the others' now.
+        for &(point, _) in forces.iter().skip(spreads.len()) {
+            spreads.push(self.waters.spread(point.x as f32, point.z as f32));
+        }
         // The lattice's forces are per unit of model time²: a body's force in seconds goes
         // in divided by `time_scale²`.
         let to_lattice = (self.scale as f64) * (self.scale as f64);
-        for (k, &(point, force)) in forces.iter().enumerate() {
-            // The pieces' spreads were found with the water under them.
-            let spread = match spreads.get(k) {
-                Some(known) => *known,
-                None => self.waters.spread(point.x as f32, point.z as f32),
-            };
-            if let Some((nodes, weights)) = spread {
-                let reaction = (-force * (factor / to_lattice)).as_vec3();
-                for (i, w) in nodes.into_iter().zip(weights) {
-                    let add = reaction * w;
-                    match shares.iter_mut().rev().find(|(j, _)| *j == i) {
-                        Some((_, f)) => *f = (Vec3::from(*f) + add).to_array(),
-                        None => shares.push((i, add.to_array())),
+        if forces.len() <= FEW_FORCES {
+            for (&(_, force), spread) in forces.iter().zip(spreads.iter()) {
+                if let Some((nodes, weights)) = spread {
+                    let reaction = (-force * (factor / to_lattice)).as_vec3();
+                    for (&i, &w) in nodes.iter().zip(weights) {
+                        let add = reaction * w;
+                        match shares.iter_mut().rev().find(|(j, _)| *j == i) {
+                            Some((_, f)) => *f = (Vec3::from(*f) + add).to_array(),
+                            None => shares.push((i, add.to_array())),
+                        }
                     }
                 }
+            }
+            return;
+        }
+        // The window: the rows and columns of every spread's corners.
+        let cols = self.waters.cols();
+        let (mut lo, mut hi) = ([usize::MAX; 2], [0; 2]);
+        for (nodes, _) in spreads.iter().flatten() {
+            let (c, r) = (nodes[0] % cols, nodes[0] / cols);
+            lo = [lo[0].min(c), lo[1].min(r)];
+            hi = [hi[0].max(c + 1), hi[1].max(r + 1)];
+        }
+        if lo[0] > hi[0] {
+            return;
+        }
+        let width = hi[0] - lo[0] + 1;
+        window.clear();
+        window.resize(width * (hi[1] - lo[1] + 1), None);
+        for (&(_, force), spread) in forces.iter().zip(spreads.iter()) {
+            if let Some((nodes, weights)) = spread {
+                let reaction = (-force * (factor / to_lattice)).as_vec3();
+                for (&i, &w) in nodes.iter().zip(weights) {
+                    let add = reaction * w;
+                    let at = (i / cols - lo[1]) * width + (i % cols - lo[0]);
+                    window[at] = Some(match window[at] {
+                        Some(f) => (Vec3::from(f) + add).to_array(),
+                        None => add.to_array(),
+                    });
+                }
+            }
+        }
+        for (k, sum) in window.iter().enumerate() {
+            if let Some(f) = sum {
+                let (r, c) = (lo[1] + k / width, lo[0] + k % width);
+                shares.push((r * cols + c, *f));
             }
         }
     }
@@ -521,9 +563,9 @@ impl Surface {
 }
 
 /// The widest a ball or box may be, in cells of the water, to meet the water as a plane
-/// (the `small` module of [`crate::body`]): its bounding radius at most one cell, so at
-/// most two cells across.
-const SMALL_CELLS: f32 = 1.0;
+/// (the `small` module of [`crate::body`]): its bounding radius at most 1.75 cells, so a
+/// ball at most 3.5 cells across and a cube of side 2 (its corners √3 cells out) do.
+const SMALL_CELLS: f32 = 1.75;
 
 /// Whether `shape` takes the small-body path on a grid of `spacing`: a ball or a box at most
 /// [`SMALL_CELLS`] cells from its centre to its farthest point. Hulls never do.
