@@ -1,9 +1,9 @@
 //! Floating rigid bodies: what they add to a step.
 //!
-//! * `many`: a 512² pool with 0, 100 and 1,000 small bodies (balls and boxes one to two
-//!   cells across, half the water's density, heeled a little so that they rock; all small
-//!   enough to meet the water as a plane), 8 steps, on 1 and 2 threads. The ratio to 0
-//!   bodies is the bodies' cost.
+//! * `bodies`: a 512² pool with 0, 100 and 1,000 bodies of the sizes a game floats (half
+//!   balls of radius 1, half cubes of side 2, at half the water's density, heeled a little;
+//!   all meet the water as a plane), 8 steps, on 1 and 2 threads; and `smallest`, 1,000
+//!   balls of radius 0.5. The ratio to 0 bodies is the bodies' cost.
 //! * `hull`: one boat of the shipped hull (2,024 triangles), 8 steps on a 128² pool, against
 //!   the same pool without it.
 //!
@@ -34,8 +34,9 @@ fn eight_steps(b: &mut criterion::Bencher<'_>, pool: &rayon::ThreadPool, s: &Sur
     })
 }
 
-/// A 512² pool with a drop in the middle and `count` small bodies on a regular grid.
-fn with_bodies(count: usize) -> Surface {
+/// A 512² pool with a drop in the middle and `count` bodies on a regular grid: balls of
+/// radius 1 and cubes of side 2 in turn, or with `smallest` balls of radius 0.5.
+fn with_bodies(count: usize, smallest: bool) -> Surface {
     let n = 512;
     let mut s = Surface::new(Params::with_size(n, n)).unwrap();
     s.drop_at(256.0, 256.0, 1.0, 8.0).unwrap();
@@ -46,10 +47,12 @@ fn with_bodies(count: usize) -> Surface {
             0.0,
             8.0 + (k / per_row) as f32 * 15.5,
         );
-        let mut body = if k % 2 == 0 {
-            Floater::sphere(0.5 + 0.5 * (k % 3) as f32 / 2.0, 1.0, at)
+        let mut body = if smallest {
+            Floater::sphere(0.5, 1.0, at)
+        } else if k % 2 == 0 {
+            Floater::sphere(1.0, 1.0, at)
         } else {
-            Floater::cuboid([0.5, 0.4, 0.75], 1.0, at)
+            Floater::cuboid([1.0, 1.0, 1.0], 1.0, at)
         };
         body.mass = 0.5 * s.buoyancy().density * body.shape.volume();
         body.orientation = Quat::from_rotation_x(0.1 * (k % 5) as f32);
@@ -68,10 +71,13 @@ fn many(c: &mut Criterion) {
     for threads in [1, 2] {
         let pool = pool(threads);
         for count in [0, 100, 1000] {
-            let s = with_bodies(count);
+            let s = with_bodies(count, false);
             let id = BenchmarkId::new(format!("512x512_{threads}threads"), count);
             group.bench_function(id, |b| eight_steps(b, &pool, &s));
         }
+        let s = with_bodies(1000, true);
+        let id = BenchmarkId::new(format!("smallest_512x512_{threads}threads"), 1000);
+        group.bench_function(id, |b| eight_steps(b, &pool, &s));
     }
     group.finish();
 }

@@ -22,8 +22,8 @@
 //! * **Shape.** A sphere, a box, or any closed triangle mesh ([`Hull`]), in the body's
 //!   frame with the centre of mass at the origin. On a surface each shape is cut into
 //!   triangles at most about a grid cell across (the volume kept exactly).
-//! * **Small bodies.** A ball or a box whose farthest point is at most one cell from its
-//!   centre meets the water as one plane, sampled at its centre (height and slope): the
+//! * **Small bodies.** A ball or a box whose farthest point is at most 1.75 cells from
+//!   its centre (a cube of side 2) meets the water as one plane, sampled at its centre (height and slope): the
 //!   plane's pressure in closed form through the centre of buoyancy, the drag there, the
 //!   same implicit step and the same equal and opposite reaction, for a fraction of the
 //!   cost (the `small` module of [`body`](crate::body)).
@@ -34,7 +34,9 @@
 //!   or capsizes as its metacentric height says (`GM = KB + BM − KG`).
 //! * **Drag** pulls every wet triangle towards the water's velocity there, with the rate
 //!   [`Floater::drag`] `k` times the mass of water the body displaces, shared out by wet
-//!   area: it slows both the body's motion and its spin relative to the water.
+//!   area, mostly along the triangle's normal (form drag) and a little along its face
+//!   (skin drag): it slows both the body's motion and its spin relative to the water, and
+//!   a hull far more sideways than along its length (its keel).
 //! * **Integration.** Buoyancy and drag are stiff for a light body (a ping-pong ball on a
 //!   wave, a wide raft), so both are taken implicitly for the new velocity and angular
 //!   velocity (one 6 × 6 linear solve per body and step, with the waterplane's heave,

@@ -1,12 +1,13 @@
-//! Small bodies: balls and boxes no wider than about two cells of the water, which meet
-//! the water as a plane.
+//! Small bodies: balls and boxes at most 1.75 cells of the water from centre to corner (a
+//! cube of side 2, a ball 3.5 cells across), which meet the water as a plane.
 //!
 //! # Why a cheaper model
 //!
 //! The per-triangle model (the `hydrostatics` module) samples the water at every corner
-//! and every wet piece of a body's mesh cut into triangles a cell across. For a body no
-//! wider than two cells, that is 10 to 30 wet pieces sampling the same four to nine nodes:
-//! the water under it is, to the lattice's resolution, one plane. So a small body samples
+//! and every wet piece of a body's mesh cut into triangles a cell across. For a body a few
+//! cells across, that is 10 to 60 wet pieces sampling the same 4 to 16 nodes; the water
+//! under it is taken as one plane (measured against the triangles in
+//! `tests/rigid_bodies.rs` and `docs/floating.md`). So a small body samples
 //! the water once, at its centre `c`: the height `η₀` and the slope `(s_x, s_z)` of the
 //! bilinear blend there (its gradient), and the water below is the half-space
 //!
