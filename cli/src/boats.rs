@@ -198,8 +198,11 @@ impl Disturbance for Fleet {
             // Rates per second: the drag rate the water already applies (6 per second)
             // and a firm hand on top of it.
             let moment = yaw * (12.0 * error + 8.0 * (rate - body.angular_velocity.y));
-            let drag = body.drag;
-            let thrust = body.mass * (drag * speed + 4.0 * (speed - body.velocity.dot(heading)));
+            // What the water held the boat back with in the last step (its drag along the
+            // heading, by how much hull faces the motion: the keel), and a firm hand on
+            // the speed.
+            let held = -body.water_force.dot(heading);
+            let thrust = held + body.mass * 4.0 * (speed - body.velocity.dot(heading));
             let (id, position) = (b.id, body.position);
             surface.push_floater(id, heading * thrust)?;
             // The moment as a couple: ±f at half a boat length fore and aft.
