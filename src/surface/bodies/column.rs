@@ -264,9 +264,11 @@ impl Column {
         self.kept = self.entries.len();
     }
 
-    /// Sorts the entries by node and points the slots at their new places.
+    /// Sorts the entries by node and points the slots at their new places. (A stable sort:
+    /// the entries are a sorted run and a few new ones after it, which it merges in a pass
+    /// rather than sorting the whole list again.)
     fn sort(&mut self) {
-        self.entries.sort_unstable_by_key(|e| e.node);
+        self.entries.sort_by_key(|e| e.node);
         if !self.slot.is_empty() {
             for (k, e) in self.entries.iter().enumerate() {
                 self.slot[e.node] = k as u32;

@@ -88,7 +88,8 @@ struct Slot {
     /// The nodes under the body, a window of rows, while the shares are summed.
     window: Vec<Option<[f32; 3]>>,
     /// The body after its step, or `None` if it failed (not finite, out of range).
-    moved: Option<Floater>,
+    /// The body after its step, or why its step failed (`None` until it steps).
+    moved: Option<Result<Floater>>,
 }
 
 /// What every body's step reads: the water and the world.
@@ -102,6 +103,8 @@ struct Context<'a> {
     seconds: f32,
     /// The damping rate per unit of model time the water's step has room for.
     room_rate: f32,
+    /// Steps the surface has taken (for errors).
+    steps: u64,
 }
 
 impl Context<'_> {
@@ -335,7 +338,7 @@ impl Surface {
         match coupled {
             Ok(()) => {
                 for ((_, body), slot) in self.bodies.bodies.iter_mut().zip(&mut c.slots) {
-                    if let Some(moved) = slot.moved.take() {
+                    if let Some(Ok(moved)) = slot.moved.take() {
                         *body = moved;
                     }
                 }
@@ -370,6 +373,7 @@ impl Surface {
             spacing: self.params.spacing,
             seconds,
             room_rate: self.damping_room(self.params.dt),
+            steps: self.steps(),
         }
     }
 
@@ -390,26 +394,33 @@ impl Surface {
             &mut c.slots[..],
             &|range, slots: &mut [Slot]| {
                 for (k, slot) in range.zip(slots) {
-                    let body = &bodies[k].1;
-                    slot.moved = cx
-                        .step(body, &meshes[k].1, slot)
-                        .ok()
-                        .map(|m| moved(body, &m))
-                        // Shape, mass, inertia and drag are the valid body's.
-                        .filter(|b| b.validate_motion().is_ok());
+                    let (id, body) = &bodies[k];
+                    let step = cx.step(body, &meshes[k].1, slot);
+                    slot.moved = Some(step.and_then(|m| {
+                        let moved = moved(body, &m);
+                        // Shape, mass, inertia and drag are the valid body's: what the
+                        // step changed must be finite and in range.
+                        match moved.validate_motion() {
+                            Ok(()) => Ok(moved),
+                            Err(_) => Err(Error::FloaterNonFinite {
+                                step: cx.steps,
+                                floater: id.0,
+                            }),
+                        }
+                    }));
                     cx.shares(slot, 1.0);
                 }
             },
         );
-        for ((id, _), slot) in bodies.iter().zip(&c.slots) {
-            if slot.moved.is_none() {
-                return Err(Error::FloaterNonFinite {
-                    step: self.steps(),
-                    floater: id.0,
-                });
-            }
+        // The first body whose step failed, with its own error.
+        match c
+            .slots
+            .iter()
+            .find_map(|slot| slot.moved.as_ref()?.as_ref().err())
+        {
+            Some(e) => Err(e.clone()),
+            None => Ok(()),
         }
-        Ok(())
     }
 
     /// Adds what the water gets (`c.water`, from the column) to the external forces
