@@ -227,7 +227,7 @@ mod tests {
     use crate::{Boundary, Params, Surface};
 
     fn per_node(s: &Surface) -> [bool; 3] {
-        let t = &s.state;
+        let t = s.state_ref();
         [&t.mass, &t.inv_mass, &t.viscosity].map(|t| t.is_per_node())
     }
 
@@ -250,9 +250,9 @@ mod tests {
                     g += frame.viscosity(grid.edge_distance(i));
                 }
                 let inv = if pinned { 0.0 } else { 1.0 / p.mass };
-                assert_eq!(s.state.viscosity.get(i).to_bits(), g.to_bits());
-                assert_eq!(s.state.inv_mass.get(i).to_bits(), inv.to_bits());
-                assert_eq!(s.state.mass.get(i), p.mass);
+                assert_eq!(s.state_ref().viscosity.get(i).to_bits(), g.to_bits());
+                assert_eq!(s.state_ref().inv_mass.get(i).to_bits(), inv.to_bits());
+                assert_eq!(s.state_ref().mass.get(i), p.mass);
             }
             // A snapshot of the defaults loads without per-node arrays.
             let back = Surface::from_bytes(&s.to_bytes()).unwrap();
@@ -277,9 +277,9 @@ mod tests {
         let mut s = Surface::new(Params::with_size(20, 20)).unwrap();
         s.set_pinned(50, true).unwrap();
         assert_eq!(per_node(&s), [false, true, false]);
-        assert_eq!(s.state.inv_mass.get(50), 0.0);
+        assert_eq!(s.state_ref().inv_mass.get(50), 0.0);
         s.set_pinned(50, false).unwrap();
-        s.state.refresh_inv_mass();
+        s.state_mut().refresh_inv_mass();
         assert_eq!(
             per_node(&s),
             [false; 3],
@@ -293,12 +293,12 @@ mod tests {
         s.set_viscosity(24 * 12 + 2, 0.4).unwrap();
         s.shift(-1, 0).unwrap();
         assert!(
-            s.state.viscosity.is_per_node(),
+            s.state_ref().viscosity.is_per_node(),
             "the value moved with the water"
         );
         s.shift(8, 0).unwrap();
         assert!(
-            !s.state.viscosity.is_per_node(),
+            !s.state_ref().viscosity.is_per_node(),
             "the value left the window"
         );
         assert!(s.viscosities().iter().all(|&g| g == 0.05));
@@ -310,8 +310,8 @@ mod tests {
         let fresh = Surface::new(Params::with_size(24, 24)).unwrap();
         for i in 0..24 * 24 {
             assert_eq!(
-                s.state.inv_mass.get(i),
-                fresh.state.inv_mass.get(i),
+                s.state_ref().inv_mass.get(i),
+                fresh.state_ref().inv_mass.get(i),
                 "node {i}"
             );
         }

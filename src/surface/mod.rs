@@ -81,30 +81,42 @@ impl Energy {
 #[derive(Debug, Clone)]
 pub struct Surface {
     params: Params,
-    pub(crate) state: State,
-    pub(crate) springs: Springs,
+    state: State,
+    springs: Springs,
     workspace: Workspace,
     reference: forces::scalar::Scratch,
     /// The instruction set the engine runs.
-    pub(crate) simd: SimdLevel,
+    simd: SimdLevel,
     /// Smallest node mass, largest spring coefficient and largest viscosity ever set: they
     /// set `critical_dt`.
-    pub(crate) min_mass: f32,
-    pub(crate) max_stiffness: f32,
-    pub(crate) max_viscosity: f32,
+    min_mass: f32,
+    max_stiffness: f32,
+    max_viscosity: f32,
     steps: u64,
     time: f64,
     /// The accumulator of [`Surface::advance`] and its cap.
-    pub(crate) clock: clock::Clock,
+    clock: clock::Clock,
     /// The host's threads the engine steps on; `None`: rayon's global pool.
-    pub(crate) host: Option<Host>,
+    host: Option<Host>,
     /// Floating bodies, their world and the water column under them.
-    pub(crate) bodies: bodies::BodySet,
+    bodies: bodies::BodySet,
     /// Whole cells the window has travelled, `[cols, rows]` (see [`window`]).
-    pub(crate) window_origin: [i64; 2],
+    window_origin: [i64; 2],
     /// Whether a per-node mass, viscosity or pin may differ from its place's default (a
     /// shift then moves them; see [`window`]).
-    pub(crate) window_custom: bool,
+    window_custom: bool,
+}
+
+/// The node state for the unit tests of `state.rs` (the fields are private to `surface/`).
+#[cfg(test)]
+impl Surface {
+    pub(crate) fn state_ref(&self) -> &State {
+        &self.state
+    }
+
+    pub(crate) fn state_mut(&mut self) -> &mut State {
+        &mut self.state
+    }
 }
 
 impl Surface {

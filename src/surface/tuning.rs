@@ -47,7 +47,7 @@ impl Tuning for Surface {
     }
 
     fn water_column(&self) -> Vec<(usize, [f32; 3], [f32; 3])> {
-        let entries = self.bodies.column.entries();
+        let entries = self.bodies.column().entries();
         entries
             .iter()
             .map(|e| (e.node, e.carried, e.pending))

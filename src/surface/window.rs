@@ -480,7 +480,7 @@ impl Surface {
         }
 
         // The load the water column carries moves with its water.
-        self.bodies.column.shift(|i| mv.destination(i));
+        self.bodies.shift(|i| mv.destination(i));
 
         // Nodes the boundary now pins that were free (or new): at rest, like the ring of a
         // new surface.
@@ -639,10 +639,7 @@ impl Surface {
             }
         }
         let (dx, dz) = (dcols as f64 * h as f64, drows as f64 * h as f64);
-        for (_, body) in &mut self.bodies.bodies {
-            body.position.x = (body.position.x as f64 - dx) as f32;
-            body.position.z = (body.position.z as f64 - dz) as f32;
-        }
+        self.bodies.rebase(dx, dz);
         self.window_origin = new;
         Ok(())
     }

@@ -25,12 +25,12 @@ use glam::Vec3;
 #[derive(Debug, Clone, Default)]
 pub(crate) struct BodySet {
     /// Bodies in the order they were added (ids increase along it).
-    pub bodies: Vec<(FloaterId, Floater)>,
+    bodies: Vec<(FloaterId, Floater)>,
     /// The id the next added body gets.
-    pub next_id: u64,
-    pub buoyancy: Buoyancy,
+    next_id: u64,
+    buoyancy: Buoyancy,
     /// What the water under the bodies carries and awaits (state).
-    pub column: Column,
+    column: Column,
     /// Buffers of the coupled step (not state).
     scratch: Coupling,
 }
@@ -40,6 +40,73 @@ impl BodySet {
     /// waiting in the column.
     pub fn is_idle(&self) -> bool {
         self.bodies.is_empty() && self.column.is_empty()
+    }
+
+    /// The bodies with their ids, in the order they were added.
+    pub fn records(&self) -> &[(FloaterId, Floater)] {
+        &self.bodies
+    }
+
+    /// The id the next added body gets.
+    pub fn next_id(&self) -> u64 {
+        self.next_id
+    }
+
+    /// The water column under the bodies.
+    pub fn column(&self) -> &Column {
+        &self.column
+    }
+
+    /// Takes a checked snapshot's bodies, world and column (a new surface's).
+    pub fn load(
+        &mut self,
+        bodies: Vec<(FloaterId, Floater)>,
+        next_id: u64,
+        buoyancy: Buoyancy,
+        column: Vec<Entry>,
+    ) {
+        self.bodies = bodies;
+        self.set_world(next_id, buoyancy);
+        self.column.set_entries(column);
+    }
+
+    /// Takes a snapshot's next id and buoyancy (checked).
+    pub fn set_world(&mut self, next_id: u64, buoyancy: Buoyancy) {
+        self.next_id = next_id;
+        self.buoyancy = buoyancy;
+    }
+
+    /// A restore in place, begun: the bodies' list, to decode the restored bodies after the
+    /// first `len()` current ones, and the column's spare list to decode its entries into.
+    /// [`BodySet::finish_restore`] keeps them or drops them.
+    pub fn restoring(&mut self) -> (&mut Vec<(FloaterId, Floater)>, &mut Vec<Entry>) {
+        (&mut self.bodies, self.column.spare())
+    }
+
+    /// Ends a restore begun with [`BodySet::restoring`] when the list held `old` bodies:
+    /// the restored ones replace them if `keep`, else they are dropped.
+    pub fn finish_restore(&mut self, old: usize, keep: bool) {
+        if keep {
+            self.bodies.drain(..old);
+            self.column.take_spare();
+        } else {
+            self.bodies.truncate(old);
+        }
+    }
+
+    /// The window moved: the column's loads move with their water (`to` gives a node's
+    /// new index, `None` for nodes that left).
+    pub fn shift(&mut self, to: impl Fn(usize) -> Option<usize>) {
+        self.column.shift(to);
+    }
+
+    /// The water's frame moved by `(dx, dz)` world units (a rebase): every body moves
+    /// back by it.
+    pub fn rebase(&mut self, dx: f64, dz: f64) {
+        for (_, body) in &mut self.bodies {
+            body.position.x = (body.position.x as f64 - dx) as f32;
+            body.position.z = (body.position.z as f64 - dz) as f32;
+        }
     }
 
     fn index(&self, id: FloaterId) -> Result<usize> {

@@ -476,8 +476,10 @@ impl Surface {
         let scalars = snap.scalars();
         let mut surface = Surface::from_parts(p, state, springs, scalars.bounds, (0, 0.0));
         surface.take_scalars(&scalars);
-        surface.bodies.bodies = snap.floaters;
-        surface.bodies.column.set_entries(snap.column);
+        let (next_id, buoyancy) = (snap.next_floater_id, snap.buoyancy);
+        surface
+            .bodies
+            .load(snap.floaters, next_id, buoyancy, snap.column);
         Ok(surface)
     }
 
@@ -487,8 +489,7 @@ impl Surface {
         self.steps = s.steps;
         self.time = s.model_time;
         [self.min_mass, self.max_stiffness, self.max_viscosity] = s.bounds;
-        self.bodies.next_id = s.next_floater_id;
-        self.bodies.buoyancy = s.buoyancy;
+        self.bodies.set_world(s.next_floater_id, s.buoyancy);
         self.window_origin = s.origin_cells;
         self.clock.owed = s.owed_time;
         (self.clock.max_steps, self.clock.overflow) = s.step_cap;

@@ -33,14 +33,13 @@ impl Surface {
         let saved = Layout::read(&mut r, version)?;
         let scalars = saved.scalars()?;
         let nodes = &saved.nodes;
-        let old = self.bodies.bodies.len();
-        let checked = saved.bodies.decode_into(&mut self.bodies.bodies);
-        let column = self.bodies.column.spare();
+        let (bodies, column) = self.bodies.restoring();
+        let old = bodies.len();
+        let checked = saved.bodies.decode_into(bodies);
         saved.column.decode_into(column);
-        let checked = checked
-            .and_then(|()| Self::check(&saved, &scalars, &self.bodies.bodies[old..], column));
+        let checked = checked.and_then(|()| Self::check(&saved, &scalars, &bodies[old..], column));
         if checked.is_err() || !same_model(&self.params, &scalars.params) {
-            self.bodies.bodies.truncate(old);
+            self.bodies.finish_restore(old, false);
             return checked.map(|()| false);
         }
         // Checked: from here on nothing can fail.
@@ -79,8 +78,7 @@ impl Surface {
                 std::array::from_fn(|f| coef[f].as_slice()),
             );
         }
-        self.bodies.bodies.drain(..old);
-        self.bodies.column.take_spare();
+        self.bodies.finish_restore(old, true);
         self.take_scalars(&scalars);
         Ok(true)
     }

@@ -328,8 +328,8 @@ impl Surface {
                 model_time: self.time,
                 bounds: [self.min_mass, self.max_stiffness, self.max_viscosity],
                 forces_pending: s.ext_pending,
-                next_floater_id: self.bodies.next_id,
-                buoyancy: self.bodies.buoyancy,
+                next_floater_id: self.bodies.next_id(),
+                buoyancy: self.buoyancy(),
                 origin_cells: self.window_origin,
                 owed_time: self.clock.owed,
                 step_cap: (self.clock.max_steps, self.clock.overflow),
@@ -343,9 +343,9 @@ impl Surface {
             pinned: &s.pinned,
             rest,
             stiffness,
-            bodies: &self.bodies.bodies,
-            hulls: HullTable::of(&self.bodies.bodies),
-            column: self.bodies.column.entries(),
+            bodies: self.bodies.records(),
+            hulls: HullTable::of(self.bodies.records()),
+            column: self.bodies.column().entries(),
         }
     }
 }
