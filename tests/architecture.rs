@@ -289,3 +289,41 @@ fn sibling_modules_never_import_each_other_in_a_circle() {
         circles.join("\n")
     );
 }
+
+/// The fields of `struct name` in `text` (the lines between its `{` and the closing `}` at
+/// the start of a line), as written.
+fn fields_of<'a>(text: &'a str, name: &str) -> Vec<&'a str> {
+    let start = text
+        .find(&format!("struct {name} {{"))
+        .unwrap_or_else(|| panic!("struct {name} not found"));
+    let body = &text[start..];
+    let end = body.find("\n}").expect("the struct ends");
+    body[..end]
+        .lines()
+        .skip(1)
+        .map(str::trim)
+        .filter(|l| !l.is_empty() && !l.starts_with("//") && !l.starts_with('#'))
+        .collect()
+}
+
+#[test]
+fn surface_and_its_subsystems_keep_their_fields_to_themselves() {
+    // `Surface` is a coordinator: its fields are private to `surface/`, and the bodies'
+    // subsystem's to `surface/bodies/`; every other module goes through their methods.
+    for (file, name) in [
+        ("src/surface/mod.rs", "Surface"),
+        ("src/surface/bodies/mod.rs", "BodySet"),
+    ] {
+        let text = std::fs::read_to_string(root().join(file)).unwrap();
+        let fields = fields_of(&text, name);
+        assert!(fields.len() >= 4, "{name}: found {fields:?}");
+        let open: Vec<_> = fields.iter().filter(|f| f.starts_with("pub")).collect();
+        assert!(
+            open.is_empty(),
+            "{name} has fields open outside its module: {open:?}"
+        );
+    }
+    // The check itself: a field marked `pub(crate)` is seen.
+    let sample = "pub struct S {\n    /// a\n    pub(crate) a: u8,\n    b: u8,\n}\n";
+    assert_eq!(fields_of(sample, "S"), ["pub(crate) a: u8,", "b: u8,"]);
+}
