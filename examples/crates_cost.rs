@@ -5,7 +5,8 @@
 //!
 //! `cargo run --release --example crates_cost -- MIX STEPS [LEVEL]`, MIX one of
 //! `none`, `game` (500 balls of radius 1 and 500 cubes of side 2, half the water's
-//! density), `game100` (50 and 50 of them), `smallest` (1,000 balls of radius 0.5);
+//! density), `game100` (50 and 50 of them), `smallest` (1,000 balls of radius 0.5), or
+//! `single` (no bodies, one step per engine pass, as the water steps beside bodies);
 //! LEVEL a SIMD level's name (default avx2, the widest valgrind runs).
 
 use springwater::glam::{Quat, Vec3};
@@ -25,7 +26,7 @@ fn main() {
     s.set_simd_level(level);
     s.drop_at(256.0, 256.0, 1.0, 8.0).expect("inside");
     let (count, body): (usize, fn(usize, Vec3) -> Floater) = match mix {
-        "none" => (0, |_, at| Floater::sphere(1.0, 1.0, at)),
+        "none" | "single" => (0, |_, at| Floater::sphere(1.0, 1.0, at)),
         "game" | "game100" => (if mix == "game" { 1000 } else { 100 }, |k, at| {
             if k % 2 == 0 {
                 Floater::sphere(1.0, 1.0, at)
