@@ -18,6 +18,7 @@ mod export;
 mod help;
 mod image;
 mod interrupt;
+mod memory;
 mod output;
 mod progress;
 mod render;

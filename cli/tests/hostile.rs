@@ -1,0 +1,168 @@
+//! The second round of hostile cases (issue 46): what a lying file, a machine short of
+//! memory, a colliding or dangling output path and a limit found only after the work did to
+//! the command line, each now refused at once with one line (or done as asked).
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+mod common;
+use common::*;
+
+/// A fresh, empty directory for one test.
+fn fresh(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir()
+        .join(format!("springwater-hostile-{}", std::process::id()))
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// The names in `dir`, sorted.
+fn names(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
+}
+
+/// A PNG whose header claims `width` × `height` RGB pixels, with an empty image stream.
+fn lying_png(path: &Path, width: u32, height: u32) {
+    let file = std::fs::File::create(path).unwrap();
+    let mut encoder = png::Encoder::new(file, width, height);
+    encoder.set_color(png::ColorType::Rgb);
+    encoder.set_depth(png::BitDepth::Eight);
+    let mut writer = encoder.write_header().unwrap();
+    // An empty zlib stream: the header is all there is.
+    let empty = [0x78, 0x9c, 0x03, 0x00, 0x00, 0x00, 0x00, 0x01];
+    writer.write_chunk(png::chunk::IDAT, &empty).unwrap();
+}
+
+/// `springwater args` in a shell whose address space is limited to `kib` KiB (`ulimit -v`);
+/// None where there is no `sh`.
+fn under_ulimit(kib: u64, args: &[&str]) -> Option<std::process::Output> {
+    let mut script = format!("ulimit -v {kib} && exec \"$0\"");
+    for k in 0..args.len() {
+        script.push_str(&format!(" \"${}\"", k + 1));
+    }
+    Command::new("sh")
+        .arg("-c")
+        .arg(script)
+        .arg(env!("CARGO_BIN_EXE_springwater"))
+        .args(args)
+        .output()
+        .ok()
+}
+
+/// A refusal under a memory limit: exit 2 and one line on stderr, no abort.
+fn refused_under(kib: u64, args: &[&str]) -> Option<String> {
+    let out = under_ulimit(kib, args)?;
+    let err = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(
+        out.status.code(),
+        Some(2),
+        "{args:?}: {:?} {err}",
+        out.status
+    );
+    assert_eq!(err.lines().count(), 1, "{args:?}: {err}");
+    Some(err)
+}
+
+#[test]
+fn a_png_whose_header_lies_is_refused_from_its_header() {
+    let dir = fresh("lying-png");
+    let lie = dir.join("lie.png");
+    lying_png(&lie, 60000, 60000);
+    assert!(std::fs::metadata(&lie).unwrap().len() < 200);
+    let gif = dir.join("out.gif");
+    let args = [
+        "render",
+        "--size",
+        "16x16",
+        "--frames",
+        "1",
+        "--bottom",
+        s(&lie),
+        "--out",
+        s(&gif),
+    ];
+    // Under a limit smaller than the 10.8 GB the header claims: refused, not aborted.
+    let err = refused_under(4_000_000, &args).unwrap_or_else(|| refused(&args));
+    assert!(err.contains("60000") && err.contains("16384"), "{err}");
+    assert_eq!(names(&dir), ["lie.png"]);
+}
+
+#[test]
+fn a_png_wider_than_the_renderer_takes_is_refused_before_decoding() {
+    let dir = fresh("wide-png");
+    let wide = dir.join("wide.png");
+    // A real image, 16385 × 2 grey pixels.
+    let file = std::fs::File::create(&wide).unwrap();
+    let mut encoder = png::Encoder::new(file, 16385, 2);
+    encoder.set_color(png::ColorType::Grayscale);
+    let mut writer = encoder.write_header().unwrap();
+    writer.write_image_data(&vec![128u8; 16385 * 2]).unwrap();
+    writer.finish().unwrap();
+    let gif = dir.join("out.gif");
+    let err = refused(&[
+        "render",
+        "--size",
+        "16x16",
+        "--frames",
+        "1",
+        "--bottom",
+        s(&wide),
+        "--out",
+        s(&gif),
+    ]);
+    assert!(
+        err.contains("--bottom") && err.contains("16385") && err.contains("16384"),
+        "{err}"
+    );
+}
+
+#[test]
+fn a_decompression_bomb_is_refused_before_decoding() {
+    let dir = fresh("bomb");
+    let bomb = dir.join("bomb.png");
+    // 16384 × 16384 grey pixels, all the same: a few hundred KB that decode to 4 GB of
+    // texture.
+    let file = std::fs::File::create(&bomb).unwrap();
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), 16384, 16384);
+    encoder.set_color(png::ColorType::Grayscale);
+    encoder.set_compression(png::Compression::Fastest);
+    let mut writer = encoder
+        .write_header()
+        .unwrap()
+        .into_stream_writer()
+        .unwrap();
+    let row = vec![7u8; 16384];
+    for _ in 0..16384 {
+        std::io::Write::write_all(&mut writer, &row).unwrap();
+    }
+    writer.finish().unwrap();
+    assert!(std::fs::metadata(&bomb).unwrap().len() < 4 << 20);
+    let gif = dir.join("out.gif");
+    let args = [
+        "render",
+        "--size",
+        "16x16",
+        "--frames",
+        "1",
+        "--bottom",
+        s(&bomb),
+        "--out",
+        s(&gif),
+    ];
+    let Some(err) = refused_under(2_000_000, &args) else {
+        return;
+    };
+    assert!(err.contains("--bottom") && err.contains("memory"), "{err}");
+    assert_eq!(names(&dir), ["bomb.png"]);
+}
