@@ -95,6 +95,19 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     if model.steps == 0 {
         return Err("--steps must be at least 1 for bench".into());
     }
+    // The surface and a copy, or the baseline, for each kernel compared (peak resident
+    // bytes per node, measured on 2048 x 2048 and rounded up).
+    let per_node: u64 = 64
+        + compare
+            .iter()
+            .map(|k| match k {
+                Kernel::SingleSteps | Kernel::Reference => 112,
+                Kernel::Naive => 144,
+                Kernel::Floor => 24,
+                Kernel::Engine => 64,
+            })
+            .sum::<u64>();
+    crate::memory::check_grid(&model.params, per_node, 0, "bench")?;
     let mut surface = model.surface()?;
     if let Some(h) = band_rows {
         surface.set_band_rows(h);

@@ -19,3 +19,24 @@ pub fn check(bytes: u64, what: &str, fix: &str) -> CliResult<()> {
         ))
     }
 }
+
+/// Refuses a grid of `params` when the system cannot give `bytes_per_node` for each of its
+/// nodes plus `extra` bytes: what `command` measured at most (peak resident memory per node,
+/// rounded up) with the work it was asked for. Called before the surface is built.
+pub fn check_grid(
+    params: &springwater::Params,
+    bytes_per_node: u64,
+    extra: u64,
+    command: &str,
+) -> CliResult<()> {
+    // A model the library refuses is reported by building it, in the library's words.
+    if params.validate().is_err() {
+        return Ok(());
+    }
+    let nodes = params.cols as u64 * params.rows as u64;
+    check(
+        nodes.saturating_mul(bytes_per_node).saturating_add(extra),
+        &format!("{command} --size {}x{}", params.cols, params.rows),
+        "use a smaller --size",
+    )
+}

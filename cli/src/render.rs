@@ -191,6 +191,11 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         );
     }
 
+    // Two surfaces (this one, which checks what the library refuses, and the animation's)
+    // and the renderer's nodes: 233 bytes a node measured on 2048 x 2048; and the frames
+    // kept for the GIF's palette.
+    let kept = (o.width as u64 * o.height as u64 * 3 * o.frames as u64).min(KEEP_FRAMES_BYTES);
+    crate::memory::check_grid(&model.params, 240, kept, "render")?;
     // Validates the model and the drops before anything is opened.
     let mut surface = model.surface()?;
     crate::start::check_rain(o.rain, &surface)?;

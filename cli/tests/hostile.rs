@@ -47,13 +47,9 @@ fn lying_png(path: &Path, width: u32, height: u32) {
 /// `springwater args` in a shell whose address space is limited to `kib` KiB (`ulimit -v`);
 /// None where there is no `sh`.
 fn under_ulimit(kib: u64, args: &[&str]) -> Option<std::process::Output> {
-    let mut script = format!("ulimit -v {kib} && exec \"$0\"");
-    for k in 0..args.len() {
-        script.push_str(&format!(" \"${}\"", k + 1));
-    }
     Command::new("sh")
         .arg("-c")
-        .arg(script)
+        .arg(format!("ulimit -v {kib} && exec \"$0\" \"$@\""))
         .arg(env!("CARGO_BIN_EXE_springwater"))
         .args(args)
         .output()
@@ -165,4 +161,45 @@ fn a_decompression_bomb_is_refused_before_decoding() {
     };
     assert!(err.contains("--bottom") && err.contains("memory"), "{err}");
     assert_eq!(names(&dir), ["bomb.png"]);
+}
+
+#[test]
+fn bench_and_render_past_the_memory_there_is_are_refused_not_aborted() {
+    let dir = fresh("memory");
+    let gif = dir.join("max.gif");
+    // 2 GB of address space; a 4096 × 4096 grid takes 1 GB a surface.
+    let Some(err) = refused_under(
+        2_000_000,
+        &[
+            "bench",
+            "--size",
+            "4096x4096",
+            "--steps",
+            "1",
+            "--repeats",
+            "1",
+        ],
+    ) else {
+        return;
+    };
+    assert!(err.contains("memory") && err.contains("--size"), "{err}");
+    let err = refused_under(
+        2_000_000,
+        &[
+            "render",
+            "--size",
+            "4096x4096",
+            "--frames",
+            "1",
+            "--steps",
+            "0",
+            "--substeps",
+            "0",
+            "--out",
+            s(&gif),
+        ],
+    )
+    .unwrap();
+    assert!(err.contains("memory") && err.contains("--size"), "{err}");
+    assert!(names(&dir).is_empty(), "{:?}", names(&dir));
 }
