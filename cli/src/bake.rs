@@ -137,9 +137,15 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     if let Some(obj) = &rest_obj {
         check_rest_obj(&out, obj)?;
     }
-    if let Some(load) = &start.load {
-        output::distinct(&[("--load", load), ("--out", &out)])?;
-    }
+    // Every path the bake reads or writes is its own (through symbolic links too).
+    let mut paths: Vec<(&str, &Path)> = vec![("--out", &out)];
+    paths.extend(
+        rest_obj
+            .as_deref()
+            .map(|obj| ("--out (its rest mesh)", obj)),
+    );
+    paths.extend(start.load.as_deref().map(|load| ("--load", load)));
+    output::distinct(&paths)?;
 
     let model = &start.model;
     if start.load.is_none() {

@@ -79,11 +79,28 @@ fn identity(path: &Path) -> Option<PathBuf> {
     if let Ok(p) = std::fs::canonicalize(path) {
         return Some(p);
     }
+    let path = through_links(path).ok()?;
     let parent = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
     Some(std::fs::canonicalize(parent).ok()?.join(path.file_name()?))
+}
+
+/// Where `path` leads when it is a symbolic link whose target does not exist yet: the
+/// target, followed link by link (a relative target from its link's directory), at most 40
+/// links as the system follows. A path that is not a link is returned as it is.
+fn through_links(path: &Path) -> io::Result<PathBuf> {
+    let mut p = path.to_path_buf();
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&p) {
+            Ok(m) if m.file_type().is_symlink() => {
+                p = directory_of(&p).join(std::fs::read_link(&p)?);
+            }
+            _ => return Ok(p),
+        }
+    }
+    Err(io::Error::other("too many levels of symbolic links"))
 }
 
 /// Refuses two flags that name the same file (devices and FIFOs excepted: a stream may

@@ -145,6 +145,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             ));
         }
     }
+    if let (Some(out), Some(png)) = (&o.out, &o.png) {
+        output::distinct(&[("--out", out), ("--png", png)])?;
+    }
     if o.follow && o.wake {
         return Err(
             "--follow and --wake cannot be combined: --follow draws its own ball and wake \

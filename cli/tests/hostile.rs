@@ -203,3 +203,53 @@ fn bench_and_render_past_the_memory_there_is_are_refused_not_aborted() {
     assert!(err.contains("memory") && err.contains("--size"), "{err}");
     assert!(names(&dir).is_empty(), "{:?}", names(&dir));
 }
+
+#[test]
+fn two_outputs_of_render_on_one_path_are_refused_before_any_work() {
+    let dir = fresh("same-path");
+    let same = dir.join("same.gif");
+    let err = refused(&[
+        "render",
+        "--size",
+        "16x16",
+        "--frames",
+        "2",
+        "--out",
+        s(&same),
+        "--png",
+        s(&same),
+    ]);
+    assert!(err.contains("--out") && err.contains("--png"), "{err}");
+    assert!(names(&dir).is_empty(), "{:?}", names(&dir));
+    // Through a symbolic link too.
+    #[cfg(unix)]
+    {
+        let link = dir.join("link.gif");
+        std::os::unix::fs::symlink("same.gif", &link).unwrap();
+        let err = refused(&[
+            "render",
+            "--size",
+            "16x16",
+            "--frames",
+            "2",
+            "--out",
+            s(&link),
+            "--png",
+            s(&same),
+        ]);
+        assert!(err.contains("same file"), "{err}");
+        assert_eq!(names(&dir), ["link.gif"]);
+    }
+}
+
+#[cfg(unix)]
+#[test]
+fn a_point_cache_and_its_rest_mesh_on_one_path_are_refused() {
+    let dir = fresh("same-rest");
+    let (pc2, obj) = (dir.join("out.pc2"), dir.join("out.obj"));
+    std::os::unix::fs::symlink("both", &pc2).unwrap();
+    std::os::unix::fs::symlink("both", &obj).unwrap();
+    let err = refused(&["bake", "--size", "8x8", "--frames", "2", "--out", s(&pc2)]);
+    assert!(err.contains("same file"), "{err}");
+    assert_eq!(names(&dir), ["out.obj", "out.pc2"]);
+}
