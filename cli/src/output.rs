@@ -160,8 +160,20 @@ impl Output {
                 path.display()
             ));
         }
-        // Through a symbolic link to the file it names (the link stays a link).
-        let dest = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+        // Through a symbolic link to the file it names, even one that does not exist yet
+        // (the link stays a link).
+        let dest = match std::fs::canonicalize(path) {
+            Ok(dest) => dest,
+            Err(_) => through_links(path).map_err(fail)?,
+        };
+        if dest != path && !directory_of(&dest).is_dir() {
+            return Err(format!(
+                "{flag} {}: a symbolic link to {}, whose directory does not exist; create \
+                 it or change the link",
+                path.display(),
+                dest.display()
+            ));
+        }
         let temp = temporary_beside(&dest, existing.map(|m| m.permissions())).map_err(fail)?;
         Ok(Self {
             shown: path.to_path_buf(),

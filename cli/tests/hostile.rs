@@ -253,3 +253,52 @@ fn a_point_cache_and_its_rest_mesh_on_one_path_are_refused() {
     assert!(err.contains("same file"), "{err}");
     assert_eq!(names(&dir), ["out.obj", "out.pc2"]);
 }
+
+#[cfg(unix)]
+#[test]
+fn a_dangling_link_is_written_through() {
+    let dir = fresh("dangling");
+    let glb = dir.join("out.glb");
+    std::os::unix::fs::symlink("missing.glb", &glb).unwrap();
+    ok(&["bake", "--size", "8x8", "--frames", "2", "--out", s(&glb)]);
+    assert!(std::fs::symlink_metadata(&glb)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+    assert!(std::fs::metadata(dir.join("missing.glb"))
+        .unwrap()
+        .is_file());
+    // The rest OBJ beside a point cache, and the cache, both through links.
+    let (pc2, obj) = (dir.join("out.pc2"), dir.join("out.obj"));
+    std::os::unix::fs::symlink("cache.pc2", &pc2).unwrap();
+    std::os::unix::fs::symlink("rest.obj", &obj).unwrap();
+    ok(&["bake", "--size", "8x8", "--frames", "2", "--out", s(&pc2)]);
+    for (link, target) in [(&pc2, "cache.pc2"), (&obj, "rest.obj")] {
+        assert!(std::fs::symlink_metadata(link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        assert!(std::fs::metadata(dir.join(target)).unwrap().is_file());
+    }
+    assert_eq!(
+        names(&dir),
+        [
+            "cache.pc2",
+            "missing.glb",
+            "out.glb",
+            "out.obj",
+            "out.pc2",
+            "rest.obj"
+        ]
+    );
+    // A link whose target's directory does not exist: one line naming the path.
+    let lost = dir.join("lost.glb");
+    std::os::unix::fs::symlink("nowhere/x.glb", &lost).unwrap();
+    let err = refused(&["bake", "--size", "8x8", "--frames", "2", "--out", s(&lost)]);
+    assert!(
+        err.contains("lost.glb")
+            && err.contains("does not exist")
+            && !err.contains("springwater-tmp"),
+        "{err}"
+    );
+}
