@@ -153,6 +153,11 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         // writer's rest frame: 134 bytes a node for a point cache and 180 for a .glb,
         // measured on 2048 x 2048.
         let per_node = if format == Format::Glb { 192 } else { 144 };
+        // A .glb past the format's 4 GiB is refused before the grid is built (with --load,
+        // once the snapshot gives the grid, below).
+        if format == Format::Glb {
+            glb::check_size(&out, &model.params, frames, start.floaters.len())?;
+        }
         crate::memory::check_grid(&model.params, per_node, 0, "bake")?;
     }
     let mut surface = start

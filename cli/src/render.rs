@@ -215,8 +215,10 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             boats::berth_cells()
         ));
     }
-    // The boats go on this surface too, so what the library refuses about them (the
-    // timestep the water under them needs) is refused before any output is started.
+    // The balls and boats go on this surface too, in the animation's order, so what the
+    // library refuses about them (the timestep the water under them needs) is refused
+    // before the renderer is built or any output is started.
+    add_balls(&mut surface, o.floaters)?;
     if o.boats > 0 {
         boats::Fleet::launch(&mut surface, o.boats)?;
     }
@@ -568,6 +570,9 @@ const BUOY_COLOURS: [[[f32; 3]; 2]; 3] = [
     [[0.1, 0.6, 0.1], [0.85, 0.85, 0.8]],
 ];
 
+/// The largest radius of a `--floaters` ball, in cells.
+const MAX_BALL_CELLS: f32 = 30.0;
+
 /// `n` balls at half the water's density, spread over the pool on a sunflower spiral
 /// inside its middle 70% and dropped from just above the water so they splash in.
 fn add_balls(surface: &mut Surface, n: usize) -> CliResult<()> {
@@ -576,7 +581,9 @@ fn add_balls(surface: &mut Surface, n: usize) -> CliResult<()> {
         (p.cols - 1) as f32 * p.spacing,
         (p.rows - 1) as f32 * p.spacing,
     );
-    let radius = (0.025 * w.min(l)).max(1.2 * p.spacing);
+    // A fortieth of the pool, at least 1.2 cells and at most 30 (the water carries a body
+    // up to 64 cells across).
+    let radius = (0.025 * w.min(l)).clamp(1.2 * p.spacing, MAX_BALL_CELLS * p.spacing);
     let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
     for k in 0..n {
         let r = 0.35 * ((k as f32 + 0.5) / n as f32).sqrt();

@@ -302,3 +302,48 @@ fn a_dangling_link_is_written_through() {
         "{err}"
     );
 }
+
+#[test]
+fn a_glb_too_large_is_refused_before_the_grid_is_built() {
+    let dir = fresh("glb-limit");
+    let glb = dir.join("max.glb");
+    // 1 GB of address space: too little for the 4 GB grid, plenty for the refusal.
+    let args = [
+        "bake",
+        "--size",
+        "8192x8192",
+        "--frames",
+        "1",
+        "--out",
+        s(&glb),
+    ];
+    let err = refused_under(1_000_000, &args).unwrap_or_else(|| refused(&args));
+    assert!(err.contains("4 GiB") && err.contains(".pc2"), "{err}");
+    assert!(names(&dir).is_empty());
+}
+
+#[test]
+fn floaters_on_a_wide_grid_are_sized_to_what_the_water_carries() {
+    let dir = fresh("wide-floaters");
+    let gif = dir.join("out.gif");
+    let report = ok(&[
+        "render",
+        "--size",
+        "1400x1400",
+        "--floaters",
+        "1",
+        "--frames",
+        "1",
+        "--steps",
+        "0",
+        "--substeps",
+        "0",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "--out",
+        s(&gif),
+    ]);
+    assert!(report.contains("floaters     1 ball"), "{report}");
+}
