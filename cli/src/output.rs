@@ -290,7 +290,7 @@ fn directory_of(dest: &Path) -> &Path {
 /// umask, on Unix).
 fn temporary_beside(dest: &Path, permissions: Option<std::fs::Permissions>) -> io::Result<Temp> {
     let name = dest.file_name().unwrap_or_default().to_string_lossy();
-    let prefix = format!(".{name}.");
+    let prefix = format!(".{}.", shortened(&name));
     let mut list = pending();
     let (file, path) = unique_in(directory_of(dest), &prefix, ".springwater-tmp", |path| {
         std::fs::OpenOptions::new()
@@ -309,6 +309,21 @@ fn temporary_beside(dest: &Path, permissions: Option<std::fs::Permissions>) -> i
     drop(permissions);
     list.push(temp.path.clone());
     Ok(temp)
+}
+
+/// The most bytes of a destination's name that a temporary name repeats: with the dot
+/// before it, the dot and six random characters after it and `.springwater-tmp`, the
+/// temporary name stays within the 255 bytes a file name may have (so a destination whose
+/// own name is that long can still be written).
+const NAME_IN_TEMP: usize = 200;
+
+/// `name`, cut to at most [`NAME_IN_TEMP`] bytes on a character boundary.
+fn shortened(name: &str) -> &str {
+    let mut end = name.len().min(NAME_IN_TEMP);
+    while !name.is_char_boundary(end) {
+        end -= 1;
+    }
+    &name[..end]
 }
 
 /// A new file or directory in `dir` named `PREFIX` + random characters + `SUFFIX`, made by

@@ -347,3 +347,29 @@ fn floaters_on_a_wide_grid_are_sized_to_what_the_water_carries() {
     ]);
     assert!(report.contains("floaters     1 ball"), "{report}");
 }
+#[test]
+fn names_as_long_as_the_system_allows_are_written() {
+    let dir = fresh("long-names");
+    // 255 bytes, the most a file name may have on common file systems.
+    let glb = dir.join(format!("{}.glb", "g".repeat(251)));
+    ok(&["bake", "--size", "8x8", "--frames", "2", "--out", s(&glb)]);
+    let pc2 = dir.join(format!("{}.pc2", "p".repeat(251)));
+    ok(&["bake", "--size", "8x8", "--frames", "2", "--out", s(&pc2)]);
+    let csv = dir.join(format!("{}.csv", "c".repeat(251)));
+    ok(&[
+        "simulate",
+        "--size",
+        "8x8",
+        "--steps",
+        "2",
+        "--csv",
+        s(&csv),
+    ]);
+    let obj = pc2.with_extension("obj");
+    let mut want: Vec<String> = [&glb, &pc2, &obj, &csv]
+        .iter()
+        .map(|p| p.file_name().unwrap().to_string_lossy().into_owned())
+        .collect();
+    want.sort();
+    assert_eq!(names(&dir), want);
+}
