@@ -34,6 +34,10 @@ pub fn next_flag(p: &mut Parser) -> CliResult<Option<Flag>> {
     })
 }
 
+/// The most steps `--steps` takes: ten billion, hours on the smallest grid (more ran until
+/// stopped, like a cap that is not there).
+pub const MAX_STEPS: u64 = 10_000_000_000;
+
 /// The model flags every subcommand takes.
 #[derive(Debug, Clone)]
 pub struct ModelArgs {
@@ -70,7 +74,7 @@ impl ModelArgs {
                 params.cols = number(c, "--size columns")?;
                 params.rows = number(r, "--size rows")?;
             }
-            "steps" => self.steps = value(p, "--steps")?,
+            "steps" => self.steps = ranged(value(p, "--steps")?, 0, MAX_STEPS, "--steps")?,
             "dt" => params.dt = value(p, "--dt")?,
             "mass" => params.mass = value(p, "--mass")?,
             "stiffness" => params.stiffness = value(p, "--stiffness")?,

@@ -76,6 +76,17 @@ impl Start {
             }
             (Some(path), None) => {
                 let mut s = load_snapshot(path)?;
+                if s.steps().checked_add(self.model.steps).is_none() {
+                    return Err(format!(
+                        "--steps {}: the snapshot {} has taken {} steps, and the count \
+                         would pass the largest there is ({}); use --steps {} or fewer",
+                        self.model.steps,
+                        path.display(),
+                        s.steps(),
+                        u64::MAX,
+                        u64::MAX - s.steps()
+                    ));
+                }
                 self.model.apply_drops(&mut s)?;
                 s
             }

@@ -373,3 +373,53 @@ fn names_as_long_as_the_system_allows_are_written() {
     want.sort();
     assert_eq!(names(&dir), want);
 }
+
+/// A snapshot of a calm 8 × 8 pool whose step counter and model time are changed.
+fn snapshot_with(path: &Path, steps: u64, model_time: f64) {
+    let surface = springwater::Surface::new(springwater::Params::with_size(8, 8)).unwrap();
+    let mut snap = surface.snapshot();
+    snap.steps = steps;
+    snap.model_time = model_time;
+    let bytes = springwater::Surface::from_snapshot(snap)
+        .unwrap()
+        .to_bytes();
+    std::fs::write(path, bytes).unwrap();
+}
+
+#[test]
+fn impossible_snapshot_counts_and_endless_runs_are_refused() {
+    let dir = fresh("counts");
+    // A step counter that more steps would wrap: refused, not "steps 2" after 3 steps.
+    let snap = dir.join("late.snap");
+    snapshot_with(&snap, u64::MAX - 1, 0.0);
+    let err = refused(&["simulate", "--load", s(&snap), "--steps", "3"]);
+    assert!(err.contains("--steps 1 or fewer"), "{err}");
+    let report = ok(&["simulate", "--load", s(&snap), "--steps", "1"]);
+    assert!(report.contains(&u64::MAX.to_string()), "{report}");
+    // A model time of 1e308 is printed in a few characters, not three hundred digits.
+    let old = dir.join("old.snap");
+    snapshot_with(&old, 5, 1e308);
+    let report = ok(&["simulate", "--load", s(&old), "--steps", "0"]);
+    let line = report.lines().find(|l| l.starts_with("steps")).unwrap();
+    assert!(line.len() < 80 && line.contains("1.000e308"), "{line}");
+    // --steps and bench --repeats have a cap like --frames and --substeps.
+    let err = refused(&[
+        "simulate",
+        "--size",
+        "8x8",
+        "--steps",
+        "18446744073709551615",
+    ]);
+    assert!(
+        err.contains("--steps") && err.contains("10000000000"),
+        "{err}"
+    );
+    let err = refused(&[
+        "bench",
+        "--size",
+        "8x8",
+        "--repeats",
+        "18446744073709551615",
+    ]);
+    assert!(err.contains("--repeats") && err.contains("10000"), "{err}");
+}
