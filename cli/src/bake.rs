@@ -204,6 +204,24 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     surface
         .set_step_cap(Surface::MAX_SUBSTEPS as u32, Overflow::Drop)
         .map_err(lib_error)?;
+    // A snapshot's clock may owe time (a game stalled before saving): the first frame owes
+    // it too, and past the cap it would be cut short. No flag changes a loaded clock.
+    let owed = surface.owed_seconds();
+    if let (Some(load), true) = (
+        &start.load,
+        (owed + f64::from(frame)) / step_seconds > Surface::MAX_SUBSTEPS as f64,
+    ) {
+        return Err(format!(
+            "--load {}: the snapshot's clock owes {} s of steps ({:.3e} steps of {} s), \
+             more than one frame of the bake may take ({} steps); save it once the game \
+             has caught up, or bake from the model flags",
+            load.display(),
+            Short(owed as f32),
+            owed / step_seconds,
+            Short(step_seconds as f32),
+            Surface::MAX_SUBSTEPS
+        ));
+    }
     if format == Format::Glb {
         glb::check_size(&out, &params, frames, surface.floaters().len())?;
     }

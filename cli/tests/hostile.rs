@@ -423,3 +423,32 @@ fn impossible_snapshot_counts_and_endless_runs_are_refused() {
     ]);
     assert!(err.contains("--repeats") && err.contains("10000"), "{err}");
 }
+
+#[test]
+fn a_snapshot_whose_clock_owes_ages_is_refused_before_the_bake() {
+    let dir = fresh("owed");
+    let snap = dir.join("owed.snap");
+    let surface = springwater::Surface::new(springwater::Params::with_size(8, 8)).unwrap();
+    let mut state = surface.snapshot();
+    state.owed_time = 1e300;
+    let bytes = springwater::Surface::from_snapshot(state)
+        .unwrap()
+        .to_bytes();
+    std::fs::write(&snap, bytes).unwrap();
+    let glb = dir.join("out.glb");
+    let err = refused(&[
+        "bake",
+        "--load",
+        s(&snap),
+        "--frames",
+        "2",
+        "--out",
+        s(&glb),
+    ]);
+    // Not advice the user cannot take (--dt is refused next to --load).
+    assert!(
+        err.contains("--load") && err.contains("owes") && !err.contains("--dt"),
+        "{err}"
+    );
+    assert_eq!(names(&dir), ["owed.snap"]);
+}
