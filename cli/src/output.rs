@@ -361,10 +361,24 @@ fn builder<'a>(prefix: &'a str, suffix: &'a str, mode: u32) -> tempfile::Builder
     b
 }
 
+/// `tempfile`'s error without the temporary path it names (the user never chose it and
+/// never sees the file): the system's error alone.
+#[cfg(not(target_family = "wasm"))]
+fn without_path(e: io::Error) -> io::Error {
+    // `tempfile` adds ` at path "…"` to the system's message.
+    let text = e.to_string();
+    match text.split_once(" at path \"") {
+        Some((system, _)) => io::Error::new(e.kind(), system),
+        None => e,
+    }
+}
+
 #[cfg(not(target_family = "wasm"))]
 impl FromTemp for File {
     fn make(dir: &Path, prefix: &str, suffix: &str) -> io::Result<(Self, PathBuf)> {
-        let temp = builder(prefix, suffix, 0o666).tempfile_in(dir)?;
+        let temp = builder(prefix, suffix, 0o666)
+            .tempfile_in(dir)
+            .map_err(without_path)?;
         // Removed or renamed by this module, not by `NamedTempFile`.
         temp.keep().map_err(|e| e.error)
     }
@@ -373,7 +387,10 @@ impl FromTemp for File {
 #[cfg(not(target_family = "wasm"))]
 impl FromTemp for () {
     fn make(dir: &Path, prefix: &str, suffix: &str) -> io::Result<(Self, PathBuf)> {
-        Ok(((), builder(prefix, suffix, 0o777).tempdir_in(dir)?.keep()))
+        let temp = builder(prefix, suffix, 0o777)
+            .tempdir_in(dir)
+            .map_err(without_path)?;
+        Ok(((), temp.keep()))
     }
 }
 

@@ -112,9 +112,13 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             "follow" => o.follow = true,
             "floaters" => o.floaters = ranged(value(p, "--floaters")?, 0, 1000, "--floaters")?,
             "boats" => {
-                let n: i64 = value(p, "--boats")?;
-                o.boats = usize::try_from(n)
-                    .map_err(|_| format!("--boats: {n} is not a number of boats (0 or more)"))?;
+                // Wider than any count, so a number too large for one is still a number
+                // (refused below for want of room), and a negative one is told apart.
+                let n: i128 = value(p, "--boats")?;
+                if n < 0 {
+                    return Err(format!("--boats: {n} is not a number of boats (0 or more)"));
+                }
+                o.boats = usize::try_from(n).unwrap_or(usize::MAX);
             }
             "wireframe" => o.wireframe = true,
             "orbit" => o.orbit = value(p, "--orbit")?,

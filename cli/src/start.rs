@@ -104,6 +104,7 @@ impl Start {
 /// Reads a snapshot file, naming it in the error. The file must hold exactly one snapshot:
 /// bytes after it are refused, as `Surface::from_bytes` refuses them.
 pub fn load_snapshot(path: &Path) -> CliResult<Surface> {
+    crate::output::non_empty(path, "--load")?;
     let fail = |e: std::io::Error| format!("cannot read {}: {e}", path.display());
     let mut file = std::io::BufReader::new(std::fs::File::open(path).map_err(fail)?);
     let mut surface = Surface::load(&mut file).map_err(|e| format!("{}: {e}", path.display()))?;

@@ -452,3 +452,32 @@ fn a_snapshot_whose_clock_owes_ages_is_refused_before_the_bake() {
     );
     assert_eq!(names(&dir), ["owed.snap"]);
 }
+
+#[test]
+fn messages_name_what_the_user_gave() {
+    // An empty --load names the flag, not "cannot read : No such file".
+    let err = refused(&["simulate", "--load", ""]);
+    assert!(err.contains("--load") && err.contains("empty"), "{err}");
+    // A count too large for the machine is still a count, refused for want of room.
+    let err = refused(&[
+        "render",
+        "--boats",
+        "18446744073709551615",
+        "--out",
+        "x.gif",
+    ]);
+    assert!(
+        err.contains("room for") && !err.contains("not a valid"),
+        "{err}"
+    );
+    let err = refused(&["render", "--boats", "-1", "--out", "x.gif"]);
+    assert!(err.contains("0 or more"), "{err}");
+    // A directory the system will not write in: the error names the user's path only.
+    if std::path::Path::new("/sys").is_dir() {
+        let err = refused(&["simulate", "--size", "8x8", "--csv", "/sys/out.csv"]);
+        assert!(
+            err.contains("/sys/out.csv") && !err.contains("springwater-tmp"),
+            "{err}"
+        );
+    }
+}
