@@ -153,7 +153,7 @@ impl ModelArgs {
                 short_f64(value),
                 p.cols,
                 p.rows,
-                Short((1e15 / (p.cols.max(p.rows) - 1) as f64) as f32)
+                Short(largest_spacing(p.cols.max(p.rows)))
             ),
             _ => lib_error(e),
         }
@@ -327,6 +327,18 @@ impl std::fmt::Display for Short {
             &plain
         })
     }
+}
+
+/// The largest spacing a grid `nodes` wide takes: its span at most 1e15 units, as the
+/// library checks it (in f64), so the value suggested is one that is accepted (1e15 / 15
+/// rounded to f32 is just past it).
+fn largest_spacing(nodes: usize) -> f32 {
+    let cells = (nodes.max(2) - 1) as f64;
+    let mut most = (1e15 / cells) as f32;
+    while f64::from(most) * cells > 1e15 {
+        most = most.next_down();
+    }
+    most
 }
 
 /// `n` and its noun, singular or plural: "1 frame", "3 frames".

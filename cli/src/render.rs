@@ -235,9 +235,21 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         camera.look_at = l.into();
     }
     camera.fov_y_degrees = o.fov;
-    camera
-        .validate()
-        .map_err(|e| format!("camera: {}", lib_error(e)))?;
+    camera.validate().map_err(|e| match e {
+        // The camera was placed by framing the grid: its points are the grid's fault.
+        springwater::Error::InvalidParam {
+            name: "look_at" | "eye",
+            ..
+        } if o.eye.is_none() && o.look_at.is_none() => format!(
+            "--spacing {}: the camera cannot frame a {}x{} grid at this spacing ({} units \
+             across); use a larger --spacing, or place the camera with --eye and --look-at",
+            Short(params.spacing),
+            params.cols,
+            params.rows,
+            Short((params.cols.max(params.rows) - 1) as f32 * params.spacing)
+        ),
+        e => format!("camera: {}", lib_error(e)),
+    })?;
     let bottom = match &o.bottom {
         Some(path) => read_png(path)?,
         None => Texture::pool_tiles_for(

@@ -481,3 +481,32 @@ fn messages_name_what_the_user_gave() {
         );
     }
 }
+
+#[test]
+fn the_spacing_suggested_is_one_that_is_taken() {
+    for size in ["16x16", "128x128", "3x1000"] {
+        let err = refused(&["simulate", "--size", size, "--spacing", "6.6666667e13"]);
+        let most = err
+            .split("use --spacing ")
+            .nth(1)
+            .and_then(|rest| rest.split(' ').next())
+            .unwrap_or_else(|| panic!("{err}"));
+        assert_ne!(most, "6.6666667e13", "{err}");
+        ok(&[
+            "simulate",
+            "--size",
+            size,
+            "--spacing",
+            most,
+            "--steps",
+            "0",
+        ]);
+    }
+    // A spacing too small for the camera to frame the grid names --spacing, not the
+    // --look-at nobody gave.
+    let err = refused(&["render", "--spacing", "1e-30", "--out", "x.gif"]);
+    assert!(
+        err.contains("--spacing 1e-30") && !err.contains("--look-at:"),
+        "{err}"
+    );
+}
