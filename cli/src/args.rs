@@ -34,6 +34,33 @@ pub fn next_flag(p: &mut Parser) -> CliResult<Option<Flag>> {
     })
 }
 
+/// Flags that may be given more than once: each adds one more.
+const REPEATABLE: [&str; 2] = ["--drop", "--floater"];
+
+/// Refuses a flag given a second time in a command's arguments (a second `--load` or
+/// `--size` silently won); [`REPEATABLE`] flags add up. A value that looks like a flag
+/// counts as one (a file named `--size`).
+pub fn each_once(args: &[std::ffi::OsString]) -> CliResult<()> {
+    let mut seen: Vec<&str> = Vec::new();
+    for arg in args {
+        let Some(arg) = arg.to_str() else { continue };
+        if arg == "--" {
+            break;
+        }
+        let flag = arg.split('=').next().unwrap_or(arg);
+        if !flag.starts_with("--") || REPEATABLE.contains(&flag) {
+            continue;
+        }
+        if seen.contains(&flag) {
+            return Err(format!(
+                "{flag} is given twice; give it once (only --drop and --floater add up)"
+            ));
+        }
+        seen.push(flag);
+    }
+    Ok(())
+}
+
 /// The most steps `--steps` takes: ten billion, hours on the smallest grid (more ran until
 /// stopped, like a cap that is not there).
 pub const MAX_STEPS: u64 = 10_000_000_000;
@@ -164,7 +191,25 @@ impl ModelArgs {
     /// they are multiplied by the spacing here. `HEIGHT` is a length in world units.
     pub fn apply_drops(&self, s: &mut Surface) -> CliResult<()> {
         let spacing = s.params().spacing;
+        let (cols, rows) = (s.params().cols as f32, s.params().rows as f32);
+        let [oc, or] = s.origin_cells().map(|o| o as f32);
         for &[col, row, height, radius] in &self.drops {
+            // Past 11 radii a drop's bump is below the smallest f32: it changes nothing.
+            let gap = |at: f32, origin: f32, n: f32| (origin - at).max(at - (origin + n - 1.0));
+            let gap = gap(col, oc, cols)
+                .max(0.0)
+                .hypot(gap(row, or, rows).max(0.0));
+            if gap > 11.0 * radius {
+                return Err(format!(
+                    "--drop {col},{row},{height},{radius}: wholly outside the {}x{} grid \
+                     (columns {oc} to {}, rows {or} to {}), so it would change nothing; \
+                     give a point on the grid or a larger radius",
+                    cols,
+                    rows,
+                    oc + cols - 1.0,
+                    or + rows - 1.0
+                ));
+            }
             s.drop_at(col * spacing, row * spacing, height, radius * spacing)
                 .map_err(|e| format!("--drop {col},{row},{height},{radius}: {e}"))?;
         }

@@ -73,6 +73,21 @@ enum Format {
 
 impl Format {
     fn of(path: &Path) -> CliResult<Self> {
+        // `.glb` alone is a hidden name without an extension: not a directory bake.
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().to_ascii_lowercase());
+        if let Some(ext) = name
+            .as_deref()
+            .and_then(|n| n.strip_prefix('.'))
+            .filter(|e| ["glb", "mdd", "pc2"].contains(e))
+        {
+            return Err(format!(
+                "bake: --out {}: the name is only an extension; give a file name such as \
+                 water.{ext}",
+                path.display()
+            ));
+        }
         let ext = path
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase());

@@ -510,3 +510,49 @@ fn the_spacing_suggested_is_one_that_is_taken() {
         "{err}"
     );
 }
+
+#[test]
+fn what_was_accepted_silently_is_refused() {
+    let dir = fresh("silent");
+    let snap = dir.join("a.snap");
+    ok(&[
+        "simulate",
+        "--size",
+        "8x8",
+        "--steps",
+        "1",
+        "--save",
+        s(&snap),
+    ]);
+    // A flag that takes one value, given twice: the second no longer silently wins.
+    let err = refused(&["simulate", "--load", s(&snap), "--load", s(&snap)]);
+    assert!(err.contains("--load") && err.contains("twice"), "{err}");
+    let err = refused(&[
+        "render", "--size", "8x8", "--size", "16x16", "--out", "x.gif",
+    ]);
+    assert!(err.contains("--size") && err.contains("twice"), "{err}");
+    // --drop and --floater add up, as they always did.
+    ok(&[
+        "simulate", "--size", "8x8", "--drop", "2,2,1,2", "--drop", "5,5,1,2",
+    ]);
+    // A drop wholly outside the grid would change nothing.
+    let err = refused(&["simulate", "--size", "8x8", "--drop", "1000,4,1,2"]);
+    assert!(
+        err.contains("--drop 1000,4,1,2") && err.contains("outside"),
+        "{err}"
+    );
+    ok(&["simulate", "--size", "8x8", "--drop", "10,4,1,2"]);
+    // `dir/.glb` is a hidden name with no extension, not a directory of OBJ frames.
+    let hidden = dir.join(".glb");
+    let err = refused(&[
+        "bake",
+        "--size",
+        "8x8",
+        "--frames",
+        "2",
+        "--out",
+        s(&hidden),
+    ]);
+    assert!(err.contains(".glb") && err.contains("name"), "{err}");
+    assert_eq!(names(&dir), ["a.snap"]);
+}
