@@ -154,6 +154,25 @@ impl ModelArgs {
         let p = &self.params;
         let (name, value) = match &e {
             springwater::Error::InvalidParam { name, value, .. } => (*name, *value),
+            springwater::Error::TimestepTooLarge { .. } => {
+                // The default timestep, made too long by another flag: that flag is named.
+                let d = Params::default();
+                let changed: Vec<String> = [
+                    ("--mass", p.mass, d.mass),
+                    ("--stiffness", p.stiffness, d.stiffness),
+                    ("--viscosity", p.viscosity, d.viscosity),
+                    ("--spacing", p.spacing, d.spacing),
+                    ("--rest-ratio", p.rest_ratio, d.rest_ratio),
+                ]
+                .iter()
+                .filter(|(_, given, default)| given != default)
+                .map(|(flag, given, _)| format!("{flag} {}", Short(*given)))
+                .collect();
+                if p.dt != d.dt || changed.is_empty() {
+                    return lib_error(e);
+                }
+                return format!("{}: with the default --dt, {e}", changed.join(", "));
+            }
             _ => return lib_error(e),
         };
         let across = p.cols.min(p.rows);

@@ -556,3 +556,23 @@ fn what_was_accepted_silently_is_refused() {
     assert!(err.contains(".glb") && err.contains("name"), "{err}");
     assert_eq!(names(&dir), ["a.snap"]);
 }
+
+#[test]
+fn a_timestep_error_names_the_flag_that_caused_it() {
+    // --dt was not given: the flag that made the default timestep too long is named, and
+    // the --dt suggested is taken.
+    let err = refused(&["simulate", "--mass", "0.01"]);
+    assert!(
+        err.contains("--mass 0.01:") && !err.contains("--dt:"),
+        "{err}"
+    );
+    let dt = err
+        .split("for example ")
+        .nth(1)
+        .and_then(|rest| rest.split(')').next())
+        .unwrap_or_else(|| panic!("{err}"));
+    ok(&["simulate", "--mass", "0.01", "--dt", dt, "--steps", "1"]);
+    // Given --dt too long is still --dt's fault.
+    let err = refused(&["simulate", "--dt", "5"]);
+    assert!(err.contains("--dt"), "{err}");
+}
