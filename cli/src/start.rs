@@ -92,10 +92,27 @@ impl Start {
             }
             (None, _) => self.model.surface()?,
         };
+        let h = surface.params().spacing;
         for &[x, z, mass, radius] in &self.floaters {
+            let given = format!("--floater {x},{z},{mass},{radius}");
             surface
                 .add_floater(Floater::sphere(radius, mass, [x, 0.0, z]))
-                .map_err(|e| format!("--floater {x},{z},{mass},{radius}: {e}"))?;
+                .map_err(|e| match e {
+                    // The library counts the limit in cells and the size in world units.
+                    springwater::Error::InvalidParam {
+                        name: "floater size",
+                        ..
+                    } => format!(
+                        "{given}: a radius of {} is {} cells of spacing {}; a body may be at \
+                         most {} cells across, so use a radius of {} or less",
+                        Short(radius),
+                        Short(radius / h),
+                        Short(h),
+                        springwater::floater::MAX_CELLS,
+                        Short(springwater::floater::MAX_CELLS / 2.0 * h)
+                    ),
+                    e => format!("{given}: {e}"),
+                })?;
         }
         Ok(surface)
     }

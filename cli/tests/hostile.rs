@@ -576,3 +576,23 @@ fn a_timestep_error_names_the_flag_that_caused_it() {
     let err = refused(&["simulate", "--dt", "5"]);
     assert!(err.contains("--dt"), "{err}");
 }
+
+#[test]
+fn a_floater_too_large_is_told_in_one_unit() {
+    // The size in world units and the limit in cells were mixed ("size = 200 ... at most 64
+    // grid cells across"): now the radius given, in cells, and the largest radius taken.
+    let err = refused(&["simulate", "--spacing", "0.5", "--floater", "10,10,1,100"]);
+    assert!(
+        err.contains("200 cells") && err.contains("radius of 16 or less"),
+        "{err}"
+    );
+    ok(&[
+        "simulate",
+        "--spacing",
+        "0.5",
+        "--floater",
+        "30,30,1,16",
+        "--steps",
+        "1",
+    ]);
+}
