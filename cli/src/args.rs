@@ -34,6 +34,37 @@ pub fn next_flag(p: &mut Parser) -> CliResult<Option<Flag>> {
     })
 }
 
+/// Flags that may be given more than once: each adds one more.
+const REPEATABLE: [&str; 2] = ["--drop", "--floater"];
+
+/// Refuses a flag given a second time in a command's arguments (a second `--load` or
+/// `--size` silently won); [`REPEATABLE`] flags add up. A value that looks like a flag
+/// counts as one (a file named `--size`).
+pub fn each_once(args: &[std::ffi::OsString]) -> CliResult<()> {
+    let mut seen: Vec<&str> = Vec::new();
+    for arg in args {
+        let Some(arg) = arg.to_str() else { continue };
+        if arg == "--" {
+            break;
+        }
+        let flag = arg.split('=').next().unwrap_or(arg);
+        if !flag.starts_with("--") || REPEATABLE.contains(&flag) {
+            continue;
+        }
+        if seen.contains(&flag) {
+            return Err(format!(
+                "{flag} is given twice; give it once (only --drop and --floater add up)"
+            ));
+        }
+        seen.push(flag);
+    }
+    Ok(())
+}
+
+/// The most steps `--steps` takes: ten billion, hours on the smallest grid (more ran until
+/// stopped, like a cap that is not there).
+pub const MAX_STEPS: u64 = 10_000_000_000;
+
 /// The model flags every subcommand takes.
 #[derive(Debug, Clone)]
 pub struct ModelArgs {
@@ -70,7 +101,7 @@ impl ModelArgs {
                 params.cols = number(c, "--size columns")?;
                 params.rows = number(r, "--size rows")?;
             }
-            "steps" => self.steps = value(p, "--steps")?,
+            "steps" => self.steps = ranged(value(p, "--steps")?, 0, MAX_STEPS, "--steps")?,
             "dt" => params.dt = value(p, "--dt")?,
             "mass" => params.mass = value(p, "--mass")?,
             "stiffness" => params.stiffness = value(p, "--stiffness")?,
@@ -123,6 +154,25 @@ impl ModelArgs {
         let p = &self.params;
         let (name, value) = match &e {
             springwater::Error::InvalidParam { name, value, .. } => (*name, *value),
+            springwater::Error::TimestepTooLarge { .. } => {
+                // The default timestep, made too long by another flag: that flag is named.
+                let d = Params::default();
+                let changed: Vec<String> = [
+                    ("--mass", p.mass, d.mass),
+                    ("--stiffness", p.stiffness, d.stiffness),
+                    ("--viscosity", p.viscosity, d.viscosity),
+                    ("--spacing", p.spacing, d.spacing),
+                    ("--rest-ratio", p.rest_ratio, d.rest_ratio),
+                ]
+                .iter()
+                .filter(|(_, given, default)| given != default)
+                .map(|(flag, given, _)| format!("{flag} {}", Short(*given)))
+                .collect();
+                if p.dt != d.dt || changed.is_empty() {
+                    return lib_error(e);
+                }
+                return format!("{}: with the default --dt, {e}", changed.join(", "));
+            }
             _ => return lib_error(e),
         };
         let across = p.cols.min(p.rows);
@@ -149,7 +199,7 @@ impl ModelArgs {
                 short_f64(value),
                 p.cols,
                 p.rows,
-                Short((1e15 / (p.cols.max(p.rows) - 1) as f64) as f32)
+                Short(largest_spacing(p.cols.max(p.rows)))
             ),
             _ => lib_error(e),
         }
@@ -160,7 +210,25 @@ impl ModelArgs {
     /// they are multiplied by the spacing here. `HEIGHT` is a length in world units.
     pub fn apply_drops(&self, s: &mut Surface) -> CliResult<()> {
         let spacing = s.params().spacing;
+        let (cols, rows) = (s.params().cols as f32, s.params().rows as f32);
+        let [oc, or] = s.origin_cells().map(|o| o as f32);
         for &[col, row, height, radius] in &self.drops {
+            // Past 11 radii a drop's bump is below the smallest f32: it changes nothing.
+            let gap = |at: f32, origin: f32, n: f32| (origin - at).max(at - (origin + n - 1.0));
+            let gap = gap(col, oc, cols)
+                .max(0.0)
+                .hypot(gap(row, or, rows).max(0.0));
+            if gap > 11.0 * radius {
+                return Err(format!(
+                    "--drop {col},{row},{height},{radius}: wholly outside the {}x{} grid \
+                     (columns {oc} to {}, rows {or} to {}), so it would change nothing; \
+                     give a point on the grid or a larger radius",
+                    cols,
+                    rows,
+                    oc + cols - 1.0,
+                    or + rows - 1.0
+                ));
+            }
             s.drop_at(col * spacing, row * spacing, height, radius * spacing)
                 .map_err(|e| format!("--drop {col},{row},{height},{radius}: {e}"))?;
         }
@@ -323,6 +391,18 @@ impl std::fmt::Display for Short {
             &plain
         })
     }
+}
+
+/// The largest spacing a grid `nodes` wide takes: its span at most 1e15 units, as the
+/// library checks it (in f64), so the value suggested is one that is accepted (1e15 / 15
+/// rounded to f32 is just past it).
+fn largest_spacing(nodes: usize) -> f32 {
+    let cells = (nodes.max(2) - 1) as f64;
+    let mut most = (1e15 / cells) as f32;
+    while f64::from(most) * cells > 1e15 {
+        most = most.next_down();
+    }
+    most
 }
 
 /// `n` and its noun, singular or plural: "1 frame", "3 frames".

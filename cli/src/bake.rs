@@ -73,6 +73,21 @@ enum Format {
 
 impl Format {
     fn of(path: &Path) -> CliResult<Self> {
+        // `.glb` alone is a hidden name without an extension: not a directory bake.
+        let name = path
+            .file_name()
+            .map(|n| n.to_string_lossy().to_ascii_lowercase());
+        if let Some(ext) = name
+            .as_deref()
+            .and_then(|n| n.strip_prefix('.'))
+            .filter(|e| ["glb", "mdd", "pc2"].contains(e))
+        {
+            return Err(format!(
+                "bake: --out {}: the name is only an extension; give a file name such as \
+                 water.{ext}",
+                path.display()
+            ));
+        }
         let ext = path
             .extension()
             .map(|e| e.to_string_lossy().to_ascii_lowercase());
@@ -137,11 +152,29 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     if let Some(obj) = &rest_obj {
         check_rest_obj(&out, obj)?;
     }
-    if let Some(load) = &start.load {
-        output::distinct(&[("--load", load), ("--out", &out)])?;
-    }
+    // Every path the bake reads or writes is its own (through symbolic links too).
+    let mut paths: Vec<(&str, &Path)> = vec![("--out", &out)];
+    paths.extend(
+        rest_obj
+            .as_deref()
+            .map(|obj| ("--out (its rest mesh)", obj)),
+    );
+    paths.extend(start.load.as_deref().map(|load| ("--load", load)));
+    output::distinct(&paths)?;
 
     let model = &start.model;
+    if start.load.is_none() {
+        // The surface, its normals and refraction coordinates, the triangles and the
+        // writer's rest frame: 134 bytes a node for a point cache and 180 for a .glb,
+        // measured on 2048 x 2048.
+        let per_node = if format == Format::Glb { 192 } else { 144 };
+        // A .glb past the format's 4 GiB is refused before the grid is built (with --load,
+        // once the snapshot gives the grid, below).
+        if format == Format::Glb {
+            glb::check_size(&out, &model.params, frames, start.floaters.len())?;
+        }
+        crate::memory::check_grid(&model.params, per_node, 0, "bake")?;
+    }
     let mut surface = start
         .surface("only --steps, --drop, --floater, --threads and the bake's own flags apply")?;
     check_rain(rain, &surface)?;
@@ -186,6 +219,24 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     surface
         .set_step_cap(Surface::MAX_SUBSTEPS as u32, Overflow::Drop)
         .map_err(lib_error)?;
+    // A snapshot's clock may owe time (a game stalled before saving): the first frame owes
+    // it too, and past the cap it would be cut short. No flag changes a loaded clock.
+    let owed = surface.owed_seconds();
+    if let (Some(load), true) = (
+        &start.load,
+        (owed + f64::from(frame)) / step_seconds > Surface::MAX_SUBSTEPS as f64,
+    ) {
+        return Err(format!(
+            "--load {}: the snapshot's clock owes {} s of steps ({:.3e} steps of {} s), \
+             more than one frame of the bake may take ({} steps); save it once the game \
+             has caught up, or bake from the model flags",
+            load.display(),
+            Short(owed as f32),
+            owed / step_seconds,
+            Short(step_seconds as f32),
+            Surface::MAX_SUBSTEPS
+        ));
+    }
     if format == Format::Glb {
         glb::check_size(&out, &params, frames, surface.floaters().len())?;
     }

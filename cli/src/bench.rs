@@ -1,7 +1,7 @@
 //! `springwater bench`: time the engine step, and compare it in the same run with the
 //! scalar reference, the naive array-of-structs baseline and the memory floor.
 
-use crate::args::{next_flag, string, unexpected, value, CliResult, Flag, ModelArgs};
+use crate::args::{next_flag, ranged, string, unexpected, value, CliResult, Flag, ModelArgs};
 use lexopt::Parser;
 use springwater::internals::{MemoryFloor, NaiveSurface, Tuning, MAX_PASS_STEPS};
 use springwater::{SimdLevel, Surface};
@@ -28,6 +28,9 @@ impl Kernel {
     }
 }
 
+/// The most rounds `--repeats` takes.
+const MAX_REPEATS: usize = 10_000;
+
 pub fn run(p: &mut Parser) -> CliResult<()> {
     let mut model = ModelArgs::default();
     let mut repeats: usize = 5;
@@ -45,10 +48,7 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         }
         match arg {
             Flag::Long(l) if l == "repeats" => {
-                repeats = value(p, "--repeats")?;
-                if repeats == 0 {
-                    return Err("--repeats must be at least 1".into());
-                }
+                repeats = ranged(value(p, "--repeats")?, 1, MAX_REPEATS, "--repeats")?;
             }
             Flag::Long(l) if l == "band-rows" => {
                 let h: usize = value(p, "--band-rows")?;
@@ -95,6 +95,19 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     if model.steps == 0 {
         return Err("--steps must be at least 1 for bench".into());
     }
+    // The surface and a copy, or the baseline, for each kernel compared (peak resident
+    // bytes per node, measured on 2048 x 2048 and rounded up).
+    let per_node: u64 = 64
+        + compare
+            .iter()
+            .map(|k| match k {
+                Kernel::SingleSteps | Kernel::Reference => 112,
+                Kernel::Naive => 144,
+                Kernel::Floor => 24,
+                Kernel::Engine => 64,
+            })
+            .sum::<u64>();
+    crate::memory::check_grid(&model.params, per_node, 0, "bench")?;
     let mut surface = model.surface()?;
     if let Some(h) = band_rows {
         surface.set_band_rows(h);

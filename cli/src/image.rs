@@ -7,16 +7,44 @@ use std::fs::File;
 use std::io::{BufReader, BufWriter, Write};
 use std::path::Path;
 
-/// Reads a PNG of any colour type and bit depth into a texture (alpha is ignored).
+/// The largest side of a texture: what `Texture::from_srgb8` takes.
+const MAX_TEXTURE_SIDE: usize = 16384;
+
+/// Bytes the PNG decoder may allocate besides the image (text and other ancillary chunks).
+const PNG_CHUNK_BYTES: usize = 64 << 20;
+
+/// Reads a PNG of any colour type and bit depth into a texture (alpha is ignored), as
+/// `--bottom` gives it. The header is checked before any pixel is decoded: a side past
+/// the renderer's [`MAX_TEXTURE_SIDE`] is refused, and the memory the decoded image and
+/// its texture take is asked of the system first, so a header that lies (a few bytes
+/// claiming 60000 × 60000 pixels) or a decompression bomb costs nothing.
 pub fn read_png(path: &Path) -> CliResult<Texture> {
     let fail = |what: String| format!("cannot read {} as a PNG image: {what}", path.display());
     let file = File::open(path).map_err(|e| fail(e.to_string()))?;
-    let mut decoder = png::Decoder::new(BufReader::new(file));
+    let limits = png::Limits {
+        bytes: PNG_CHUNK_BYTES,
+    };
+    let mut decoder = png::Decoder::new_with_limits(BufReader::new(file), limits);
     decoder.set_transformations(png::Transformations::normalize_to_color8());
     let mut reader = decoder.read_info().map_err(|e| fail(e.to_string()))?;
+    let (width, height) = (reader.info().width, reader.info().height);
+    if width as usize > MAX_TEXTURE_SIDE || height as usize > MAX_TEXTURE_SIDE {
+        return Err(format!(
+            "--bottom {}: the image is {width}x{height} pixels, more than the \
+             {MAX_TEXTURE_SIDE} on a side the renderer takes; scale it down",
+            path.display()
+        ));
+    }
     let size = reader
         .output_buffer_size()
         .ok_or_else(|| fail("the image is too large".into()))?;
+    // The decoded pixels, their RGB copy and the texture (three f32 a texel).
+    let texels = width as u64 * height as u64;
+    crate::memory::check(
+        size as u64 + texels * (3 + 12),
+        &format!("--bottom {}", path.display()),
+        "use a smaller image",
+    )?;
     let mut buf = vec![0; size];
     let info = reader
         .next_frame(&mut buf)

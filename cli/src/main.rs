@@ -18,6 +18,7 @@ mod export;
 mod help;
 mod image;
 mod interrupt;
+mod memory;
 mod output;
 mod progress;
 mod render;
@@ -75,6 +76,7 @@ fn run() -> args::CliResult<()> {
             help::text(topic.as_deref()).ok_or_else(|| unknown(topic.as_deref().unwrap_or("")))?;
         return write_out(format_args!("{text}"));
     }
+    args::each_once(&rest)?;
     // Signals are heard before any output is started (see `interrupt`).
     match command.as_str() {
         "simulate" => interrupt::install(true),

@@ -79,11 +79,28 @@ fn identity(path: &Path) -> Option<PathBuf> {
     if let Ok(p) = std::fs::canonicalize(path) {
         return Some(p);
     }
+    let path = through_links(path).ok()?;
     let parent = match path.parent() {
         Some(p) if !p.as_os_str().is_empty() => p,
         _ => Path::new("."),
     };
     Some(std::fs::canonicalize(parent).ok()?.join(path.file_name()?))
+}
+
+/// Where `path` leads when it is a symbolic link whose target does not exist yet: the
+/// target, followed link by link (a relative target from its link's directory), at most 40
+/// links as the system follows. A path that is not a link is returned as it is.
+fn through_links(path: &Path) -> io::Result<PathBuf> {
+    let mut p = path.to_path_buf();
+    for _ in 0..40 {
+        match std::fs::symlink_metadata(&p) {
+            Ok(m) if m.file_type().is_symlink() => {
+                p = directory_of(&p).join(std::fs::read_link(&p)?);
+            }
+            _ => return Ok(p),
+        }
+    }
+    Err(io::Error::other("too many levels of symbolic links"))
 }
 
 /// Refuses two flags that name the same file (devices and FIFOs excepted: a stream may
@@ -143,8 +160,20 @@ impl Output {
                 path.display()
             ));
         }
-        // Through a symbolic link to the file it names (the link stays a link).
-        let dest = std::fs::canonicalize(path).unwrap_or_else(|_| path.to_path_buf());
+        // Through a symbolic link to the file it names, even one that does not exist yet
+        // (the link stays a link).
+        let dest = match std::fs::canonicalize(path) {
+            Ok(dest) => dest,
+            Err(_) => through_links(path).map_err(fail)?,
+        };
+        if dest != path && !directory_of(&dest).is_dir() {
+            return Err(format!(
+                "{flag} {}: a symbolic link to {}, whose directory does not exist; create \
+                 it or change the link",
+                path.display(),
+                dest.display()
+            ));
+        }
         let temp = temporary_beside(&dest, existing.map(|m| m.permissions())).map_err(fail)?;
         Ok(Self {
             shown: path.to_path_buf(),
@@ -261,7 +290,7 @@ fn directory_of(dest: &Path) -> &Path {
 /// umask, on Unix).
 fn temporary_beside(dest: &Path, permissions: Option<std::fs::Permissions>) -> io::Result<Temp> {
     let name = dest.file_name().unwrap_or_default().to_string_lossy();
-    let prefix = format!(".{name}.");
+    let prefix = format!(".{}.", shortened(&name));
     let mut list = pending();
     let (file, path) = unique_in(directory_of(dest), &prefix, ".springwater-tmp", |path| {
         std::fs::OpenOptions::new()
@@ -280,6 +309,21 @@ fn temporary_beside(dest: &Path, permissions: Option<std::fs::Permissions>) -> i
     drop(permissions);
     list.push(temp.path.clone());
     Ok(temp)
+}
+
+/// The most bytes of a destination's name that a temporary name repeats: with the dot
+/// before it, the dot and six random characters after it and `.springwater-tmp`, the
+/// temporary name stays within the 255 bytes a file name may have (so a destination whose
+/// own name is that long can still be written).
+const NAME_IN_TEMP: usize = 200;
+
+/// `name`, cut to at most [`NAME_IN_TEMP`] bytes on a character boundary.
+fn shortened(name: &str) -> &str {
+    let mut end = name.len().min(NAME_IN_TEMP);
+    while !name.is_char_boundary(end) {
+        end -= 1;
+    }
+    &name[..end]
 }
 
 /// A new file or directory in `dir` named `PREFIX` + random characters + `SUFFIX`, made by
@@ -317,10 +361,24 @@ fn builder<'a>(prefix: &'a str, suffix: &'a str, mode: u32) -> tempfile::Builder
     b
 }
 
+/// `tempfile`'s error without the temporary path it names (the user never chose it and
+/// never sees the file): the system's error alone.
+#[cfg(not(target_family = "wasm"))]
+fn without_path(e: io::Error) -> io::Error {
+    // `tempfile` adds ` at path "…"` to the system's message.
+    let text = e.to_string();
+    match text.split_once(" at path \"") {
+        Some((system, _)) => io::Error::new(e.kind(), system),
+        None => e,
+    }
+}
+
 #[cfg(not(target_family = "wasm"))]
 impl FromTemp for File {
     fn make(dir: &Path, prefix: &str, suffix: &str) -> io::Result<(Self, PathBuf)> {
-        let temp = builder(prefix, suffix, 0o666).tempfile_in(dir)?;
+        let temp = builder(prefix, suffix, 0o666)
+            .tempfile_in(dir)
+            .map_err(without_path)?;
         // Removed or renamed by this module, not by `NamedTempFile`.
         temp.keep().map_err(|e| e.error)
     }
@@ -329,7 +387,10 @@ impl FromTemp for File {
 #[cfg(not(target_family = "wasm"))]
 impl FromTemp for () {
     fn make(dir: &Path, prefix: &str, suffix: &str) -> io::Result<(Self, PathBuf)> {
-        Ok(((), builder(prefix, suffix, 0o777).tempdir_in(dir)?.keep()))
+        let temp = builder(prefix, suffix, 0o777)
+            .tempdir_in(dir)
+            .map_err(without_path)?;
+        Ok(((), temp.keep()))
     }
 }
 

@@ -112,9 +112,13 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             "follow" => o.follow = true,
             "floaters" => o.floaters = ranged(value(p, "--floaters")?, 0, 1000, "--floaters")?,
             "boats" => {
-                let n: i64 = value(p, "--boats")?;
-                o.boats = usize::try_from(n)
-                    .map_err(|_| format!("--boats: {n} is not a number of boats (0 or more)"))?;
+                // Wider than any count, so a number too large for one is still a number
+                // (refused below for want of room), and a negative one is told apart.
+                let n: i128 = value(p, "--boats")?;
+                if n < 0 {
+                    return Err(format!("--boats: {n} is not a number of boats (0 or more)"));
+                }
+                o.boats = usize::try_from(n).unwrap_or(usize::MAX);
             }
             "wireframe" => o.wireframe = true,
             "orbit" => o.orbit = value(p, "--orbit")?,
@@ -144,6 +148,9 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
                 out.display()
             ));
         }
+    }
+    if let (Some(out), Some(png)) = (&o.out, &o.png) {
+        output::distinct(&[("--out", out), ("--png", png)])?;
     }
     if o.follow && o.wake {
         return Err(
@@ -191,6 +198,11 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         );
     }
 
+    // Two surfaces (this one, which checks what the library refuses, and the animation's)
+    // and the renderer's nodes: 233 bytes a node measured on 2048 x 2048; and the frames
+    // kept for the GIF's palette.
+    let kept = (o.width as u64 * o.height as u64 * 3 * o.frames as u64).min(KEEP_FRAMES_BYTES);
+    crate::memory::check_grid(&model.params, 240, kept, "render")?;
     // Validates the model and the drops before anything is opened.
     let mut surface = model.surface()?;
     crate::start::check_rain(o.rain, &surface)?;
@@ -207,8 +219,10 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
             boats::berth_cells()
         ));
     }
-    // The boats go on this surface too, so what the library refuses about them (the
-    // timestep the water under them needs) is refused before any output is started.
+    // The balls and boats go on this surface too, in the animation's order, so what the
+    // library refuses about them (the timestep the water under them needs) is refused
+    // before the renderer is built or any output is started.
+    add_balls(&mut surface, o.floaters)?;
     if o.boats > 0 {
         boats::Fleet::launch(&mut surface, o.boats)?;
     }
@@ -221,9 +235,21 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
         camera.look_at = l.into();
     }
     camera.fov_y_degrees = o.fov;
-    camera
-        .validate()
-        .map_err(|e| format!("camera: {}", lib_error(e)))?;
+    camera.validate().map_err(|e| match e {
+        // The camera was placed by framing the grid: its points are the grid's fault.
+        springwater::Error::InvalidParam {
+            name: "look_at" | "eye",
+            ..
+        } if o.eye.is_none() && o.look_at.is_none() => format!(
+            "--spacing {}: the camera cannot frame a {}x{} grid at this spacing ({} units \
+             across); use a larger --spacing, or place the camera with --eye and --look-at",
+            Short(params.spacing),
+            params.cols,
+            params.rows,
+            Short((params.cols.max(params.rows) - 1) as f32 * params.spacing)
+        ),
+        e => format!("camera: {}", lib_error(e)),
+    })?;
     let bottom = match &o.bottom {
         Some(path) => read_png(path)?,
         None => Texture::pool_tiles_for(
@@ -560,6 +586,9 @@ const BUOY_COLOURS: [[[f32; 3]; 2]; 3] = [
     [[0.1, 0.6, 0.1], [0.85, 0.85, 0.8]],
 ];
 
+/// The largest radius of a `--floaters` ball, in cells.
+const MAX_BALL_CELLS: f32 = 30.0;
+
 /// `n` balls at half the water's density, spread over the pool on a sunflower spiral
 /// inside its middle 70% and dropped from just above the water so they splash in.
 fn add_balls(surface: &mut Surface, n: usize) -> CliResult<()> {
@@ -568,7 +597,9 @@ fn add_balls(surface: &mut Surface, n: usize) -> CliResult<()> {
         (p.cols - 1) as f32 * p.spacing,
         (p.rows - 1) as f32 * p.spacing,
     );
-    let radius = (0.025 * w.min(l)).max(1.2 * p.spacing);
+    // A fortieth of the pool, at least 1.2 cells and at most 30 (the water carries a body
+    // up to 64 cells across).
+    let radius = (0.025 * w.min(l)).clamp(1.2 * p.spacing, MAX_BALL_CELLS * p.spacing);
     let golden = std::f32::consts::PI * (3.0 - 5f32.sqrt());
     for k in 0..n {
         let r = 0.35 * ((k as f32 + 0.5) / n as f32).sqrt();

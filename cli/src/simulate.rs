@@ -175,10 +175,10 @@ pub fn print_summary(s: &Surface, steps_run: u64, seconds: f64) -> CliResult<()>
         s.critical_dt()
     );
     say!(
-        "steps       {} (model time {:.2}, {:.3} s)",
+        "steps       {} (model time {}, {} s)",
         s.steps(),
-        s.model_time(),
-        s.time()
+        fixed(s.model_time(), 2),
+        fixed(s.time(), 3)
     );
     say!("height      min {lo:.5}  max {hi:.5}");
     say!(
@@ -241,4 +241,14 @@ pub fn write_csv(s: &Surface, file: std::fs::File) -> std::io::Result<()> {
         writeln!(w, "{c},{r},{},{},{}", Short(x[i]), Short(y[i]), Short(z[i]))?;
     }
     w.flush()
+}
+
+/// `v` with `places` decimals, or in scientific notation past a trillion (a snapshot may
+/// hold a model time of 1e308, three hundred digits in fixed notation).
+fn fixed(v: f64, places: usize) -> String {
+    if v.abs() < 1e12 {
+        format!("{v:.places$}")
+    } else {
+        format!("{v:.3e}")
+    }
 }

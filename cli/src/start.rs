@@ -76,15 +76,43 @@ impl Start {
             }
             (Some(path), None) => {
                 let mut s = load_snapshot(path)?;
+                if s.steps().checked_add(self.model.steps).is_none() {
+                    return Err(format!(
+                        "--steps {}: the snapshot {} has taken {} steps, and the count \
+                         would pass the largest there is ({}); use --steps {} or fewer",
+                        self.model.steps,
+                        path.display(),
+                        s.steps(),
+                        u64::MAX,
+                        u64::MAX - s.steps()
+                    ));
+                }
                 self.model.apply_drops(&mut s)?;
                 s
             }
             (None, _) => self.model.surface()?,
         };
+        let h = surface.params().spacing;
         for &[x, z, mass, radius] in &self.floaters {
+            let given = format!("--floater {x},{z},{mass},{radius}");
             surface
                 .add_floater(Floater::sphere(radius, mass, [x, 0.0, z]))
-                .map_err(|e| format!("--floater {x},{z},{mass},{radius}: {e}"))?;
+                .map_err(|e| match e {
+                    // The library counts the limit in cells and the size in world units.
+                    springwater::Error::InvalidParam {
+                        name: "floater size",
+                        ..
+                    } => format!(
+                        "{given}: a radius of {} is {} cells of spacing {}; a body may be at \
+                         most {} cells across, so use a radius of {} or less",
+                        Short(radius),
+                        Short(radius / h),
+                        Short(h),
+                        springwater::floater::MAX_CELLS,
+                        Short(springwater::floater::MAX_CELLS / 2.0 * h)
+                    ),
+                    e => format!("{given}: {e}"),
+                })?;
         }
         Ok(surface)
     }
@@ -93,6 +121,7 @@ impl Start {
 /// Reads a snapshot file, naming it in the error. The file must hold exactly one snapshot:
 /// bytes after it are refused, as `Surface::from_bytes` refuses them.
 pub fn load_snapshot(path: &Path) -> CliResult<Surface> {
+    crate::output::non_empty(path, "--load")?;
     let fail = |e: std::io::Error| format!("cannot read {}: {e}", path.display());
     let mut file = std::io::BufReader::new(std::fs::File::open(path).map_err(fail)?);
     let mut surface = Surface::load(&mut file).map_err(|e| format!("{}: {e}", path.display()))?;

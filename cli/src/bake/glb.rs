@@ -56,12 +56,19 @@ pub fn check_size(path: &Path, p: &Params, frames: usize, floaters: usize) -> Cl
     if bytes > limit {
         let per_frame = n * 24 + 12 + 28 * floaters as u64 + 200;
         let most = limit.saturating_sub(n * 32 + triangles * 12) / per_frame;
+        let fewer = if most == 0 {
+            "not one frame of this grid fits; use a smaller grid".to_owned()
+        } else {
+            format!(
+                "bake at most {} of this grid, or a smaller grid",
+                crate::args::count(most, "frame")
+            )
+        };
         return Err(format!(
             "--out {}: a .glb holds at most 4 GiB and this bake needs about {:.1} GiB; \
-             bake at most {} of this grid, or a smaller grid, or write .pc2 or .mdd",
+             {fewer}, or write .pc2 or .mdd",
             path.display(),
             bytes as f64 / (1u64 << 30) as f64,
-            crate::args::count(most, "frame")
         ));
     }
     Ok(())
