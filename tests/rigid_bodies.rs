@@ -363,14 +363,15 @@ fn the_roll_period_on_still_water_is_the_metacentric_one() {
         (period - theory).abs() < 0.03 * theory,
         "{period} vs {theory}"
     );
-    // On the springy surface, two-way, the water gives under the heeled side: the righting
-    // moment is softer and the roll slower (docs/floating.md quotes the figure).
+    // On the springy surface, two-way: the water column carries the body's weight, so the
+    // membrane under it does not soften the righting moment, and the roll keeps the
+    // metacentric period (+0.2% measured; docs/floating.md).
     let (live, _) = roll_period(Surface::new(Params::with_size(48, 48)).unwrap());
     println!(
         "on live water {live} s: {:+.1}%",
         100.0 * (live / period - 1.0)
     );
-    assert!(live > period && live < 1.5 * period, "{live} vs {period}");
+    assert!((live / period - 1.0).abs() < 0.03, "{live} vs {period}");
 }
 
 #[test]
