@@ -6,7 +6,8 @@
 //! `cargo run --release --example crates_cost -- MIX STEPS [LEVEL]`, MIX one of
 //! `none`, `game` (500 balls of radius 1 and 500 cubes of side 2, half the water's
 //! density), `game100` (50 and 50 of them), `smallest` (1,000 balls of radius 0.5), or
-//! `single` (no bodies, one step per engine pass, as the water steps beside bodies);
+//! `single` (no bodies, one step per engine pass, as the water steps beside bodies),
+//! `forces` (no bodies, a force at each of the 1,000 places before every step);
 //! LEVEL a SIMD level's name (default avx2, the widest valgrind runs).
 
 use springwater::glam::{Quat, Vec3};
@@ -26,7 +27,7 @@ fn main() {
     s.set_simd_level(level);
     s.drop_at(256.0, 256.0, 1.0, 8.0).expect("inside");
     let (count, body): (usize, fn(usize, Vec3) -> Floater) = match mix {
-        "none" | "single" => (0, |_, at| Floater::sphere(1.0, 1.0, at)),
+        "none" | "single" | "forces" => (0, |_, at| Floater::sphere(1.0, 1.0, at)),
         "game" | "game100" => (if mix == "game" { 1000 } else { 100 }, |k, at| {
             if k % 2 == 0 {
                 Floater::sphere(1.0, 1.0, at)
@@ -53,6 +54,21 @@ fn main() {
         .num_threads(1)
         .build()
         .unwrap();
-    pool.install(|| s.step_n(steps).expect("stable"));
+    if mix == "forces" {
+        pool.install(|| {
+            for _ in 0..steps {
+                for k in 0..1000 {
+                    let (x, z) = (
+                        8.3 + (k % per_row) as f32 * 15.5,
+                        8.3 + (k / per_row) as f32 * 15.5,
+                    );
+                    s.add_force_at(x, z, [0.0, -0.01, 0.0]).expect("inside");
+                }
+                s.step().expect("stable");
+            }
+        });
+    } else {
+        pool.install(|| s.step_n(steps).expect("stable"));
+    }
     println!("{mix}: {count} bodies, {steps} steps, {}", s.simd_level());
 }
