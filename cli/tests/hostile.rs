@@ -7,29 +7,11 @@ use std::process::Command;
 
 mod common;
 use common::*;
+use common::{names, s};
 
 /// A fresh, empty directory for one test.
 fn fresh(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir()
-        .join(format!("springwater-hostile-{}", std::process::id()))
-        .join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-/// The names in `dir`, sorted.
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
+    common::fresh("hostile", name)
 }
 
 /// A PNG whose header claims `width` × `height` RGB pixels, with an empty image stream.

@@ -8,29 +8,11 @@ use std::time::{Duration, Instant};
 
 mod common;
 use common::*;
+use common::{names, s};
 
 /// A fresh, empty directory for one test.
 fn fresh(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir()
-        .join(format!("springwater-lost-{}", std::process::id()))
-        .join(name);
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn s(p: &Path) -> &str {
-    p.to_str().unwrap()
-}
-
-/// The names in `dir`, sorted.
-fn names(dir: &Path) -> Vec<String> {
-    let mut v: Vec<String> = std::fs::read_dir(dir)
-        .unwrap()
-        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .collect();
-    v.sort();
-    v
+    common::fresh("lost", name)
 }
 
 /// A drop that makes the first step non-finite: a run that fails after its outputs were

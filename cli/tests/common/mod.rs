@@ -4,7 +4,7 @@
 
 use std::ffi::OsStr;
 use std::fmt::Debug;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
@@ -71,4 +71,30 @@ pub fn line(line: &str, paths: &[&dyn AsRef<Path>]) -> Vec<String> {
             w => w.to_owned(),
         })
         .collect()
+}
+
+/// A fresh, empty directory for one test: `name` under a folder of this process's named
+/// after the test file (`group`).
+pub fn fresh(group: &str, name: &str) -> PathBuf {
+    let dir = std::env::temp_dir()
+        .join(format!("springwater-{group}-{}", std::process::id()))
+        .join(name);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// A path as a command-line argument.
+pub fn s(p: &Path) -> &str {
+    p.to_str().unwrap()
+}
+
+/// The names in `dir`, sorted.
+pub fn names(dir: &Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    v.sort();
+    v
 }
