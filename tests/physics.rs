@@ -1,4 +1,5 @@
-//! The model behaves as DESIGN.md §1 says: rest, energy, symmetry, wave speed, stability.
+//! The model behaves as the crate docs (`src/lib.rs`) and `docs/guide.md` say: rest,
+//! energy, symmetry, wave speed, stability.
 
 mod common;
 

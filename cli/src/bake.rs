@@ -1,6 +1,6 @@
 //! `springwater bake`: runs the model over `--frames N` frames of `1/--fps` seconds
 //! (`Surface::advance`) and writes an animation cache chosen by `--out`'s extension
-//! (DESIGN.md §3): `.glb` (glTF 2.0, morph targets), `.mdd` or `.pc2` (point caches beside
+//! (`cli/README.md`): `.glb` (glTF 2.0, morph targets), `.mdd` or `.pc2` (point caches beside
 //! an OBJ of the rest mesh), or a directory of one OBJ per frame.
 //!
 //! `advance` runs the game's fixed-step clock: a frame takes the whole steps of `dt` its

@@ -1,5 +1,5 @@
 //! `springwater export`: run the steps, then write the frame a renderer would draw as a
-//! Wavefront OBJ (DESIGN.md §3): one `v`, `vn` and `vt` (refraction UV) per node, row-major,
+//! Wavefront OBJ (`cli/README.md`): one `v`, `vn` and `vt` (refraction UV) per node, row-major,
 //! and the LOD triangles for the eye as `f a/a/a b/b/b c/c/c` (1-based, counter-clockwise
 //! seen from +y).
 

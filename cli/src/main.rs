@@ -1,4 +1,5 @@
-//! The `springwater` command line: a thin layer over the library (DESIGN.md §3).
+//! The `springwater` command line: a thin layer over the library (its contract:
+//! `cli/README.md`).
 //!
 //! Every failure ends with one line on stderr and a non-zero exit code.
 

@@ -1,6 +1,6 @@
 //! Memory a run will need, asked of the system before the work starts: a grid, an image or
 //! a renderer larger than the machine can give is refused with one line, not aborted by
-//! the allocator part-way (DESIGN.md §3).
+//! the allocator part-way (`docs/reliability.md`).
 
 use crate::args::CliResult;
 

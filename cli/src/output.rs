@@ -1,4 +1,4 @@
-//! Outputs that lose nothing (DESIGN.md §3, "Nothing is lost").
+//! Outputs that lose nothing (what each failure leaves: `docs/reliability.md`).
 //!
 //! A file is written to a temporary file beside its destination (same directory, so the
 //! same file system) and renamed over it only when complete ([`Output::commit`]). A run

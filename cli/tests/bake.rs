@@ -1,4 +1,4 @@
-//! `springwater bake` (DESIGN.md §3): every format against `simulate --csv` after the same
+//! `springwater bake` (`cli/README.md`): every format against `simulate --csv` after the same
 //! steps, the glTF checked by the Khronos validator, and the caches opened in Blender.
 
 use std::path::{Path, PathBuf};

@@ -1,5 +1,6 @@
-//! The CLI refuses every bad input of DESIGN.md §3 with one line on stderr and a non-zero
-//! exit, and `--save` / `--load` continue a run bitwise.
+//! The CLI refuses every bad input named in `cli/README.md` and `docs/reliability.md`
+//! with one line on stderr and a non-zero exit, and `--save` / `--load` continue a run
+//! bitwise.
 
 use std::path::PathBuf;
 use std::process::{Command, Output};

@@ -1,4 +1,5 @@
-//! `springwater export`: the OBJ of DESIGN.md §3, and one-line errors for bad flags.
+//! `springwater export`: the OBJ `cli/README.md` describes, and one-line errors for bad
+//! flags.
 
 use std::process::Command;
 

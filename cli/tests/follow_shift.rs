@@ -1,7 +1,7 @@
-//! `springwater simulate --follow-shift DC,DR` (DESIGN.md §3): after the steps the window
-//! moves by whole cells; the CSV's x, z are world positions, so every node of the overlap
-//! appears with the same x, y, z as the unshifted run's node at `col + DC, row + DR`, and
-//! the strip that came in is calm.
+//! `springwater simulate --follow-shift DC,DR` (`cli/README.md`): after the steps the
+//! window moves by whole cells; the CSV's x, z are world positions, so every node of the
+//! overlap appears with the same x, y, z as the unshifted run's node at
+//! `col + DC, row + DR`, and the strip that came in is calm.
 
 use std::collections::HashMap;
 use std::process::Command;

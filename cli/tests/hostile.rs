@@ -7,7 +7,6 @@ use std::process::Command;
 
 mod common;
 use common::*;
-use common::{names, s};
 
 /// A fresh, empty directory for one test.
 fn fresh(name: &str) -> PathBuf {
@@ -81,12 +80,7 @@ fn a_png_wider_than_the_renderer_takes_is_refused_before_decoding() {
     let dir = fresh("wide-png");
     let wide = dir.join("wide.png");
     // A real image, 16385 × 2 grey pixels.
-    let file = std::fs::File::create(&wide).unwrap();
-    let mut encoder = png::Encoder::new(file, 16385, 2);
-    encoder.set_color(png::ColorType::Grayscale);
-    let mut writer = encoder.write_header().unwrap();
-    writer.write_image_data(&vec![128u8; 16385 * 2]).unwrap();
-    writer.finish().unwrap();
+    common::grey_png(&wide, 16385, 2, |_| vec![128u8; 16385]);
     let gif = dir.join("out.gif");
     let err = refused(&[
         "render",
@@ -111,20 +105,7 @@ fn a_decompression_bomb_is_refused_before_decoding() {
     let bomb = dir.join("bomb.png");
     // 16384 × 16384 grey pixels, all the same: a few hundred KB that decode to 4 GB of
     // texture.
-    let file = std::fs::File::create(&bomb).unwrap();
-    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), 16384, 16384);
-    encoder.set_color(png::ColorType::Grayscale);
-    encoder.set_compression(png::Compression::Fastest);
-    let mut writer = encoder
-        .write_header()
-        .unwrap()
-        .into_stream_writer()
-        .unwrap();
-    let row = vec![7u8; 16384];
-    for _ in 0..16384 {
-        std::io::Write::write_all(&mut writer, &row).unwrap();
-    }
-    writer.finish().unwrap();
+    common::grey_png(&bomb, 16384, 16384, |_| vec![7u8; 16384]);
     assert!(std::fs::metadata(&bomb).unwrap().len() < 4 << 20);
     let gif = dir.join("out.gif");
     let args = [

@@ -1,6 +1,7 @@
-//! "Nothing is lost" (DESIGN.md §3): a run that fails, is refused or is stopped leaves the
-//! files that were there exactly as they were, never removes a path it did not create
-//! (a device node, a user's file, its own `--load` input) and leaves no partial file.
+//! "Nothing is lost" (`docs/reliability.md`): a run that fails, is refused or is stopped
+//! leaves the files that were there exactly as they were, never removes a path it did not
+//! create (a device node, a user's file, its own `--load` input) and leaves no partial
+//! file.
 
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
@@ -8,7 +9,6 @@ use std::time::{Duration, Instant};
 
 mod common;
 use common::*;
-use common::{names, s};
 
 /// A fresh, empty directory for one test.
 fn fresh(name: &str) -> PathBuf {

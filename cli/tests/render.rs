@@ -1,6 +1,8 @@
 //! `springwater render`: reproducible files (seed, threads, one or two drawing passes), PNG
 //! frames and bottoms, and one-line errors for bad flags and files.
 
+mod common;
+
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -94,16 +96,11 @@ fn png_frames_and_a_png_bottom_work() {
     let dir = scratch("png");
     // A 4×4 checkerboard PNG as the bottom.
     let bottom = dir.join("checker.png");
-    {
-        let file = std::fs::File::create(&bottom).unwrap();
-        let mut enc = png::Encoder::new(std::io::BufWriter::new(file), 4, 4);
-        enc.set_color(png::ColorType::Grayscale);
-        enc.set_depth(png::BitDepth::Eight);
-        let data: Vec<u8> = (0..16)
-            .map(|i| if (i % 4 + i / 4) % 2 == 0 { 255 } else { 0 })
-            .collect();
-        enc.write_header().unwrap().write_image_data(&data).unwrap();
-    }
+    common::grey_png(&bottom, 4, 4, |r| {
+        (0..4)
+            .map(|c| if (c + r) % 2 == 0 { 255 } else { 0 })
+            .collect()
+    });
     let frames = dir.join("frames");
     let o = springwater(&[
         "render",

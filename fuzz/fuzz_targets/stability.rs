@@ -1,6 +1,6 @@
 //! Stability at the critical timestep.
 //!
-//! **Stable regime** (DESIGN.md §1): valid parameters (or the seed defaults) with
+//! **Stable regime** (`docs/guide.md`, the model's stability): valid parameters (or the seed defaults) with
 //! Δt ≤ 0.99 × `critical_dt()`, drops with |height| ≤ radius and radius ≥ 1 cell,
 //! impulses moving each node at most 0.04 h per step and forces of at most c·h per node
 //! (both per component), no neighbours more than one grid step apart in height after the
@@ -25,7 +25,7 @@
 //! regime (measured: a drop of height 3.9, radius 8 centred on a corner leaves a 3.7-cell
 //! cliff and gains ×900 to ×8500 energy at ≥ 0.9 critical, though never NaN in 3,000 steps).
 //! So is a state with a spring compressed below half its rest length, checked once the
-//! forces stop and after every step: DESIGN.md §1's large-wave limit holds only above
+//! forces stop and after every step: the large-wave limit (`docs/guide.md`) holds only above
 //! that. (Measured before forces were bounded per node: eight force entries on one node
 //! of a slack free sheet at 0.94 × critical added up to 7 c·h per component, compressed a
 //! spring to 0.18 of its rest length and stretched another ×3, and the energy then grew
@@ -236,7 +236,7 @@ fuzz_target!(|input: Input| {
         }
         s.step().expect("a step in the stable regime succeeds");
     }
-    // DESIGN.md §1's large-wave limit needs every spring above half its rest length.
+    // The large-wave limit (`docs/guide.md`) needs every spring above half its rest length.
     if min_strain(&s) < 0.5 {
         return outside_regime(&mut s, input.steps);
     }

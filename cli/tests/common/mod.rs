@@ -98,3 +98,22 @@ pub fn names(dir: &Path) -> Vec<String> {
     v.sort();
     v
 }
+
+/// Writes a grey 8-bit PNG of `width` × `height` pixels at `path`, row by row (so a large
+/// one is never whole in memory): row `r` is `row(r)`.
+pub fn grey_png(path: &Path, width: u32, height: u32, row: impl Fn(u32) -> Vec<u8>) {
+    let file = std::fs::File::create(path).unwrap();
+    let mut encoder = png::Encoder::new(std::io::BufWriter::new(file), width, height);
+    encoder.set_color(png::ColorType::Grayscale);
+    encoder.set_depth(png::BitDepth::Eight);
+    encoder.set_compression(png::Compression::Fastest);
+    let mut writer = encoder
+        .write_header()
+        .unwrap()
+        .into_stream_writer()
+        .unwrap();
+    for r in 0..height {
+        std::io::Write::write_all(&mut writer, &row(r)).unwrap();
+    }
+    writer.finish().unwrap();
+}
