@@ -270,20 +270,14 @@ impl Context<'_> {
         }
         // The lattice's forces are per unit of model time²: a body's force in seconds goes
         // in divided by `time_scale²`.
-        let to_lattice = (self.scale as f64) * (self.scale as f64);
+        let scale = factor / ((self.scale as f64) * (self.scale as f64));
         if forces.len() <= FEW_FORCES {
-            for (&(_, force), spread) in forces.iter().zip(spreads.iter()) {
-                if let Some((nodes, weights)) = spread {
-                    let reaction = (-force * (factor / to_lattice)).as_vec3();
-                    for (&i, &w) in nodes.iter().zip(weights) {
-                        let add = reaction * w;
-                        match shares.iter_mut().rev().find(|(j, _)| *j == i) {
-                            Some((_, f)) => *f = (Vec3::from(*f) + add).to_array(),
-                            None => shares.push((i, add.to_array())),
-                        }
-                    }
+            pushes(forces, spreads, scale, |i, add| {
+                match shares.iter_mut().rev().find(|(j, _)| *j == i) {
+                    Some((_, f)) => *f = summed(Some(*f), add),
+                    None => shares.push((i, add.to_array())),
                 }
-            }
+            });
             return;
         }
         // The window: the rows and columns of every spread's corners.
@@ -300,25 +294,43 @@ impl Context<'_> {
         let width = hi[0] - lo[0] + 1;
         window.clear();
         window.resize(width * (hi[1] - lo[1] + 1), None);
-        for (&(_, force), spread) in forces.iter().zip(spreads.iter()) {
-            if let Some((nodes, weights)) = spread {
-                let reaction = (-force * (factor / to_lattice)).as_vec3();
-                for (&i, &w) in nodes.iter().zip(weights) {
-                    let add = reaction * w;
-                    let at = (i / cols - lo[1]) * width + (i % cols - lo[0]);
-                    window[at] = Some(match window[at] {
-                        Some(f) => (Vec3::from(f) + add).to_array(),
-                        None => add.to_array(),
-                    });
-                }
-            }
-        }
+        pushes(forces, spreads, scale, |i, add| {
+            let at = (i / cols - lo[1]) * width + (i % cols - lo[0]);
+            window[at] = Some(summed(window[at], add));
+        });
         for (k, sum) in window.iter().enumerate() {
             if let Some(f) = sum {
                 let (r, c) = (lo[1] + k / width, lo[0] + k % width);
                 shares.push((r * cols + c, *f));
             }
         }
+    }
+}
+
+/// Calls `each(node, push)` for every node of every force's spread, in the forces' order:
+/// minus the force times `scale`, times the node's bilinear weight (forces off the patch
+/// push nothing).
+fn pushes(
+    forces: &[(DVec3, DVec3)],
+    spreads: &[Option<Spread>],
+    scale: f64,
+    mut each: impl FnMut(usize, Vec3),
+) {
+    for (&(_, force), spread) in forces.iter().zip(spreads) {
+        if let Some((nodes, weights)) = spread {
+            let reaction = (-force * scale).as_vec3();
+            for (&i, &w) in nodes.iter().zip(weights) {
+                each(i, reaction * w);
+            }
+        }
+    }
+}
+
+/// A node's share so far (`None`: none yet) plus `add`.
+fn summed(sum: Option<[f32; 3]>, add: Vec3) -> [f32; 3] {
+    match sum {
+        Some(f) => (Vec3::from(f) + add).to_array(),
+        None => add.to_array(),
     }
 }
 
