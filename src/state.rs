@@ -19,12 +19,14 @@
 //! the back ones, and only swaps them when every new value is finite. That is what makes a
 //! step transactional (see [`Surface::step`](crate::Surface::step)).
 
+pub(crate) mod external;
 pub(crate) mod table;
 
 use crate::absorb::Frame;
 use crate::grid::Grid;
 use crate::params::{Boundary, Params};
 use crate::simd::{round_up, Floats, MAX_LANES};
+pub(crate) use external::External;
 pub(crate) use table::NodeTable;
 pub use table::{NodeValues, NodeValuesIter};
 
@@ -52,16 +54,8 @@ pub(crate) struct State {
     pub next_pos: Xyz,
     /// Velocities being written by a step (back buffer).
     pub next_vel: Xyz,
-    /// External force per node for the next step, cleared by a successful step.
-    pub ext: Xyz,
-    /// True when `ext` holds anything non-zero.
-    pub ext_pending: bool,
-    /// Every node whose `ext` may be non-zero, while there are few of them (`None`: any
-    /// node may be). Lets a step clear a few forces without rewriting the whole buffer.
-    pub ext_nodes: Option<Vec<usize>>,
-    /// One flag per row: whether the row holds a node of `ext_nodes` (see
-    /// [`State::mark_ext_rows`]).
-    pub ext_rows: Vec<bool>,
+    /// External forces for the next step, cleared by a successful step.
+    pub ext: External,
     /// Nodal mass `m`.
     pub mass: NodeTable,
     /// `1/m` for free nodes, `0` for pinned nodes: the integrator's only use of mass.
@@ -120,10 +114,7 @@ impl State {
             pos,
             vel: zeros3(len),
             next_vel: zeros3(len),
-            ext: zeros3(len),
-            ext_pending: false,
-            ext_nodes: Some(Vec::new()),
-            ext_rows: Vec::new(),
+            ext: External::new(n, len),
             mass,
             inv_mass,
             viscosity,
@@ -160,65 +151,6 @@ impl State {
                 .chain(&self.next_vel)
                 .any(|b| !b[i].is_finite())
         })
-    }
-
-    /// Clears the external force buffer after it has been applied.
-    pub fn clear_ext(&mut self) {
-        if self.ext_pending {
-            match &mut self.ext_nodes {
-                Some(nodes) => {
-                    for &i in nodes.iter() {
-                        for c in &mut self.ext {
-                            c[i] = 0.0;
-                        }
-                    }
-                    nodes.clear();
-                }
-                None => {
-                    for c in &mut self.ext {
-                        c.fill(0.0);
-                    }
-                    self.ext_nodes = Some(Vec::new());
-                }
-            }
-            self.ext_pending = false;
-        }
-    }
-
-    /// Notes that `ext[node]` was written.
-    pub fn touch_ext(&mut self, node: usize) {
-        self.ext_pending = true;
-        let limit = self.len() / 16;
-        if let Some(nodes) = &mut self.ext_nodes {
-            if nodes.len() < limit {
-                nodes.push(node);
-            } else {
-                self.ext_nodes = None;
-            }
-        }
-    }
-
-    /// Sets `ext_rows` to the rows that hold a listed node of `ext_nodes` and returns true,
-    /// or returns false when any node may hold a force (`ext_nodes` is `None`). A step
-    /// then reads the force buffers only on those rows: a floating body's push costs its
-    /// rows, not the grid.
-    pub fn mark_ext_rows(&mut self) -> bool {
-        let Some(nodes) = &self.ext_nodes else {
-            return false;
-        };
-        let cols = self.grid.cols;
-        self.ext_rows.clear();
-        self.ext_rows.resize(self.grid.rows, false);
-        for &i in nodes {
-            self.ext_rows[i / cols] = true;
-        }
-        true
-    }
-
-    /// Notes that `ext` was written anywhere.
-    pub fn touch_all_ext(&mut self) {
-        self.ext_pending = true;
-        self.ext_nodes = None;
     }
 }
 

@@ -303,8 +303,9 @@ pub(crate) fn step(
             sys[3 + i][j] = dt * cross.col(j)[i];
         }
     }
-    // The rank-one part, symmetric (its upper triangle summed).
-    for i in 0..6 {
+    // The rank-one part, symmetric (its upper triangle summed), if any piece has a normal.
+    let ranked_any = pieces.iter().any(|p| p.normal != DVec3::ZERO);
+    for i in (0..6).filter(|_| ranked_any) {
         for j in i..6 {
             sys[i][j] += dt * ranked[i][j];
             if i != j {

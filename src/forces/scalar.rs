@@ -144,8 +144,8 @@ pub(crate) fn step(
                 None => [0.0; 3],
             };
             let mut force = node_force(own, north, west);
-            if state.ext_pending {
-                force += state.ext[k][i];
+            if let Some(ext) = state.ext.pending() {
+                force += ext[k][i];
             }
             let accel = if free { cfg.accel[k] } else { 0.0 };
             let (x, v) = integrate(

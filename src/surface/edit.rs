@@ -94,21 +94,15 @@ impl Surface {
         for f in force {
             params::finite("force", f)?;
         }
-        let sum: [f32; 3] = std::array::from_fn(|k| self.state.ext[k][node] + force[k]);
-        for f in sum {
-            params::finite("accumulated force", f)?;
-        }
-        for (k, f) in sum.into_iter().enumerate() {
-            self.state.ext[k][node] = f;
-        }
-        self.state.touch_ext(node);
-        Ok(())
+        self.state
+            .ext
+            .add([(node, force)])
+            .or_else(|sum| params::finite("accumulated force", sum))
     }
 
     /// Discards the pending external forces (for example after a step refused them).
     pub fn clear_forces(&mut self) {
-        self.state.touch_all_ext();
-        self.state.clear_ext();
+        self.state.ext.clear();
     }
 
     /// Adds a velocity change `dv` to a free node now (an impulse divided by its mass), in
@@ -145,10 +139,7 @@ impl Surface {
                 });
             }
         }
-        for (dst, src) in self.state.ext.iter_mut().zip(force) {
-            dst[..n].copy_from_slice(src);
-        }
-        self.state.touch_all_ext();
+        self.state.ext.set(force);
         Ok(())
     }
 
@@ -157,9 +148,9 @@ impl Surface {
     pub fn forces(&self) -> [&[f32]; 3] {
         let n = self.node_count();
         [
-            &self.state.ext[0][..n],
-            &self.state.ext[1][..n],
-            &self.state.ext[2][..n],
+            &self.state.ext.buffers()[0][..n],
+            &self.state.ext.buffers()[1][..n],
+            &self.state.ext.buffers()[2][..n],
         ]
     }
 

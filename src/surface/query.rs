@@ -29,10 +29,26 @@ struct Sample {
 
 impl Sample {
     /// The cell under the water-frame point `(x, z)` of a window whose node `(0, 0)` is
-    /// `origin` cells from the frame's origin (see [`super::window`]).
+    /// `origin` cells from the frame's origin (see [`super::window`]), or why there is none.
     fn at(view: &MeshView<'_>, origin: [i64; 2], x: f32, z: f32) -> Result<Self> {
         crate::params::finite("query x", x)?;
         crate::params::finite("query z", z)?;
+        Self::near(view, origin, x, z).ok_or_else(|| {
+            let [width, length] = view.extent();
+            let h = view.spacing();
+            Error::OutsideGrid {
+                x: x - origin[0] as f32 * h,
+                z: z - origin[1] as f32 * h,
+                width,
+                length,
+            }
+        })
+    }
+
+    /// [`Sample::at`] without the reason: `None` off the footprint (a point that is not
+    /// finite is off it too).
+    #[inline]
+    fn near(view: &MeshView<'_>, origin: [i64; 2], x: f32, z: f32) -> Option<Self> {
         let [width, length] = view.extent();
         let h = view.spacing();
         let [ox, oz] = origin.map(|o| o as f32);
@@ -40,12 +56,7 @@ impl Sample {
         // moved).
         let (lx, lz) = (x - ox * h, z - oz * h);
         if !((0.0..=width).contains(&lx) && (0.0..=length).contains(&lz)) {
-            return Err(Error::OutsideGrid {
-                x: lx,
-                z: lz,
-                width,
-                length,
-            });
+            return None;
         }
         // The cell and the weights from the point in cells of the water frame, `x / h`,
         // and its whole cell: the same numbers wherever the window is, so a query at a
@@ -63,7 +74,7 @@ impl Sample {
         };
         let (c, fx) = cell(x, origin[0], view.cols() - 1);
         let (r, fz) = cell(z, origin[1], view.rows() - 1);
-        Ok(Self { c, r, fx, fz })
+        Some(Self { c, r, fx, fz })
     }
 
     fn weights(&self) -> [f32; 4] {
@@ -74,6 +85,13 @@ impl Sample {
             (1.0 - fx) * fz,
             fx * fz,
         ]
+    }
+
+    fn spread(&self) -> Spread {
+        Spread {
+            cell: [self.c, self.r],
+            weights: self.weights(),
+        }
     }
 
     fn corners(&self, cols: usize) -> [usize; 4] {
@@ -116,12 +134,17 @@ impl Sample {
     }
 }
 
-/// The four nodes a force at a point spreads onto, and their weights.
-pub(crate) type Spread = ([usize; 4], [f32; 4]);
+/// The cell a force at a point spreads onto, and the bilinear weights of its four
+/// corners `(c, r)`, `(c + 1, r)`, `(c, r + 1)`, `(c + 1, r + 1)`.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Spread {
+    pub cell: [usize; 2],
+    pub weights: [f32; 4],
+}
 
 /// The last cell [`Waters::flow`] computed the damping room of, and that room: points of
 /// one body fall in few cells, one after the other.
-pub(crate) type RoomCache = Option<(usize, f32)>;
+pub(crate) type RoomCache = Option<([usize; 2], f32)>;
 
 /// The water as the floating bodies read it (see [`Surface::waters`]).
 pub(crate) struct Waters<'a> {
@@ -134,7 +157,7 @@ pub(crate) struct Waters<'a> {
 
 impl Waters<'_> {
     fn sample(&self, x: f32, z: f32) -> Option<Sample> {
-        Sample::at(&self.view, self.origin, x, z).ok()
+        Sample::near(&self.view, self.origin, x, z)
     }
 
     /// The height at world `(x, z)`, or `None` off the window's footprint.
@@ -190,23 +213,22 @@ impl Waters<'_> {
     ) -> Option<(Vec3, f32, Spread)> {
         let s = self.sample(x, z)?;
         let cols = self.view.cols();
-        let corners = s.corners(cols);
         let room = match *cache {
-            Some((cell, room)) if cell == corners[0] => room,
+            Some((cell, room)) if cell == [s.c, s.r] => room,
             _ => {
-                let room = corners
-                    .map(|i| self.mass.get(i) * rate - self.viscosity.get(i))
-                    .into_iter()
-                    .fold(f32::INFINITY, f32::min);
-                *cache = Some((corners[0], room));
+                // The room of each corner, `mass × rate − viscosity`, the least of the four.
+                let room_on = |r: usize| {
+                    let (mass, viscosity) = (self.mass.row(r), self.viscosity.row(r));
+                    let room = |c: usize| mass[c] * rate - viscosity[c];
+                    (room(s.c), room(s.c + 1))
+                };
+                let ((a, b), (c, d)) = (room_on(s.r), room_on(s.r + 1));
+                let room = a.min(b).min(c).min(d);
+                *cache = Some(([s.c, s.r], room));
                 room
             }
         };
-        Some((
-            s.blend3(cols, self.velocities),
-            room,
-            (corners, s.weights()),
-        ))
+        Some((s.blend3(cols, self.velocities), room, s.spread()))
     }
 
     /// The four nodes a force at `(x, z)` spreads onto and their bilinear weights (those
@@ -217,8 +239,7 @@ impl Waters<'_> {
     }
 
     pub fn spread(&self, x: f32, z: f32) -> Option<Spread> {
-        let s = self.sample(x, z)?;
-        Some((s.corners(self.view.cols()), s.weights()))
+        Some(self.sample(x, z)?.spread())
     }
 }
 
@@ -337,21 +358,11 @@ impl Surface {
         let sample = Sample::at(&view, self.window_origin, x, z)?;
         let cols = view.cols();
         let (w, corners) = (sample.weights(), sample.corners(cols));
-        let ext = &self.state.ext;
-        let sums: [[f32; 3]; 4] =
-            std::array::from_fn(|k| std::array::from_fn(|c| ext[c][corners[k]] + w[k] * force[c]));
-        for f in sums.iter().flatten() {
-            crate::params::finite("accumulated force", *f)?;
-        }
-        for (k, sum) in sums.iter().enumerate() {
-            for (c, &f) in sum.iter().enumerate() {
-                self.state.ext[c][corners[k]] = f;
-            }
-        }
-        for i in corners {
-            self.state.touch_ext(i);
-        }
-        Ok(())
+        let batch = std::array::from_fn::<_, 4, _>(|k| (corners[k], w[k]));
+        self.state
+            .ext
+            .add(batch.map(|(i, w)| (i, force.map(|f| w * f))))
+            .or_else(|sum| crate::params::finite("accumulated force", sum))
     }
 
     /// A reader of the water for the floating bodies' step: one view of the surface for

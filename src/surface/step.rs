@@ -126,7 +126,7 @@ impl Surface {
     /// Makes `k` steps written to the back buffers the state.
     fn commit(&mut self, k: usize, dt: f32) {
         self.state.swap();
-        self.state.clear_ext();
+        self.state.ext.clear();
         self.steps += k as u64;
         for _ in 0..k {
             self.time += dt as f64;

@@ -463,21 +463,17 @@ impl Surface {
             state.pos[1][i] = y;
             state.vel[1][i] = vy;
         }
-        if state.ext_pending {
-            move_arrays(runner, mv, state.ext.iter_mut());
-            mv.for_incoming_runs(|r, cs| {
-                for e in &mut state.ext {
-                    e[r * grid.cols + cs.start..r * grid.cols + cs.end].fill(0.0);
-                }
-            });
-            if let Some(nodes) = &mut state.ext_nodes {
-                let mut moved: Vec<usize> =
-                    nodes.iter().filter_map(|&i| mv.destination(i)).collect();
-                moved.sort_unstable();
-                moved.dedup();
-                *nodes = moved;
-            }
-        }
+        state.ext.shift(
+            |ext| {
+                move_arrays(runner, mv, ext.iter_mut());
+                mv.for_incoming_runs(|r, cs| {
+                    for e in ext.iter_mut() {
+                        e[r * grid.cols + cs.start..r * grid.cols + cs.end].fill(0.0);
+                    }
+                });
+            },
+            |i| mv.destination(i),
+        );
 
         // The load the water column carries moves with its water.
         self.bodies.shift(|i| mv.destination(i));

@@ -58,7 +58,7 @@ pub(super) fn pass_with<V: Vector>(
     let (t, handoffs, claims) = ws.prepare::<V>(cols, rows, levels, runner.workers());
     // Rows without forces skip them, which relies on an acceleration that is never −0.
     debug_assert!(cfg.accel.iter().all(|a| a.to_bits() != (-0.0f32).to_bits()));
-    let listed = state.ext_pending && state.mark_ext_rows();
+    let (ext, ext_rows) = state.ext.for_step(cols, rows);
     let inp = Inputs::<V>::new(
         cols,
         rows,
@@ -66,10 +66,8 @@ pub(super) fn pass_with<V: Vector>(
         [&state.vel[0], &state.vel[1], &state.vel[2]],
         &state.inv_mass,
         &state.viscosity,
-        state
-            .ext_pending
-            .then(|| [&state.ext[0][..], &state.ext[1][..], &state.ext[2][..]]),
-        listed.then_some(&state.ext_rows[..]),
+        ext,
+        ext_rows,
         springs,
         cfg,
         n >= STREAM_MIN_NODES,

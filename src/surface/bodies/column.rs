@@ -196,20 +196,22 @@ impl Column {
     }
 
     /// Gathers this step's pushes of the surface's own bodies (`shares`, in the bodies'
-    /// order) and writes what the water gets, node by node, into `water`.
+    /// order) on a grid of `nodes`.
     pub fn gather<'a>(
         &mut self,
         shares: impl Iterator<Item = &'a (usize, [f32; 3])>,
         nodes: usize,
-        water: &mut Vec<(usize, [f32; 3])>,
     ) {
         self.kept = self.entries.len();
         for &(i, f) in shares {
             let e = self.entry(i, nodes);
             e.fresh = std::array::from_fn(|k| e.fresh[k] + f[k]);
         }
-        water.clear();
-        water.extend(self.entries.iter().map(|e| (e.node, e.water())));
+    }
+
+    /// What the water gets this step, node by node (distinct nodes): `W` of every entry.
+    pub fn water(&self) -> impl Iterator<Item = (usize, [f32; 3])> + '_ {
+        self.entries.iter().map(|e| (e.node, e.water()))
     }
 
     /// The step succeeded: the column takes up `rate` of what the water got, the pushes
@@ -293,9 +295,8 @@ mod tests {
     use super::*;
 
     fn water(column: &mut Column, shares: &[(usize, [f32; 3])]) -> Vec<(usize, [f32; 3])> {
-        let mut out = Vec::new();
-        column.gather(shares.iter(), 16, &mut out);
-        out
+        column.gather(shares.iter(), 16);
+        column.water().collect()
     }
 
     #[test]

@@ -34,20 +34,10 @@ pub(crate) struct Coupling {
     slots: Vec<Slot>,
     /// The workspace of [`Surface::body_forces`].
     foreign_slot: Slot,
-    /// What the water gets in this step, node by node (from the column).
-    water: Vec<(usize, [f32; 3])>,
-    /// External forces of the nodes the reactions touched, before they did, and the
-    /// pending flag and length of the list of pushed nodes.
-    log: Vec<(usize, [f32; 3])>,
-    pending: bool,
-    listed: Option<usize>,
 }
 
 /// How many meshes of bodies another engine owns are kept.
 const FOREIGN_MESHES: usize = 16;
-
-/// Up to this many forces, a body's shares are merged in a list (see [`Context::shares`]).
-const FEW_FORCES: usize = 8;
 
 /// Bodies per task when they step in parallel.
 const BODIES_PER_TASK: usize = 16;
@@ -251,10 +241,10 @@ impl Context<'_> {
     }
 
     /// Each node's share of minus every force the body of `slot` feels, times `factor`,
-    /// in the lattice's units, summed node by node into `slot.shares` (forces off the patch
-    /// push nothing), each node's in the order of the forces. A small body's few forces
-    /// fall on a few nodes, searched in a short list; a larger body's are summed in a
-    /// window of the grid around it, where a node is found by its place.
+    /// in the lattice's units, summed node by node into `slot.shares`, row by row (forces
+    /// off the patch push nothing), each node's in the order of the forces. The sums are
+    /// kept in a window of the grid just wide enough for the body's spreads, where a node
+    /// is found by its place.
     fn shares(&self, slot: &mut Slot, factor: f64) {
         let Slot {
             spreads,
@@ -268,23 +258,10 @@ impl Context<'_> {
         for &(point, _) in forces.iter().skip(spreads.len()) {
             spreads.push(self.waters.spread(point.x as f32, point.z as f32));
         }
-        // The lattice's forces are per unit of model time²: a body's force in seconds goes
-        // in divided by `time_scale²`.
-        let scale = factor / ((self.scale as f64) * (self.scale as f64));
-        if forces.len() <= FEW_FORCES {
-            pushes(forces, spreads, scale, |i, add| {
-                match shares.iter_mut().rev().find(|(j, _)| *j == i) {
-                    Some((_, f)) => *f = summed(Some(*f), add),
-                    None => shares.push((i, add.to_array())),
-                }
-            });
-            return;
-        }
         // The window: the rows and columns of every spread's corners.
-        let cols = self.waters.cols();
         let (mut lo, mut hi) = ([usize::MAX; 2], [0; 2]);
-        for (nodes, _) in spreads.iter().flatten() {
-            let (c, r) = (nodes[0] % cols, nodes[0] / cols);
+        for spread in spreads.iter().flatten() {
+            let [c, r] = spread.cell;
             lo = [lo[0].min(c), lo[1].min(r)];
             hi = [hi[0].max(c + 1), hi[1].max(r + 1)];
         }
@@ -294,43 +271,38 @@ impl Context<'_> {
         let width = hi[0] - lo[0] + 1;
         window.clear();
         window.resize(width * (hi[1] - lo[1] + 1), None);
-        pushes(forces, spreads, scale, |i, add| {
-            let at = (i / cols - lo[1]) * width + (i % cols - lo[0]);
-            window[at] = Some(summed(window[at], add));
-        });
-        for (k, sum) in window.iter().enumerate() {
-            if let Some(f) = sum {
-                let (r, c) = (lo[1] + k / width, lo[0] + k % width);
-                shares.push((r * cols + c, *f));
-            }
-        }
-    }
-}
-
-/// Calls `each(node, push)` for every node of every force's spread, in the forces' order:
-/// minus the force times `scale`, times the node's bilinear weight (forces off the patch
-/// push nothing).
-fn pushes(
-    forces: &[(DVec3, DVec3)],
-    spreads: &[Option<Spread>],
-    scale: f64,
-    mut each: impl FnMut(usize, Vec3),
-) {
-    for (&(_, force), spread) in forces.iter().zip(spreads) {
-        if let Some((nodes, weights)) = spread {
+        // The lattice's forces are per unit of model time²: a body's force in seconds goes
+        // in divided by `time_scale²`.
+        let scale = factor / ((self.scale as f64) * (self.scale as f64));
+        for (&(_, force), spread) in forces.iter().zip(spreads.iter()) {
+            let Some(Spread {
+                cell: [c, r],
+                weights,
+            }) = *spread
+            else {
+                continue;
+            };
             let reaction = (-force * scale).as_vec3();
-            for (&i, &w) in nodes.iter().zip(weights) {
-                each(i, reaction * w);
+            let at = (r - lo[1]) * width + (c - lo[0]);
+            for (k, w) in [at, at + 1, at + width, at + width + 1]
+                .into_iter()
+                .zip(weights)
+            {
+                let add = reaction * w;
+                window[k] = Some(match window[k] {
+                    Some(sum) => (Vec3::from(sum) + add).to_array(),
+                    None => add.to_array(),
+                });
             }
         }
-    }
-}
-
-/// A node's share so far (`None`: none yet) plus `add`.
-fn summed(sum: Option<[f32; 3]>, add: Vec3) -> [f32; 3] {
-    match sum {
-        Some(f) => (Vec3::from(f) + add).to_array(),
-        None => add.to_array(),
+        let cols = self.waters.cols();
+        for (r, row) in (lo[1]..).zip(window.chunks_exact(width)) {
+            for (c, sum) in (lo[0]..).zip(row) {
+                if let Some(f) = sum {
+                    shares.push((r * cols + c, *f));
+                }
+            }
+        }
     }
 }
 
@@ -343,10 +315,11 @@ impl Surface {
         let n = self.node_count();
         let coupled = self.couple(dt, &mut c).and_then(|()| {
             let shares = c.slots.iter().flat_map(|slot| &slot.shares);
-            self.bodies.column.gather(shares, n, &mut c.water);
-            self.push_water(&mut c)
+            self.bodies.column.gather(shares, n);
+            self.push_water()
         });
-        let coupled = coupled.and_then(|()| self.water(1, dt).inspect_err(|_| self.undo(&c)));
+        let coupled =
+            coupled.and_then(|()| self.water(1, dt).inspect_err(|_| self.state.ext.undo()));
         match coupled {
             Ok(()) => {
                 for ((_, body), slot) in self.bodies.bodies.iter_mut().zip(&mut c.slots) {
@@ -435,53 +408,15 @@ impl Surface {
         }
     }
 
-    /// Adds what the water gets (`c.water`, from the column) to the external forces
-    /// (logged in `c.log`). Refused, with nothing changed, if a node's force would not be
-    /// finite.
-    fn push_water(&mut self, c: &mut Coupling) -> Result<()> {
-        c.log.clear();
-        c.pending = self.state.ext_pending;
-        c.listed = self.state.ext_nodes.as_ref().map(Vec::len);
-        let ext = &mut self.state.ext;
-        for &(i, f) in &c.water {
-            c.log.push((i, [ext[0][i], ext[1][i], ext[2][i]]));
-            for (k, v) in f.into_iter().enumerate() {
-                ext[k][i] += v;
-            }
-        }
-        let finite = c
-            .log
-            .iter()
-            .all(|&(i, _)| (0..3).all(|k| self.state.ext[k][i].is_finite()));
-        if !finite {
-            self.undo(c);
-            c.log.clear();
-            return Err(Error::InvalidParam {
-                name: "accumulated force",
-                value: f64::INFINITY,
-                expected: "finite: the bodies' reactions overflow f32",
-            });
-        }
-        for &(i, _) in &c.log {
-            self.state.touch_ext(i);
-        }
-        Ok(())
-    }
-
-    /// Undoes [`push_water`](Self::push_water): the nodes in `c.log` get their old
-    /// forces back, newest first (so every touched node gets its old bits), and the flag
-    /// and list of pending forces go back too, unless the list overflowed (`None`, clear
-    /// every force, is then still correct).
-    fn undo(&mut self, c: &Coupling) {
-        for &(i, f) in c.log.iter().rev() {
-            for (k, v) in f.into_iter().enumerate() {
-                self.state.ext[k][i] = v;
-            }
-        }
-        self.state.ext_pending = c.pending;
-        if let (Some(len), Some(nodes)) = (c.listed, &mut self.state.ext_nodes) {
-            nodes.truncate(len);
-        }
+    /// Adds what the water gets (from the column) to the external forces, all or
+    /// nothing: refused, with nothing changed, if a node's force would not be finite.
+    fn push_water(&mut self) -> Result<()> {
+        let water = self.bodies.column.water();
+        self.state.ext.add(water).map_err(|_| Error::InvalidParam {
+            name: "accumulated force",
+            value: f64::INFINITY,
+            expected: "finite: the bodies' reactions overflow f32",
+        })
     }
 
     /// The damping rate per unit of model time the water's step has room for at the

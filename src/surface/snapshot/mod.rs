@@ -457,10 +457,9 @@ impl Surface {
         fill3(&mut state.pos, &snap.positions);
         fill3(&mut state.next_pos, &snap.positions);
         fill3(&mut state.vel, &snap.velocities);
-        fill3(&mut state.ext, &snap.forces);
-        if snap.forces_pending {
-            state.touch_all_ext();
-        }
+        state
+            .ext
+            .load(snap.forces_pending, |ext| fill3(ext, &snap.forces));
         // Arrays that hold the defaults load as the defaults' few rows (see `NodeTable`).
         state.mass.assign(|i| snap.mass[i]);
         state.viscosity.assign(|i| snap.viscosity[i]);

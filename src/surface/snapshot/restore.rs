@@ -51,13 +51,11 @@ impl Surface {
         for (dst, src) in state.vel.iter_mut().zip(nodes.velocities) {
             src.read(0, &mut dst[..n]);
         }
-        state.clear_ext();
-        if scalars.forces_pending {
-            for (dst, src) in state.ext.iter_mut().zip(nodes.forces) {
+        state.ext.load(scalars.forces_pending, |ext| {
+            for (dst, src) in ext.iter_mut().zip(nodes.forces) {
                 src.read(0, &mut dst[..n]);
             }
-            state.touch_all_ext();
-        }
+        });
         let mass_changed = assign(&mut state.mass, nodes.mass);
         assign(&mut state.viscosity, nodes.viscosity);
         let pins_changed = !same_pins(&state.pinned, nodes.pinned);
