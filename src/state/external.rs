@@ -72,20 +72,28 @@ impl External {
     pub fn add(&mut self, batch: impl IntoIterator<Item = (usize, [f32; 3])>) -> Result<(), f32> {
         self.log.clear();
         self.before = (self.pending, self.nodes.as_ref().map(Vec::len));
-        let mut bad = None;
         let [fx, fy, fz] = &mut self.forces;
+        // Plain slices of one length, taken once, rather than the buffers' view at every
+        // index.
+        let n = fx.len();
+        let (fx, fy, fz) = (&mut fx[..n], &mut fy[..n], &mut fz[..n]);
+        let mut finite = true;
         for (i, f) in batch {
+            assert!(i < n, "node {i} of {n}");
             let old = [fx[i], fy[i], fz[i]];
             let sum = [old[0] + f[0], old[1] + f[1], old[2] + f[2]];
             (fx[i], fy[i], fz[i]) = (sum[0], sum[1], sum[2]);
             self.log.push((i, old));
-            if bad.is_none() {
-                bad = sum.into_iter().find(|s| !s.is_finite());
-            }
+            finite &= sum[0].is_finite() & sum[1].is_finite() & sum[2].is_finite();
         }
-        if let Some(sum) = bad {
+        if !finite {
+            let sum = self
+                .log
+                .iter()
+                .flat_map(|&(i, _)| [fx[i], fy[i], fz[i]])
+                .find(|s| !s.is_finite())
+                .unwrap_or(f32::INFINITY);
             self.undo();
-            self.log.clear();
             return Err(sum);
         }
         self.pending |= !self.log.is_empty();
@@ -105,6 +113,7 @@ impl External {
     /// overflowed stays `None`, which is still correct).
     pub fn undo(&mut self) {
         let [fx, fy, fz] = &mut self.forces;
+        let (fx, fy, fz) = (&mut fx[..], &mut fy[..], &mut fz[..]);
         for &(i, old) in self.log.iter().rev() {
             (fx[i], fy[i], fz[i]) = (old[0], old[1], old[2]);
         }
@@ -130,8 +139,9 @@ impl External {
         if self.pending {
             match &mut self.nodes {
                 Some(nodes) => {
-                    for &i in nodes.iter() {
-                        for c in &mut self.forces {
+                    for c in &mut self.forces {
+                        let c = &mut c[..];
+                        for &i in nodes.iter() {
                             c[i] = 0.0;
                         }
                     }
