@@ -1,8 +1,9 @@
 //! Absorbing-boundary probe for springwater: ring test (reflected energy against a padded
-//! reference run). Measurement code, not shipped. See the report for the method.
+//! reference run). The measurements of docs/open-water.md, which explains the method.
 //!
-//! Usage: absorb-probe <mode>   mode = limit | pad | walls | sweep | mur | all
-//!        absorb-probe instant N STEPS W GMAX SHAPE   (SHAPE = a power, cos, smooth, f<share>)
+//! Usage: `cargo run --release --example absorb_probe -- MODE`, MODE one of
+//!        limit | pad | walls | sweep | mur | all, or
+//!        instant N STEPS W GMAX SHAPE   (SHAPE = a power, cos, smooth, f<share>)
 //!
 //! `instant` is the 300-step table of docs/open-water.md: the reflected energy after every
 //! step (its largest value, the largest over every 4th step, the step it peaks at) for the
@@ -16,10 +17,20 @@ const R: f64 = 0.5;
 const KS: f64 = C * (1.0 - R); // transverse stiffness per spring (all 8 families)
 const DT: f32 = 0.4;
 const INTERIOR: usize = 128; // nodes of the measured interior along a side
-fn t_steps() -> usize { std::env::var("T_STEPS").ok().map(|v| v.parse().unwrap()).unwrap_or(400) } // time window
+fn t_steps() -> usize {
+    std::env::var("T_STEPS")
+        .ok()
+        .map(|v| v.parse().unwrap())
+        .unwrap_or(400)
+} // time window
 const SAMPLE: usize = 4; // sample every SAMPLE steps
 const VMAX: f64 = 0.8; // cells/step used to size the reference padding (long-wave speed is 0.648)
-fn height() -> f32 { std::env::var("HEIGHT").ok().map(|v| v.parse().unwrap()).unwrap_or(0.05) }
+fn height() -> f32 {
+    std::env::var("HEIGHT")
+        .ok()
+        .map(|v| v.parse().unwrap())
+        .unwrap_or(0.05)
+}
 
 #[derive(Clone, Copy, Debug, PartialEq)]
 enum Pos {
@@ -139,7 +150,8 @@ fn reference(n: usize, w: usize, pos: Pos, radius: f32, pad: usize) -> Reference
     let nr = n + 2 * pad;
     let mut s = Surface::new(base_params(nr, Boundary::Pinned)).unwrap();
     let (sx, sz) = source(n, w, pos);
-    s.drop_at(sx + pad as f32, sz + pad as f32, height(), radius).unwrap();
+    s.drop_at(sx + pad as f32, sz + pad as f32, height(), radius)
+        .unwrap();
     let (y0, v0) = window(&s, nr, 0);
     let e0 = lin_energy(nr, &y0, &v0, &|_, _| true);
     let mut samples = vec![window(&s, n, pad)];
@@ -200,8 +212,20 @@ fn mur_forces(s: &mut Surface) {
             }
             let i = r * n + c;
             // inward neighbour: along the normal (diagonal at corners)
-            let ic = if c == 0 { 1 } else if c == n - 1 { n - 2 } else { c };
-            let ir = if r == 0 { 1 } else if r == n - 1 { n - 2 } else { r };
+            let ic = if c == 0 {
+                1
+            } else if c == n - 1 {
+                n - 2
+            } else {
+                c
+            };
+            let ir = if r == 0 {
+                1
+            } else if r == n - 1 {
+                n - 2
+            } else {
+                r
+            };
             let i1 = ir * n + ic;
             let mut f1 = 0.0;
             for dr in -1isize..=1 {
@@ -241,7 +265,12 @@ fn hold_forces(n: usize) -> Vec<(usize, [f32; 3])> {
             for dr in -1isize..=1 {
                 for dc in -1isize..=1 {
                     let (cj, rj) = (c as isize + dc, r as isize + dr);
-                    if (dr == 0 && dc == 0) || cj < 0 || rj < 0 || cj >= n as isize || rj >= n as isize {
+                    if (dr == 0 && dc == 0)
+                        || cj < 0
+                        || rj < 0
+                        || cj >= n as isize
+                        || rj >= n as isize
+                    {
                         continue;
                     }
                     fx += C * (1.0 - R) * dc as f64;
@@ -260,11 +289,18 @@ struct Outcome {
     end: f64,
 }
 
-fn run_case(n: usize, edge: Edge, pos: Pos, radius: f32, refr: &Reference) -> Result<Outcome, String> {
+fn run_case(
+    n: usize,
+    edge: Edge,
+    pos: Pos,
+    radius: f32,
+    refr: &Reference,
+) -> Result<Outcome, String> {
     let w = edge.w();
     let mut s = build(n, edge)?;
     let (sx, sz) = source(n, w, pos);
-    s.drop_at(sx, sz, height(), radius).map_err(|e| e.to_string())?;
+    s.drop_at(sx, sz, height(), radius)
+        .map_err(|e| e.to_string())?;
     let roi_w = w.max(1);
     let inside = move |c: usize, r: usize| dist_edge(n, c, r) >= roi_w;
     let mut max = 0.0f64;
@@ -321,7 +357,10 @@ fn limit() {
     println!("limit: largest gamma accepted by set_viscosity at dt 0.4 = {lo} (refused at {hi})");
     let mut p = base_params(8, Boundary::Pinned);
     p.viscosity = 3.3;
-    println!("limit: Surface::new with viscosity 3.3 -> {:?}", Surface::new(p).err().map(|e| e.to_string()));
+    println!(
+        "limit: Surface::new with viscosity 3.3 -> {:?}",
+        Surface::new(p).err().map(|e| e.to_string())
+    );
     // Once built without the dt check with a large uniform viscosity, can the frame still be graded?
     let mut p = base_params(8, Boundary::Pinned);
     p.viscosity = 4.0;
@@ -333,7 +372,13 @@ fn limit() {
 }
 
 fn pad_check() {
-    for &(w, pos, radius) in &[(8usize, Pos::Corner, 2.0f32), (8, Pos::Corner, 4.0), (48, Pos::Corner, 2.0), (8, Pos::Centre, 2.0), (0, Pos::Corner, 2.0)] {
+    for &(w, pos, radius) in &[
+        (8usize, Pos::Corner, 2.0f32),
+        (8, Pos::Corner, 4.0),
+        (48, Pos::Corner, 2.0),
+        (8, Pos::Centre, 2.0),
+        (0, Pos::Corner, 2.0),
+    ] {
         let n = INTERIOR + 2 * w;
         let p = padding(n, w, pos);
         let a = reference(n, w, pos, radius, p);
@@ -342,8 +387,18 @@ fn pad_check() {
         let inside = |c: usize, r: usize| dist_edge(n, c, r) >= roi_w;
         let mut max = 0.0f64;
         for k in 0..a.samples.len() {
-            let dy: Vec<f64> = a.samples[k].0.iter().zip(&b.samples[k].0).map(|(x, y)| x - y).collect();
-            let dv: Vec<f64> = a.samples[k].1.iter().zip(&b.samples[k].1).map(|(x, y)| x - y).collect();
+            let dy: Vec<f64> = a.samples[k]
+                .0
+                .iter()
+                .zip(&b.samples[k].0)
+                .map(|(x, y)| x - y)
+                .collect();
+            let dv: Vec<f64> = a.samples[k]
+                .1
+                .iter()
+                .zip(&b.samples[k].1)
+                .map(|(x, y)| x - y)
+                .collect();
             max = max.max(lin_energy(n, &dy, &dv, &inside) / a.e0);
         }
         println!("pad: W={w} {pos:?} r={radius} N={n} pad={p} (ref grid {}²): max diff vs pad+60 = {max:.3e}", n + 2 * p);
@@ -382,7 +437,9 @@ fn sweep(edges_for_w: &dyn Fn(usize) -> Vec<Edge>, ws: &[usize]) {
                 let roi_w = w.max(1);
                 let (ry, rv) = refr.samples.last().unwrap();
                 let resid = lin_energy(n, ry, rv, &|c, r| dist_edge(n, c, r) >= roi_w) / refr.e0;
-                println!("REF W={w} N={n} pad={pad} bump={radius} {pos:?} roi_energy_at_T={resid:.3e}");
+                println!(
+                    "REF W={w} N={n} pad={pad} bump={radius} {pos:?} roi_energy_at_T={resid:.3e}"
+                );
                 for edge in edges_for_w(w) {
                     let o = run_case(n, edge, pos, radius, &refr);
                     print(edge, n, pos, radius, &o);
@@ -409,7 +466,20 @@ fn main() {
     match mode.as_str() {
         "limit" => limit(),
         "pad" => pad_check(),
-        "walls" => sweep(&|_| vec![Edge::Frame { w: 0, p: 1, gmax: 0.0 }, Edge::Free, Edge::FreeHeld], &[0]),
+        "walls" => sweep(
+            &|_| {
+                vec![
+                    Edge::Frame {
+                        w: 0,
+                        p: 1,
+                        gmax: 0.0,
+                    },
+                    Edge::Free,
+                    Edge::FreeHeld,
+                ]
+            },
+            &[0],
+        ),
         "sweep" => sweep(
             &|w| {
                 let mut v = vec![];
@@ -425,7 +495,11 @@ fn main() {
         "mur" => sweep(
             &|w| {
                 if w <= 1 {
-                    vec![Edge::Mur { w: 0, p: 1, gmax: 0.0 }]
+                    vec![Edge::Mur {
+                        w: 0,
+                        p: 1,
+                        gmax: 0.0,
+                    }]
                 } else {
                     let mut v = vec![];
                     for &p in &ps {
@@ -446,19 +520,40 @@ fn main() {
                 x if x.starts_with('f') => Shape::Onset(x[1..].parse().unwrap()),
                 x => Shape::Power(x.parse().unwrap()),
             };
-            instant(a[2].parse().unwrap(), a[3].parse().unwrap(), a[4].parse().unwrap(), a[5].parse().unwrap(), shape);
+            instant(
+                a[2].parse().unwrap(),
+                a[3].parse().unwrap(),
+                a[4].parse().unwrap(),
+                a[5].parse().unwrap(),
+                shape,
+            );
         }
         "cands" => {
             // CANDS="frame:28:2:2.4,mur:24:2:1.2"
-            let list: Vec<Edge> = std::env::var("CANDS").unwrap().split(',').map(|c| {
-                let f: Vec<&str> = c.split(':').collect();
-                let (w, p, gmax) = (f[1].parse().unwrap(), f[2].parse().unwrap(), f[3].parse().unwrap());
-                if f[0] == "mur" { Edge::Mur { w, p, gmax } } else { Edge::Frame { w, p, gmax } }
-            }).collect();
+            let list: Vec<Edge> = std::env::var("CANDS")
+                .unwrap()
+                .split(',')
+                .map(|c| {
+                    let f: Vec<&str> = c.split(':').collect();
+                    let (w, p, gmax) = (
+                        f[1].parse().unwrap(),
+                        f[2].parse().unwrap(),
+                        f[3].parse().unwrap(),
+                    );
+                    if f[0] == "mur" {
+                        Edge::Mur { w, p, gmax }
+                    } else {
+                        Edge::Frame { w, p, gmax }
+                    }
+                })
+                .collect();
             let mut wl: Vec<usize> = list.iter().map(|e| e.w()).collect();
             wl.sort();
             wl.dedup();
-            sweep(&|w| list.iter().copied().filter(|e| e.w() == w).collect(), &wl);
+            sweep(
+                &|w| list.iter().copied().filter(|e| e.w() == w).collect(),
+                &wl,
+            );
         }
         _ => {
             limit();
@@ -502,13 +597,19 @@ fn shaped(shape: Shape, w: usize, gmax: f32, d: usize) -> f32 {
 /// grid, a pinned pool of the same size and the padded reference stepped side by side.
 fn instant(n: usize, steps: usize, w: usize, gmax: f32, shape: Shape) {
     let mut line = format!("n {n} steps {steps} W {w} gmax {gmax} {shape:?}:");
-    for (radius, pos) in [(4.0f32, Pos::Centre), (4.0, Pos::Corner), (2.0, Pos::Centre), (2.0, Pos::Corner)] {
+    for (radius, pos) in [
+        (4.0f32, Pos::Centre),
+        (4.0, Pos::Corner),
+        (2.0, Pos::Centre),
+        (2.0, Pos::Corner),
+    ] {
         let (sx, sz) = source(n, w, pos);
         let reach = VMAX * steps as f64 - sx as f64 - w.max(1) as f64;
         let pad = (reach / 2.0).max(0.0).ceil() as usize + 12;
         let big = n + 2 * pad;
         let mut refr = Surface::new(base_params(big, Boundary::Pinned)).unwrap();
-        refr.drop_at(sx + pad as f32, sz + pad as f32, height(), radius).unwrap();
+        refr.drop_at(sx + pad as f32, sz + pad as f32, height(), radius)
+            .unwrap();
         let all = |_: usize, _: usize| true;
         let (y0, v0) = window(&refr, big, 0);
         let e0 = lin_energy(big, &y0, &v0, &all);
@@ -516,7 +617,8 @@ fn instant(n: usize, steps: usize, w: usize, gmax: f32, shape: Shape) {
         let mut wall = Surface::new(base_params(n, Boundary::Pinned)).unwrap();
         for r in 0..n {
             for c in 0..n {
-                open.set_viscosity(r * n + c, shaped(shape, w, gmax, dist_edge(n, c, r))).unwrap();
+                open.set_viscosity(r * n + c, shaped(shape, w, gmax, dist_edge(n, c, r)))
+                    .unwrap();
             }
         }
         open.drop_at(sx, sz, height(), radius).unwrap();
@@ -555,7 +657,10 @@ fn instant(n: usize, steps: usize, w: usize, gmax: f32, shape: Shape) {
             }
             s
         };
-        let (ea, ew) = (lin_energy(n, &ay, &av, &middle), lin_energy(n, &wy, &wv, &middle));
+        let (ea, ew) = (
+            lin_energy(n, &ay, &av, &middle),
+            lin_energy(n, &wy, &wv, &middle),
+        );
         line += &format!(
             " | r{radius} {pos:?}: worst {worst:.2e} (step {at}), every 4th {every4:.2e}; last step: rms height vs wall {:.3}, energy vs wall {:.1e}, energy vs bump {:.1e}",
             (rms(&ay) / rms(&wy)).sqrt(),
