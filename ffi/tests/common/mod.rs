@@ -2,6 +2,17 @@
 //! of float values in the order the clients print them.
 
 use springwater::{Floater, Params, Shape, Surface};
+
+/// A test whose tool is not installed says why and passes, unless
+/// `SPRINGWATER_REQUIRE_TOOLS` is set (as CI does, having installed every tool), where it
+/// fails: the one convention of every test that needs a program besides cargo.
+pub fn tool_missing(why: &str) {
+    assert!(
+        std::env::var_os("SPRINGWATER_REQUIRE_TOOLS").is_none(),
+        "SPRINGWATER_REQUIRE_TOOLS is set but {why}"
+    );
+    println!("skipped: {why}");
+}
 use std::path::PathBuf;
 use std::process::{Command, Output};
 
