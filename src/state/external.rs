@@ -139,11 +139,12 @@ impl External {
         if self.pending {
             match &mut self.nodes {
                 Some(nodes) => {
-                    for c in &mut self.forces {
-                        let c = &mut c[..];
-                        for &i in nodes.iter() {
-                            c[i] = 0.0;
-                        }
+                    let [fx, fy, fz] = &mut self.forces;
+                    let n = fx.len();
+                    let (fx, fy, fz) = (&mut fx[..n], &mut fy[..n], &mut fz[..n]);
+                    for &i in nodes.iter() {
+                        assert!(i < n, "node {i} of {n}");
+                        (fx[i], fy[i], fz[i]) = (0.0, 0.0, 0.0);
                     }
                     nodes.clear();
                 }

@@ -282,16 +282,16 @@ impl Context<'_> {
             else {
                 continue;
             };
-            let reaction = (-force * scale).as_vec3();
+            let reaction = (-force * scale).as_vec3().to_array();
             let at = (r - lo[1]) * width + (c - lo[0]);
             for (k, w) in [at, at + 1, at + width, at + width + 1]
                 .into_iter()
                 .zip(weights)
             {
-                let add = reaction * w;
+                let add = reaction.map(|f| f * w);
                 window[k] = Some(match window[k] {
-                    Some(sum) => (Vec3::from(sum) + add).to_array(),
-                    None => add.to_array(),
+                    Some(sum) => [sum[0] + add[0], sum[1] + add[1], sum[2] + add[2]],
+                    None => add,
                 });
             }
         }
