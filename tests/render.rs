@@ -1,10 +1,10 @@
 //! The preview renderer: pictures that are not blank, motion where the ripples are and
-//! stillness where they are not, an undistorted bottom through flat water, the wireframe
-//! and the balls.
+//! stillness where they are not, an undistorted bottom through flat water, the wireframe,
+//! the balls and the facets of solids, which the water hides where it is in front.
 #![cfg(feature = "render")]
 
 use glam::Vec3;
-use springwater::render::{Ball, Camera, Frame, Look, RenderParams, Renderer, Texture};
+use springwater::render::{Ball, Camera, Facet, Frame, Look, RenderParams, Renderer, Texture};
 use springwater::{Params, Surface};
 
 fn luminance(frame: &Frame) -> Vec<f32> {
@@ -233,4 +233,52 @@ fn balls_are_drawn_over_the_water_and_bad_ones_refused() {
         colours: red,
     };
     assert!(renderer.set_balls(&[bad]).is_err());
+}
+
+/// A square of two facets lying flat at height `y` over the middle of a 48 × 48 pool.
+fn square(y: f32, colour: [f32; 3]) -> [Facet; 2] {
+    let (lo, hi) = (16.0, 32.0);
+    let p = |x: f32, z: f32| Vec3::new(x, y, z);
+    [
+        Facet {
+            corners: [p(lo, lo), p(lo, hi), p(hi, hi)],
+            colour,
+        },
+        Facet {
+            corners: [p(lo, lo), p(hi, hi), p(hi, lo)],
+            colour,
+        },
+    ]
+}
+
+#[test]
+fn facets_above_the_water_are_drawn_and_under_it_hidden() {
+    let water = Surface::new(Params::with_size(48, 48)).unwrap();
+    let camera = Camera::framing(48, 48, 1.0, 160, 120);
+    let mut renderer = Renderer::new(RenderParams::default(), Texture::pool_tiles(256)).unwrap();
+    let middle = Vec3::new(24.0, 0.0, 24.0);
+    let (x, y, _) = camera.project(middle).unwrap();
+    let red = [0.9, 0.0, 0.0];
+    let redness = |renderer: &mut Renderer| {
+        let frame = renderer.render(&water.mesh_view(), &camera).unwrap();
+        let [r, g, b] = frame.pixel(x as usize, y as usize);
+        (r, g, b)
+    };
+    let water_alone = redness(&mut renderer);
+    renderer.set_facets(&square(0.5, red)).unwrap();
+    let (r, g, b) = redness(&mut renderer);
+    assert!(
+        r > 150 && g < 60 && b < 60,
+        "a facet over the water is {r},{g},{b}"
+    );
+    // Half a unit under the flat water: the water is in front of it everywhere.
+    renderer.set_facets(&square(-0.5, red)).unwrap();
+    assert_eq!(redness(&mut renderer), water_alone);
+    // Refused, and the facets drawn before stay.
+    let mut bad = square(0.5, red);
+    bad[1].corners[2].x = f32::INFINITY;
+    assert!(renderer.set_facets(&bad).is_err());
+    let negative = square(0.5, [-0.1, 0.0, 0.0]);
+    assert!(renderer.set_facets(&negative).is_err());
+    assert_eq!(redness(&mut renderer), water_alone);
 }

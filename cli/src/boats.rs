@@ -5,16 +5,15 @@
 //! it leaves a wake. What the command adds is a helmsman: a thrust along the heading and a
 //! turning moment that keep each boat on its own circle, so the boats stay in the pool.
 //!
-//! The library's preview renderer draws the water; the hulls are drawn here, over its
-//! frame, as flat-shaded triangles with their own depth buffer. The renderer keeps its
-//! depth buffer to itself, so the water cannot hide a hull: instead every hull triangle is
-//! cut where it meets the water under it, and only the part above the surface is drawn.
+//! The library's preview renderer draws the hulls with the water, as facets sharing its
+//! depth buffer: the water hides a hull's part under the surface, and a crest between the
+//! camera and a boat hides the boat.
 
 use crate::args::CliResult;
 use glam::{Quat, Vec3};
 use springwater::body::{BoatShape, Hull};
 use springwater::disturb::Disturbance;
-use springwater::render::Camera;
+use springwater::render::Facet;
 use springwater::{Floater, FloaterId, Surface};
 use std::sync::Arc;
 
@@ -215,139 +214,35 @@ impl Disturbance for Fleet {
     }
 }
 
-/// Draws the hulls over frames: a depth buffer of its own, kept between frames.
+/// The hulls as facets for the renderer, which draws them with the water: a buffer kept
+/// between frames.
 #[derive(Debug, Default)]
 pub struct Painter {
-    depth: Vec<f32>,
-    /// Per hull vertex: its world position and how far above the water it is.
-    world: Vec<(Vec3, f32)>,
+    facets: Vec<Facet>,
 }
 
-/// A screen-space vertex: pixel position, 1/w for the depth test.
-type Screen = (f32, f32, f32);
-
 impl Painter {
-    /// Draws every boat of `fleet` into `rgb` (sRGB, `width × height`, as `camera` sees
-    /// it), lit by the sun from `sun`: each face its boat's colour (topsides or, facing up
-    /// in the boat's frame, deck) times an ambient and a diffuse term from its normal.
-    pub fn draw(
-        &mut self,
-        rgb: &mut [u8],
-        camera: &Camera,
-        sun: Vec3,
-        surface: &Surface,
-        fleet: &Fleet,
-    ) {
-        let (width, height) = (camera.width as usize, camera.height as usize);
-        self.depth.clear();
-        self.depth.resize(width * height, 0.0);
-        let sun = sun.normalize_or(Vec3::Y);
+    /// Every boat of `fleet` on `surface` as facets: each face its boat's colour, the
+    /// topsides' or, facing up in the boat's frame, the deck's.
+    pub fn facets(&mut self, surface: &Surface, fleet: &Fleet) -> &[Facet] {
+        self.facets.clear();
         let hull = &fleet.hull;
         for (k, b) in fleet.boats.iter().enumerate() {
             let Ok(body) = surface.floater(b.id) else {
                 continue;
             };
             let [topsides, deck] = COLOURS[k % COLOURS.len()];
-            self.world.clear();
-            self.world.extend(hull.vertices().iter().map(|&v| {
-                let p = body.position + body.orientation * Vec3::from(v);
-                let water = surface.height_at(p.x, p.z).unwrap_or(0.0);
-                (p, p.y - water)
-            }));
-            for tri in hull.triangles() {
-                let [a, b, c] = tri.map(|i| self.world[i as usize]);
-                let normal = (b.0 - a.0).cross(c.0 - a.0).normalize_or_zero();
+            let world =
+                |i: u32| body.position + body.orientation * Vec3::from(hull.vertices()[i as usize]);
+            self.facets.extend(hull.triangles().iter().map(|tri| {
+                let corners = tri.map(world);
+                let [a, b, c] = corners;
+                let normal = (b - a).cross(c - a).normalize_or_zero();
                 let up = body.orientation.inverse() * normal;
-                let base = if up.y > 0.7 { deck } else { topsides };
-                let light = 0.35 + 0.75 * normal.dot(sun).max(0.0);
-                let colour = base.map(|c| srgb(c * light));
-                let mut kept = [Vec3::ZERO; 4];
-                let n = above_water([a, b, c], &mut kept);
-                // A polygon with a corner behind the near plane is left out (a hull that
-                // close to the eye fills the picture anyway).
-                let mut screen = [(0.0, 0.0, 0.0); 4];
-                let mut seen = true;
-                for (s, &p) in screen.iter_mut().zip(&kept[..n]) {
-                    match camera.project(p) {
-                        Some((x, y, w)) => *s = (x, y, 1.0 / w),
-                        None => seen = false,
-                    }
-                }
-                if !seen {
-                    continue;
-                }
-                for i in 1..n.saturating_sub(1) {
-                    self.fill(
-                        rgb,
-                        width,
-                        height,
-                        [screen[0], screen[i], screen[i + 1]],
-                        colour,
-                    );
-                }
-            }
+                let colour = if up.y > 0.7 { deck } else { topsides };
+                Facet { corners, colour }
+            }));
         }
+        &self.facets
     }
-
-    /// Fills one triangle where it is nearer than what the hulls drew there before.
-    fn fill(&mut self, rgb: &mut [u8], width: usize, height: usize, t: [Screen; 3], c: [u8; 3]) {
-        let [(x0, y0, z0), (x1, y1, z1), (x2, y2, z2)] = t;
-        let area = (x1 - x0) * (y2 - y0) - (x2 - x0) * (y1 - y0);
-        if area.abs() < 1e-12 || !area.is_finite() {
-            return;
-        }
-        let lo = |a: f32, b: f32, c: f32| a.min(b).min(c).floor().max(0.0) as usize;
-        let hi =
-            |a: f32, b: f32, c: f32, n: usize| (a.max(b).max(c).ceil().max(0.0) as usize).min(n);
-        for py in lo(y0, y1, y2)..hi(y0, y1, y2, height) {
-            for px in lo(x0, x1, x2)..hi(x0, x1, x2, width) {
-                let (x, y) = (px as f32 + 0.5, py as f32 + 0.5);
-                // Barycentric weights, each ≥ 0 inside whichever way the triangle winds.
-                let w0 = ((x1 - x) * (y2 - y) - (x2 - x) * (y1 - y)) / area;
-                let w1 = ((x2 - x) * (y0 - y) - (x0 - x) * (y2 - y)) / area;
-                let w2 = 1.0 - w0 - w1;
-                if w0 < 0.0 || w1 < 0.0 || w2 < 0.0 {
-                    continue;
-                }
-                // 1/w is linear on the screen: the larger, the nearer.
-                let z = w0 * z0 + w1 * z1 + w2 * z2;
-                let i = py * width + px;
-                if z > self.depth[i] {
-                    self.depth[i] = z;
-                    rgb[3 * i..3 * i + 3].copy_from_slice(&c);
-                }
-            }
-        }
-    }
-}
-
-/// The part of a triangle above the water: the triangle's corners with their heights
-/// above the water under them, cut where the height changes sign (linearly along each
-/// edge). Writes the polygon's corners (0, 3 or 4 of them) into `out` and returns how many.
-fn above_water(t: [(Vec3, f32); 3], out: &mut [Vec3; 4]) -> usize {
-    let mut n = 0;
-    for i in 0..3 {
-        let (a, da) = t[i];
-        let (b, db) = t[(i + 1) % 3];
-        if da >= 0.0 {
-            out[n] = a;
-            n += 1;
-        }
-        if (da >= 0.0) != (db >= 0.0) {
-            out[n] = a + (b - a) * (da / (da - db));
-            n += 1;
-        }
-    }
-    n
-}
-
-/// Linear light to an 8-bit sRGB value.
-fn srgb(linear: f32) -> u8 {
-    let c = linear.clamp(0.0, 1.0);
-    let s = if c <= 0.003_130_8 {
-        12.92 * c
-    } else {
-        1.055 * c.powf(1.0 / 2.4) - 0.055
-    };
-    (s * 255.0 + 0.5) as u8
 }

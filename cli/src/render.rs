@@ -499,7 +499,6 @@ fn animate(
         n => Some(boats::Fleet::launch(&mut surface, n)?),
     };
     let mut painter = boats::Painter::default();
-    let mut picture = Vec::new();
     let mut balls = Vec::new();
     for k in 0..o.frames {
         let t = Instant::now();
@@ -543,6 +542,11 @@ fn animate(
         if wake.is_some() || !balls.is_empty() {
             renderer.set_balls(&balls).map_err(|e| e.to_string())?;
         }
+        if let Some(fleet) = &mut fleet {
+            fleet.observe(&surface);
+            let hulls = painter.facets(&surface, fleet);
+            renderer.set_facets(hulls).map_err(|e| e.to_string())?;
+        }
         let mut camera = *camera;
         // The camera rides with the window (positions are in the water frame).
         let [ox, oz] = surface.origin();
@@ -559,18 +563,7 @@ fn animate(
             .render(&surface.mesh_view(), &camera)
             .map_err(|e| e.to_string())?;
         clock.stages += renderer.times();
-        let mut rgb = renderer.frame().rgb();
-        if let Some(fleet) = &mut fleet {
-            fleet.observe(&surface);
-            let t = Instant::now();
-            picture.clear();
-            picture.extend_from_slice(rgb);
-            let sun = renderer.params().look.sun;
-            painter.draw(&mut picture, &camera, sun, &surface, fleet);
-            clock.stages.drawing += t.elapsed();
-            rgb = &picture;
-        }
-        each(k, rgb)?;
+        each(k, renderer.frame().rgb())?;
     }
     Ok(Run {
         raindrops: rain.fallen(),

@@ -28,7 +28,9 @@
 //! pixel samples the bottom texture at its interpolated UV and mixes
 //! `bottom × transmitted` with `sky` by the Fresnel term. Pixels no triangle covers show
 //! the pool deck (the plane y = 0 around the water) or the sky. Floating [`Ball`]s (a
-//! buoy, the object making a wake) are drawn with the water, sharing its depth buffer.
+//! buoy, the object making a wake) and the [`Facet`]s of solids (a hull, a crate) are
+//! drawn with the water, sharing its depth buffer: the water hides them where it is in
+//! front of them.
 //!
 //! **Caustics** use the area-ratio method: the sunlight is refracted through every
 //! node with the same [`refract`] call (the eye far away along the sun direction), and
@@ -60,6 +62,7 @@
 
 mod camera;
 mod raster;
+mod solids;
 mod texture;
 
 use std::time::{Duration, Instant};
@@ -67,13 +70,15 @@ use std::time::{Duration, Instant};
 use glam::Vec3;
 
 pub use camera::Camera;
+pub use solids::{Ball, Facet};
 pub use texture::Texture;
 
 use crate::error::{Error, Result};
 use crate::mesh::{compute_normals, LodMesh, LodParams, Normals};
 use crate::refraction::{refract, Refraction, RefractionParams};
 use crate::view::MeshView;
-use raster::{ClipVertex, Rasteriser, Target, NO_WIRE, VALUES};
+use raster::{ClipVertex, Rasteriser, Target, VALUES};
+use solids::{push_ball, push_facets};
 use texture::SrgbEncoder;
 
 /// How the scene looks. Colours are linear RGB in `[0, 1]`.
@@ -220,18 +225,6 @@ impl Frame {
     }
 }
 
-/// A floating ball drawn with the water (a buoy, a toy boat, the object making a wake):
-/// two-coloured stripes, lit by the sun.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Ball {
-    /// Centre in the water's space.
-    pub centre: Vec3,
-    /// Radius in world units.
-    pub radius: f32,
-    /// The colours of its alternate stripes, linear RGB.
-    pub colours: [[f32; 3]; 2],
-}
-
 /// Draws frames of a surface. Owns every buffer it needs and keeps them between frames.
 #[derive(Debug)]
 pub struct Renderer {
@@ -250,6 +243,7 @@ pub struct Renderer {
     encoder: SrgbEncoder,
     times: StageTimes,
     balls: Vec<Ball>,
+    facets: Vec<Facet>,
     /// The rest footprint `(width, depth)` of the last surface drawn, world units.
     footprint: (f32, f32),
 }
@@ -282,6 +276,7 @@ impl Renderer {
             encoder: SrgbEncoder::new(),
             times: StageTimes::default(),
             balls: Vec::new(),
+            facets: Vec::new(),
             footprint: (0.0, 0.0),
         })
     }
@@ -318,6 +313,28 @@ impl Renderer {
         }
         self.balls.clear();
         self.balls.extend_from_slice(balls);
+        Ok(())
+    }
+
+    /// Sets the facets drawn from the next frame on (none by default): the triangles of
+    /// solids such as hulls, drawn with the water and hidden where it is in front of
+    /// them. A facet with a corner that is not finite, or a colour that is not finite and
+    /// ≥ 0, is refused (and nothing changes).
+    pub fn set_facets(&mut self, facets: &[Facet]) -> Result<()> {
+        for f in facets {
+            if !f.corners.iter().all(|c| c.is_finite()) {
+                return Err(Error::InvalidParam {
+                    name: "facet corner",
+                    value: f64::NAN,
+                    expected: "finite coordinates",
+                });
+            }
+            for c in f.colour {
+                crate::params::non_negative("facet colour", c)?;
+            }
+        }
+        self.facets.clear();
+        self.facets.extend_from_slice(facets);
         Ok(())
     }
 
@@ -549,9 +566,10 @@ impl Renderer {
         for ball in &self.balls {
             push_ball(&mut self.raster, ball, camera, &look, width, height);
         }
+        push_facets(&mut self.raster, &self.facets, camera, &look, width, height);
         let bottom = &self.bottom;
-        // Balls come through the same shader: reflectance 1 and their colour as the
-        // "sky", so a pixel of a ball is its colour.
+        // Balls and facets come through the same shader: reflectance 1 and their colour as
+        // the "sky", so a pixel of either is its colour.
         let shade = |v: &[f32; VALUES]| -> [f32; 3] {
             let tex = bottom.sample(v[0], v[1]);
             let f = v[2];
@@ -598,52 +616,6 @@ impl Renderer {
             .iter()
             .zip(self.frame.rgb.chunks_exact_mut(3))
             .for_each(encode);
-    }
-}
-
-/// Triangulates a ball as a 12 × 16 latitude-longitude sphere and pushes it, each vertex
-/// coloured by its stripe and lit by the sun (ambient plus diffuse plus a highlight).
-fn push_ball(
-    raster: &mut Rasteriser,
-    ball: &Ball,
-    camera: &Camera,
-    look: &Look,
-    width: usize,
-    height: usize,
-) {
-    const RINGS: usize = 12;
-    const SEGMENTS: usize = 16;
-    let vp = camera.view_projection();
-    let sun = look.sun.normalize();
-    let vertex = |ring: usize, seg: usize| -> ClipVertex {
-        let theta = std::f32::consts::PI * ring as f32 / RINGS as f32;
-        let phi = std::f32::consts::TAU * seg as f32 / SEGMENTS as f32;
-        let n = Vec3::new(
-            theta.sin() * phi.cos(),
-            theta.cos(),
-            theta.sin() * phi.sin(),
-        );
-        let p = ball.centre + n * ball.radius;
-        // Three stripes: colour 0 at the poles and colour 1 round the middle.
-        let stripe = ball.colours[usize::from((RINGS / 3..2 * RINGS / 3).contains(&ring))];
-        let to_eye = (camera.eye - p).normalize_or(Vec3::Y);
-        let half = (to_eye + sun).normalize_or(Vec3::Y);
-        let diffuse = n.dot(sun).max(0.0);
-        let highlight = 0.5 * n.dot(half).max(0.0).powi(40);
-        let c = stripe.map(|s| s * (0.35 + 0.75 * diffuse) + highlight);
-        let values = [0.0, 0.0, 1.0, 0.0, 0.0, 0.0, c[0], c[1], c[2]];
-        ClipVertex {
-            clip: vp * p.extend(1.0),
-            values,
-        }
-    };
-    for ring in 0..RINGS {
-        for seg in 0..SEGMENTS {
-            let (a, b) = (vertex(ring, seg), vertex(ring, seg + 1));
-            let (c, d) = (vertex(ring + 1, seg), vertex(ring + 1, seg + 1));
-            raster.push([a, c, b], NO_WIRE, width, height);
-            raster.push([b, c, d], NO_WIRE, width, height);
-        }
     }
 }
 
