@@ -103,7 +103,7 @@ impl Frame {
         );
         let ripple = |c: f64, r: f64, m: f64| (3.0 * c * (1.0 - r) / m).sqrt();
         let ideal = SEED_PEAK_RATE * ripple(c, params.rest_ratio as f64, m) / ripple(7.0, 0.5, 4.0);
-        let limit = (4.0 - 12.0 * c / m * dt * dt) / (2.0 * dt);
+        let limit = crate::stability::damping_limit(12.0 * c / m, dt);
         let room = LIMIT_SHARE * limit - params.viscosity as f64 / m;
         let rate = ideal.min(room).max(0.0);
         let peak = (rate * m) as f32;

@@ -124,6 +124,7 @@ pub mod render;
 mod rng;
 mod simd;
 mod springs;
+mod stability;
 mod state;
 mod surface;
 mod view;

@@ -1,6 +1,7 @@
 //! Model parameters with the seed's defaults ([`Params`]; its docs explain the timestep limits).
 
 use crate::error::{Error, Result};
+use crate::stability::{check_dt, Stability};
 
 /// What happens at the edge of the grid (`#[non_exhaustive]`: a kind of edge may come).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -302,7 +303,8 @@ impl Params {
     /// The guaranteed (large-wave) stability limit: `sqrt(m / (3c))` without viscosity,
     /// a little less with it (see the [`Params`] docs).
     pub fn critical_dt(&self) -> f32 {
-        critical_dt(self.mass, self.stiffness, self.viscosity)
+        let stability = Stability::from_bounds([self.mass, self.stiffness, self.viscosity]);
+        stability.critical_dt(0.0)
     }
 
     /// The linear stability limit at rest `sqrt(m / (c (3 − rest_ratio)))`: see the [`Params`] docs.
@@ -444,45 +446,6 @@ fn check_time_scale(time_scale: f32) -> Result<()> {
 
 /// Largest grid extent `spacing × (max(cols, rows) − 1)` that validation accepts.
 pub const MAX_EXTENT: f64 = 1e15;
-
-/// The large-wave limit for the smallest mass, largest coefficient and largest viscosity:
-/// `sqrt(m / (3c))` without viscosity, else the positive root of
-/// `(12c/m) Δt² + 2(γ/m) Δt = 4` (see the [`Params`] docs).
-pub(crate) fn critical_dt(min_mass: f32, max_stiffness: f32, max_viscosity: f32) -> f32 {
-    critical_dt_with(min_mass, max_stiffness, max_viscosity, 0.0)
-}
-
-/// [`critical_dt`] with `extra` stiffness (force per length) on every node besides its
-/// springs' (floating bodies' waterlines): `ω²max = (12c + extra)/m`.
-pub(crate) fn critical_dt_with(
-    min_mass: f32,
-    max_stiffness: f32,
-    max_viscosity: f32,
-    extra: f32,
-) -> f32 {
-    if max_viscosity == 0.0 && extra == 0.0 {
-        return (min_mass / (3.0 * max_stiffness)).sqrt();
-    }
-    let a = (12.0 * max_stiffness as f64 + extra as f64) / min_mass as f64;
-    if max_viscosity == 0.0 {
-        return (4.0 / a).sqrt() as f32;
-    }
-    let b = max_viscosity as f64 / min_mass as f64;
-    // (sqrt(b² + 4a) − b) / a, written without cancellation as 4 / (sqrt(b² + 4a) + b).
-    (4.0 / ((b * b + 4.0 * a).sqrt() + b)) as f32
-}
-
-pub(crate) fn check_dt(dt: f32, critical: f32) -> Result<()> {
-    if dt < critical {
-        Ok(())
-    } else {
-        Err(Error::TimestepTooLarge {
-            dt,
-            critical,
-            suggest: 0.95 * critical,
-        })
-    }
-}
 
 pub(crate) fn positive(name: &'static str, v: f32) -> Result<()> {
     if v.is_finite() && v > 0.0 {

@@ -201,12 +201,9 @@ impl Surface {
                 expected: "at least 1.2e-38 (the reciprocal must be finite)",
             });
         }
-        let min_mass = self.min_mass.min(mass);
-        params::check_dt(
-            self.params.dt,
-            self.limit(min_mass, self.max_stiffness, self.max_viscosity),
-        )?;
-        self.min_mass = min_mass;
+        let stability = self.stability.with_mass(mass);
+        self.admit_bounds(stability)?;
+        self.stability = stability;
         self.state.mass.set(node, mass);
         self.window_custom = true;
         if !self.state.pinned[node] {
@@ -221,12 +218,9 @@ impl Surface {
     pub fn set_viscosity(&mut self, node: usize, viscosity: f32) -> Result<()> {
         self.check_node(node)?;
         params::non_negative("viscosity", viscosity)?;
-        let max_viscosity = self.max_viscosity.max(viscosity);
-        params::check_dt(
-            self.params.dt,
-            self.limit(self.min_mass, self.max_stiffness, max_viscosity),
-        )?;
-        self.max_viscosity = max_viscosity;
+        let stability = self.stability.with_viscosity(viscosity);
+        self.admit_bounds(stability)?;
+        self.stability = stability;
         self.state.viscosity.set(node, viscosity);
         self.window_custom = true;
         Ok(())
@@ -287,12 +281,9 @@ impl Surface {
         }
         params::non_negative("rest length", rest)?;
         params::positive("stiffness", coef)?;
-        let max_stiffness = self.max_stiffness.max(coef);
-        params::check_dt(
-            self.params.dt,
-            self.limit(self.min_mass, max_stiffness, self.max_viscosity),
-        )?;
-        self.max_stiffness = max_stiffness;
+        let stability = self.stability.with_stiffness(coef);
+        self.admit_bounds(stability)?;
+        self.stability = stability;
         self.springs.set(id, rest, coef);
         Ok(())
     }

@@ -33,9 +33,10 @@ use crate::forces;
 use crate::forces::engine::Workspace;
 use crate::grid::Grid;
 use crate::jobs::{Host, JobSystem, Runner};
-use crate::params::{self, Params};
+use crate::params::Params;
 use crate::simd::SimdLevel;
 use crate::springs::Springs;
+use crate::stability::Stability;
 use crate::state::State;
 use crate::view::MeshView;
 use std::sync::Arc;
@@ -89,9 +90,7 @@ pub struct Surface {
     simd: SimdLevel,
     /// Smallest node mass, largest spring coefficient and largest viscosity ever set: they
     /// set `critical_dt`.
-    min_mass: f32,
-    max_stiffness: f32,
-    max_viscosity: f32,
+    stability: Stability,
     steps: u64,
     time: f64,
     /// The accumulator of [`Surface::advance`] and its cap.
@@ -177,16 +176,13 @@ impl Surface {
         bounds: [f32; 3],
         progress: (u64, f64),
     ) -> Self {
-        let [min_mass, max_stiffness, max_viscosity] = bounds;
         Self {
             workspace: Workspace::new(None),
             reference: Default::default(),
             simd: SimdLevel::detect(),
             state,
             springs,
-            min_mass,
-            max_stiffness,
-            max_viscosity,
+            stability: Stability::from_bounds(bounds),
             steps: progress.0,
             time: progress.1,
             clock: Default::default(),
@@ -255,17 +251,13 @@ impl Surface {
     /// While bodies float ([`Surface::add_floater`]) their waterlines stiffen the nodes
     /// under them, and the limit includes that (see [`crate::floater`]).
     pub fn critical_dt(&self) -> f32 {
-        self.limit(self.min_mass, self.max_stiffness, self.max_viscosity)
+        self.stability.critical_dt(self.floater_stiffness())
     }
 
-    /// The critical timestep for these bounds and the surface's bodies.
-    fn limit(&self, min_mass: f32, max_stiffness: f32, max_viscosity: f32) -> f32 {
-        params::critical_dt_with(
-            min_mass,
-            max_stiffness,
-            max_viscosity,
-            self.floater_stiffness(),
-        )
+    /// Refuses `params().dt` for `stability`, the bounds an edit would give the surface,
+    /// with its bodies' waterlines.
+    fn admit_bounds(&self, stability: Stability) -> Result<()> {
+        stability.admit(self.params.dt, self.floater_stiffness())
     }
 
     /// Positions `[x, y, z]`, one value per node, row-major.

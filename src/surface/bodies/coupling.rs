@@ -357,7 +357,9 @@ impl Surface {
             scale: self.params.time_scale,
             spacing: self.params.spacing,
             seconds,
-            room_rate: self.damping_room(self.params.dt),
+            room_rate: self
+                .stability
+                .damping_room(self.params.dt, self.floater_stiffness()),
             steps: self.steps(),
         }
     }
@@ -417,13 +419,6 @@ impl Surface {
             value: f64::INFINITY,
             expected: "finite: the bodies' reactions overflow f32",
         })
-    }
-
-    /// The damping rate per unit of model time the water's step has room for at the
-    /// stiffest node with the waterline springs (`b_lim`, see the `absorb` module).
-    fn damping_room(&self, dt: f32) -> f32 {
-        let omega2 = (12.0 * self.max_stiffness + self.floater_stiffness()) / self.min_mass;
-        ((4.0 - omega2 * dt * dt) / (2.0 * dt)).max(0.0)
     }
 
     /// The water's force and torque on a body another physics engine owns, over the

@@ -130,7 +130,7 @@ impl Surface {
     /// The orientation is stored normalised.
     pub fn add_floater(&mut self, body: Floater) -> Result<FloaterId> {
         let body = self.admit(body, Vec3::ZERO, Vec3::ZERO)?;
-        params::check_dt(self.params.dt, self.limit_with(self.bodies.buoyancy))?;
+        self.admit_with(self.bodies.buoyancy)?;
         let mesh = coupling::wet_mesh(&body.shape, self.params.spacing)?;
         let id = FloaterId(self.bodies.next_id);
         self.bodies.next_id = id.0.checked_add(1).ok_or(Error::InvalidParam {
@@ -250,20 +250,16 @@ impl Surface {
     pub fn set_buoyancy(&mut self, buoyancy: Buoyancy) -> Result<()> {
         buoyancy.validate()?;
         if !self.bodies.bodies.is_empty() {
-            params::check_dt(self.params.dt, self.limit_with(buoyancy))?;
+            self.admit_with(buoyancy)?;
         }
         self.bodies.buoyancy = buoyancy;
         Ok(())
     }
 
-    /// The critical timestep of the current tables with bodies floating in `buoyancy`.
-    fn limit_with(&self, buoyancy: Buoyancy) -> f32 {
-        params::critical_dt_with(
-            self.min_mass,
-            self.max_stiffness,
-            self.max_viscosity,
-            buoyancy.node_stiffness(self.params.spacing, self.params.time_scale),
-        )
+    /// Refuses `params().dt` for the current tables with bodies floating in `buoyancy`.
+    fn admit_with(&self, buoyancy: Buoyancy) -> Result<()> {
+        let extra = buoyancy.node_stiffness(self.params.spacing, self.params.time_scale);
+        self.stability.admit(self.params.dt, extra)
     }
 
     /// The waterline stiffness the bodies add to a node (0 without bodies).

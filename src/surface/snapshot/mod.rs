@@ -36,6 +36,7 @@ use crate::grid::Grid;
 use crate::params::{Boundary, Params};
 use crate::simd::Floats;
 use crate::springs::Springs;
+use crate::stability::Stability;
 use crate::state::State;
 use crate::surface::bodies::Entry;
 use std::io::{Read, Write};
@@ -487,7 +488,7 @@ impl Surface {
         self.params = s.params;
         self.steps = s.steps;
         self.time = s.model_time;
-        [self.min_mass, self.max_stiffness, self.max_viscosity] = s.bounds;
+        self.stability = Stability::from_bounds(s.bounds);
         self.bodies.set_world(s.next_floater_id, s.buoyancy);
         self.window_origin = s.origin_cells;
         self.clock.owed = s.owed_time;

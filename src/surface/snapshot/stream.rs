@@ -326,7 +326,7 @@ impl Surface {
                 params: self.params,
                 steps: self.steps,
                 model_time: self.time,
-                bounds: [self.min_mass, self.max_stiffness, self.max_viscosity],
+                bounds: self.stability.bounds(),
                 forces_pending: s.ext.is_pending(),
                 next_floater_id: self.bodies.next_id(),
                 buoyancy: self.buoyancy(),

@@ -15,6 +15,7 @@ use crate::error::Result;
 use crate::floater::{Floater, FloaterId};
 use crate::grid::{Family, Grid};
 use crate::params;
+use crate::stability::Stability;
 use crate::surface::bodies::Entry;
 use crate::surface::{Surface, MAX_ORIGIN_CELLS};
 use std::ops::Range;
@@ -438,8 +439,8 @@ where
         } else {
             0.0
         };
-        let [min_mass, max_stiffness, max_viscosity] = s.bounds;
-        let critical = params::critical_dt_with(min_mass, max_stiffness, max_viscosity, extra);
-        params::check_dt(p.dt, critical).map_err(|e| bad(e.to_string()))
+        Stability::from_bounds(s.bounds)
+            .admit(p.dt, extra)
+            .map_err(|e| bad(e.to_string()))
     }
 }
