@@ -159,8 +159,10 @@ pub mod internals {
     pub use crate::refraction::scalar::{refract_node, refract_scalar};
 
     pub use crate::baselines::{MemoryFloor, NaiveSurface};
+    pub use crate::forces::engine::tiling::{
+        band_rows, bands, Band, Tiling, MAX_BAND_ROWS, MIN_BAND_ROWS,
+    };
     pub use crate::forces::engine::MAX_PASS_STEPS;
-    pub use crate::springs::{band_rows, bands, Band, Tiling, MAX_BAND_ROWS, MIN_BAND_ROWS};
     pub use crate::surface::tuning::Tuning;
 }
 

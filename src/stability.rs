@@ -145,9 +145,15 @@ mod tests {
 
     #[test]
     fn bounds_only_move_towards_less_room() {
-        let s = seed().with_mass(8.0).with_stiffness(1.0).with_viscosity(0.01);
+        let s = seed()
+            .with_mass(8.0)
+            .with_stiffness(1.0)
+            .with_viscosity(0.01);
         assert_eq!(s, seed());
-        let s = seed().with_mass(2.0).with_stiffness(9.0).with_viscosity(0.5);
+        let s = seed()
+            .with_mass(2.0)
+            .with_stiffness(9.0)
+            .with_viscosity(0.5);
         assert_eq!(s.bounds(), [2.0, 9.0, 0.5]);
         assert!(s.critical_dt(0.0) < seed().critical_dt(0.0));
     }

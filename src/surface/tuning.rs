@@ -6,9 +6,9 @@
 //! load the water column carries.
 
 use super::Surface;
+use crate::forces::engine::tiling::{self, Band};
 use crate::forces::engine::{Workspace, MAX_PASS_STEPS};
 use crate::jobs::Runner;
-use crate::springs::{self, Band};
 
 /// How the engine cuts a step into colour batches and passes.
 pub trait Tuning {
@@ -17,7 +17,7 @@ pub trait Tuning {
     /// Fixes how many steps one engine pass takes (`1..=8`, clamped; default 4).
     fn set_pass_steps(&mut self, steps: usize);
     /// The colour batches the engine uses on the current thread pool: bands of rows, even
-    /// bands colour 0, odd bands colour 1 (see [`crate::springs`]), as they stand at the
+    /// bands colour 0, odd bands colour 1 (see [`tiling::Tiling`]), as they stand at the
     /// start of a pass (the tiling says how they lean through its steps).
     fn bands(&self) -> impl Iterator<Item = Band>;
     /// The water column under the bodies, node by node (sorted): the load each node
@@ -43,7 +43,7 @@ impl Tuning for Surface {
         let tiling = self
             .workspace
             .tiling(self.params.rows, self.workspace.pass_steps, workers);
-        springs::bands(self.params.rows, tiling.band_rows)
+        tiling::bands(self.params.rows, tiling.band_rows)
     }
 
     fn water_column(&self) -> Vec<(usize, [f32; 3], [f32; 3])> {

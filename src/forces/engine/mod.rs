@@ -2,16 +2,16 @@
 //! and several steps per pass over memory, at the SIMD level the CPU has.
 //!
 //! * [`row`]: the row kernel, one row advanced one step in one pass over its chunks.
-//! * [`schedule`]: bands, colours, handoffs and the wavefront over levels.
+//! * [`schedule`]: bands, colours, handoffs and the wavefront over layers.
 //! * [`scratch`]: the chunk-major rows the kernel reads and writes besides the state.
 //!
-//! # Several steps per pass (levels)
+//! # Several steps per pass (layers)
 //!
 //! One step reads 56 B per node and writes 48 B, and on a grid larger than the caches
-//! that traffic, not arithmetic, sets the speed. A pass therefore advances `levels` steps
-//! while reading the state once: level 0 is the front buffer, the last level goes to the
-//! back buffer, and every level in between lives in a ring of two rows per level that
-//! stays in cache. Only the last level is written to memory, on large grids with
+//! that traffic, not arithmetic, sets the speed. A pass therefore advances `layers` steps
+//! while reading the state once: layer 0 is the front buffer, the last layer goes to the
+//! back buffer, and every layer in between lives in a ring of two rows per layer that
+//! stays in cache. Only the last layer is written to memory, on large grids with
 //! non-temporal stores ([`STREAM_MIN_NODES`]).
 //!
 //! # Levels of SIMD
@@ -29,16 +29,18 @@ mod access;
 mod row;
 mod schedule;
 mod scratch;
+pub(crate) mod tiling;
 
 use super::StepConfig;
 use crate::jobs::Runner;
 use crate::simd::{Kernel, SimdLevel, Vector};
-use crate::springs::{Springs, Tiling};
+use crate::springs::Springs;
 use crate::state::State;
 use access::Claims;
 pub(crate) use schedule::PassEnd;
 use scratch::Row;
 use std::any::Any;
+use tiling::Tiling;
 
 /// Most steps one pass takes.
 pub const MAX_PASS_STEPS: usize = 8;
@@ -47,20 +49,20 @@ pub const MAX_PASS_STEPS: usize = 8;
 /// the rows in flight of a 2048-column pass outgrow a 1 MB L2).
 pub const DEFAULT_PASS_STEPS: usize = 4;
 
-/// Grids of at least this many nodes (and whole chunks per row) write the last level of a
+/// Grids of at least this many nodes (and whole chunks per row) write the last layer of a
 /// pass with non-temporal stores ([`Vector::stream`]): the back buffers are not read
 /// before the next pass, and on a grid larger than the caches that read would come from
 /// memory anyway, so loading each line before writing it only costs bandwidth. At 2¹⁹
 /// nodes the front and back state take 25 MB, near a 32 MB L3 (`docs/performance.md`).
 pub const STREAM_MIN_NODES: usize = 1 << 19;
 
-/// What an even band hands to the odd band across one cut: for each level `1..levels`,
+/// What an even band hands to the odd band across one cut: for each layer `1..layers`,
 /// the two rows next to the cut (upper first).
 pub(crate) type Handoff<V> = Vec<[Row<V>; 2]>;
 
 /// The engine's reusable buffers: the tiling in use and one [`Handoff`] per cut.
 pub(crate) struct Workspace {
-    /// A band height fixed by the caller, or `None` to follow [`crate::springs::band_rows`].
+    /// A band height fixed by the caller, or `None` to follow [`tiling::band_rows`].
     fixed_band_rows: Option<usize>,
     /// Steps per pass.
     pub pass_steps: usize,
@@ -106,16 +108,16 @@ impl Workspace {
         }
     }
 
-    /// The tiling for a pass of `levels` steps on `workers` threads, its handoff slots and
+    /// The tiling for a pass of `layers` steps on `workers` threads, its handoff slots and
     /// band claims, made again when the tiling, the width or the vector type changes.
     fn prepare<V: Vector>(
         &mut self,
         cols: usize,
         rows: usize,
-        levels: usize,
+        layers: usize,
         workers: usize,
     ) -> (Tiling, &mut Vec<Handoff<V>>, &mut Claims) {
-        let tiling = self.tiling(rows, levels, workers);
+        let tiling = self.tiling(rows, layers, workers);
         let key = (tiling, cols, std::any::TypeId::of::<V>());
         if self.made_for != Some(key) || self.handoffs.is_none() {
             let slots = if tiling.bands() > 1 {
@@ -125,8 +127,8 @@ impl Workspace {
             };
             let handoffs: Vec<Handoff<V>> = (0..slots)
                 .map(|b| {
-                    let levels = if b == 0 { 0 } else { levels - 1 };
-                    (0..levels)
+                    let layers = if b == 0 { 0 } else { layers - 1 };
+                    (0..layers)
                         .map(|_| [Row::new(cols), Row::new(cols)])
                         .collect()
                 })
@@ -143,16 +145,16 @@ impl Workspace {
         (tiling, handoffs, &mut self.claims)
     }
 
-    /// How a pass of `levels` steps cuts `rows` rows for `workers` threads.
-    pub fn tiling(&self, rows: usize, levels: usize, workers: usize) -> Tiling {
+    /// How a pass of `layers` steps cuts `rows` rows for `workers` threads.
+    pub fn tiling(&self, rows: usize, layers: usize, workers: usize) -> Tiling {
         let band_rows = self
             .fixed_band_rows
-            .unwrap_or_else(|| crate::springs::band_rows(rows, workers));
-        Tiling::new(rows, band_rows, levels)
+            .unwrap_or_else(|| tiling::band_rows(rows, workers));
+        Tiling::new(rows, band_rows, layers)
     }
 }
 
-/// One engine pass of `levels` steps (`1..=MAX_PASS_STEPS`) from the front into the back
+/// One engine pass of `layers` steps (`1..=MAX_PASS_STEPS`) from the front into the back
 /// buffers, with the lanes of `level` (clamped to the CPU's; the portable lanes for
 /// [`SimdLevel::Scalar`], whose callers run the scalar reference instead), each colour's
 /// bands run by `runner`.
@@ -161,7 +163,7 @@ pub(crate) fn pass(
     springs: &Springs,
     ws: &mut Workspace,
     cfg: StepConfig,
-    levels: usize,
+    layers: usize,
     level: SimdLevel,
     runner: Runner<'_>,
 ) -> PassEnd {
@@ -172,7 +174,7 @@ pub(crate) fn pass(
             springs,
             ws,
             cfg,
-            levels,
+            layers,
             runner,
         },
     )
@@ -184,7 +186,7 @@ struct Pass<'a> {
     springs: &'a Springs,
     ws: &'a mut Workspace,
     cfg: StepConfig,
-    levels: usize,
+    layers: usize,
     runner: Runner<'a>,
 }
 
@@ -198,7 +200,7 @@ impl Kernel for Pass<'_> {
             self.springs,
             self.ws,
             self.cfg,
-            self.levels,
+            self.layers,
             self.runner,
         )
     }

@@ -61,7 +61,7 @@ pub(super) struct Inputs<'a, V: Vector> {
     /// (the usual case: no spring was edited). The hot loop then keeps them in registers.
     pub uniform: Option<[(f32, f32); 4]>,
     pub cfg: StepConfig,
-    /// The last level goes to the back buffers with non-temporal stores (see
+    /// The last layer goes to the back buffers with non-temporal stores (see
     /// [`super::STREAM_MIN_NODES`]): every row then starts on a lane boundary.
     pub stream: bool,
     _lanes: std::marker::PhantomData<V>,
@@ -119,7 +119,7 @@ impl<'a, V: Vector> Inputs<'a, V> {
         self.cols.div_ceil(V::LANES)
     }
 
-    /// Row `r` of the front buffers (level 0).
+    /// Row `r` of the front buffers (layer 0).
     #[inline(always)]
     pub fn front(&self, r: usize) -> FrontRow<'a, V> {
         FrontRow::new(self.pos, self.vel, r * self.cols, self.chunks())
@@ -173,21 +173,21 @@ impl<V: Vector> Edges<V> {
     }
 }
 
-/// Where the rows of the level a row is advanced from live.
-pub(super) enum Level<'a, V> {
-    /// Level 0: the front buffers.
+/// Where the rows of the layer a row is advanced from live.
+pub(super) enum Layer<'a, V> {
+    /// Layer 0: the front buffers.
     Front,
-    /// A level in flight: row `r` in slot `r % 2` of its ring.
+    /// A layer in flight: row `r` in slot `r % 2` of its ring.
     Ring(&'a [Row<V>; 2]),
 }
 
-impl<V> Clone for Level<'_, V> {
+impl<V> Clone for Layer<'_, V> {
     fn clone(&self) -> Self {
         *self
     }
 }
 
-impl<V> Copy for Level<'_, V> {}
+impl<V> Copy for Layer<'_, V> {}
 
 /// Where a row's new values go.
 pub(super) enum RowOut<'a, V> {
@@ -208,7 +208,7 @@ fn spring_force<V: Vector>(pi: [V; 3], pj: [V; 3], coef: V, rest: V) -> [V; 3] {
     [s * d[0], s * d[1], s * d[2]]
 }
 
-/// Evaluates the S, SE and SW springs from row `r` of level `from` down to row r+1 (zero
+/// Evaluates the S, SE and SW springs from row `r` of layer `from` down to row r+1 (zero
 /// on the last row) into `out`: what row r sends to the next row. Only for the row just
 /// above a band's rows; [`advance_row`] does this for its own rows on the way. Inlined into
 /// the band, inside the level's instruction set, like [`advance_row`].
@@ -216,7 +216,7 @@ fn spring_force<V: Vector>(pi: [V; 3], pj: [V; 3], coef: V, rest: V) -> [V; 3] {
 pub(super) fn down_springs<V: Vector>(
     inp: &Inputs<V>,
     r: usize,
-    from: Level<V>,
+    from: Layer<V>,
     out: &mut RowForces<V>,
 ) {
     if r + 1 == inp.rows {
@@ -224,8 +224,8 @@ pub(super) fn down_springs<V: Vector>(
         return;
     }
     match from {
-        Level::Front => springs_down(inp, r, inp.front(r), inp.front(r + 1), out),
-        Level::Ring(ring) => {
+        Layer::Front => springs_down(inp, r, inp.front(r), inp.front(r + 1), out),
+        Layer::Ring(ring) => {
             let (here, down) = (
                 ring[r % 2].groups(inp.cols),
                 ring[(r + 1) % 2].groups(inp.cols),
@@ -237,7 +237,7 @@ pub(super) fn down_springs<V: Vector>(
 
 /// [`down_springs`] from row `here` to row `down`. Its springs come from the tables if
 /// the springs have them, else the shared values: one copy of the loop for both, with a
-/// branch per chunk ([`EitherValues`]). This runs once per band and level, and a second
+/// branch per chunk ([`EitherValues`]). This runs once per band and layer, and a second
 /// copy of the loop, as [`RowKernel::advance`] has, added a quarter to the crate's compile
 /// time for no measurable speed.
 #[inline(always)]
@@ -274,12 +274,12 @@ fn springs_down<V: Vector, S: Source<V>>(
     }
 }
 
-/// Advances row `r` one level: evaluates its four springs (E inside the row, S, SE, SW
+/// Advances row `r` one layer: evaluates its four springs (E inside the row, S, SE, SW
 /// down to row r+1, none on the last row), sums each node's force with the springs
-/// arriving from row r−1 (`prev`, evaluated one row earlier), integrates from level
+/// arriving from row r−1 (`prev`, evaluated one row earlier), integrates from layer
 /// `from` into `dst`, and leaves the S, SE and SW forces in `next` for row r+1. Returns
 /// `false` if a new value is not finite. The row's external forces ([`Inputs::ext_of_row`])
-/// are added when advancing from [`Level::Front`]: a pass applies them in its first step.
+/// are added when advancing from [`Layer::Front`]: a pass applies them in its first step.
 ///
 /// One pass over the row's chunks: what the chunk before sends east, and the neighbour
 /// chunks the shuffles need, stay in registers. The last chunk (and every chunk of the
@@ -295,7 +295,7 @@ fn springs_down<V: Vector, S: Source<V>>(
 pub(super) fn advance_row<V: Vector>(
     inp: &Inputs<V>,
     r: usize,
-    from: Level<V>,
+    from: Layer<V>,
     prev: &RowForces<V>,
     next: &mut RowForces<V>,
     dst: RowOut<V>,
@@ -306,12 +306,12 @@ pub(super) fn advance_row<V: Vector>(
     let sent = next.groups_mut(inp.cols);
     let arriving = prev.groups(inp.cols);
     match from {
-        Level::Front => {
+        Layer::Front => {
             let (h, d) = (inp.front(r), inp.front(below));
             let kernel = RowKernel::new(inp, r, h, d, has_down, arriving);
             kernel.advance(sent, dst)
         }
-        Level::Ring(ring) => {
+        Layer::Ring(ring) => {
             let (h, d) = (
                 ring[r % 2].groups(inp.cols),
                 ring[below % 2].groups(inp.cols),
@@ -474,7 +474,7 @@ impl<'a, 'b, V: Vector, S: Source<V>> RowKernel<'a, 'b, V, S> {
     ///
     /// Inlined always in release builds. In builds with debug assertions it is only
     /// offered for inlining, as is [`RowKernel::chunk`]: unoptimised, every inlined copy
-    /// keeps its own stack slots, and the level entry that inlined them all needed 2–3 MB
+    /// keeps its own stack slots, and the layer entry that inlined them all needed 2–3 MB
     /// of stack, more than a thread of rayon's pool has.
     #[cfg_attr(not(debug_assertions), inline(always))]
     #[cfg_attr(debug_assertions, inline)]

@@ -1,11 +1,11 @@
-//! The schedule: which band integrates which rows at which level, in which colour, on
+//! The schedule: which band integrates which rows at which layer, in which colour, on
 //! which thread.
 //!
-//! Which band integrates which row at which level is [`Tiling`]: the cut between two
-//! bands leans one row per level into the even band. Colour 0 (even bands) runs first, in
-//! parallel: each needs only its own rows. It also hands over, at each level below the
+//! Which band integrates which row at which layer is [`Tiling`]: the cut between two
+//! bands leans one row per layer into the even band. Colour 0 (even bands) runs first, in
+//! parallel: each needs only its own rows. It also hands over, at each layer below the
 //! last, its first two and last two rows ([`super::Handoff`]). Colour 1 (odd bands) runs
-//! second, in parallel: it reads those rows wherever it needs a row at a level that it
+//! second, in parallel: it reads those rows wherever it needs a row at a layer that it
 //! did not integrate itself.
 //!
 //! Bands of one colour write disjoint rows, so each task takes `&mut` slices of its own
@@ -16,17 +16,18 @@
 //! step allocates nothing: handoffs live in the [`Workspace`], and each worker thread
 //! keeps its rings from pass to pass ([`take_scratch`]).
 //!
-//! Within a band, a pass is a wavefront over rows and levels ([`band`]): as soon as row
-//! `r` of level `l−1` exists, row `r−1` of level `l` can be integrated, because a row only
+//! Within a band, a pass is a wavefront over rows and layers ([`band`]): as soon as row
+//! `r` of layer `l−1` exists, row `r−1` of layer `l` can be integrated, because a row only
 //! needs the rows beside it.
 
 use super::access::{Bands, Handoffs, Rows};
-use super::row::{advance_row, down_springs, Inputs, Level, RowOut};
+use super::row::{advance_row, down_springs, Inputs, Layer, RowOut};
 use super::scratch::{put_scratch, take_scratch, Scratch};
+use super::tiling::Tiling;
 use super::{StepConfig, Workspace, MAX_PASS_STEPS, STREAM_MIN_NODES};
 use crate::jobs::Runner;
 use crate::simd::{Task, Vector};
-use crate::springs::{Springs, Tiling};
+use crate::springs::Springs;
 use crate::state::State;
 use std::ops::Range;
 use std::sync::atomic::{AtomicBool, Ordering};
@@ -36,26 +37,26 @@ use std::sync::atomic::{AtomicBool, Ordering};
 pub(crate) enum PassEnd {
     /// Every new value is finite: the back buffers hold the state after the pass.
     Done,
-    /// Some new value, at some level, is not finite.
+    /// Some new value, at some layer, is not finite.
     NonFinite,
     /// The job system returned without running every band.
     Incomplete,
 }
 
-/// One engine pass of `levels` steps (`1..=MAX_PASS_STEPS`) from the front into the back
+/// One engine pass of `layers` steps (`1..=MAX_PASS_STEPS`) from the front into the back
 /// buffers with vector type `V`, each colour's bands run by `runner`.
 pub(super) fn pass_with<V: Vector>(
     state: &mut State,
     springs: &Springs,
     ws: &mut Workspace,
     cfg: StepConfig,
-    levels: usize,
+    layers: usize,
     runner: Runner<'_>,
 ) -> PassEnd {
-    debug_assert!((1..=MAX_PASS_STEPS).contains(&levels));
+    debug_assert!((1..=MAX_PASS_STEPS).contains(&layers));
     let grid = state.grid;
     let (cols, rows, n) = (grid.cols, grid.rows, grid.node_count());
-    let (t, handoffs, claims) = ws.prepare::<V>(cols, rows, levels, runner.workers());
+    let (t, handoffs, claims) = ws.prepare::<V>(cols, rows, layers, runner.workers());
     // Rows without forces skip them, which relies on an acceleration that is never −0.
     debug_assert!(cfg.accel.iter().all(|a| a.to_bits() != (-0.0f32).to_bits()));
     let (ext, ext_rows) = state.ext.for_step(cols, rows);
@@ -114,10 +115,10 @@ fn run_colour<V: Vector>(
     colour.all_claimed().then(|| ok.into_inner())
 }
 
-/// Band `b`'s part of a pass: a wavefront over rows and levels. Level `l` handles row `r`
-/// at time `r + l − 1`, after level `l−1` has produced rows `r` and `r+1` (earlier in the
+/// Band `b`'s part of a pass: a wavefront over rows and layers. Layer `l` handles row `r`
+/// at time `r + l − 1`, after layer `l−1` has produced rows `r` and `r+1` (earlier in the
 /// same time, or before). Handling a row means, in order: taking it from a handoff if it
-/// is a row of another band that the next level needs (odd bands); evaluating its springs
+/// is a row of another band that the next layer needs (odd bands); evaluating its springs
 /// if it is the row just above the band's rows (their S, SE, SW arrive at the first row);
 /// or evaluating and integrating it if it is the band's own, then handing it over if it
 /// is one of the two rows next to a cut (even bands).
@@ -161,11 +162,11 @@ impl<V: Vector> Task<V> for Band<'_, '_, '_, V> {
             mut handoffs,
             rows,
         } = self;
-        let last = t.levels;
+        let last = t.layers;
         let odd = matches!(handoffs, Handoffs::Take(..));
-        // Per level `l` (1..=last): the band's own rows, and the rows it handles — its
-        // own, the row above them, and for an odd band below the last level the two rows
-        // beyond each cut that the next level borrows.
+        // Per layer `l` (1..=last): the band's own rows, and the rows it handles — its
+        // own, the row above them, and for an odd band below the last layer the two rows
+        // beyond each cut that the next layer borrows.
         const NONE: Range<usize> = 0..0;
         let mut own = [NONE; MAX_PASS_STEPS + 1];
         let mut handled = [NONE; MAX_PASS_STEPS + 1];
@@ -208,11 +209,11 @@ impl<V: Vector> Task<V> for Band<'_, '_, '_, V> {
                     continue;
                 }
                 let (lower, upper) = rings.split_at_mut(l);
-                // The rows of level `l − 1`.
+                // The rows of layer `l − 1`.
                 let from = if l == 1 {
-                    Level::Front
+                    Layer::Front
                 } else {
-                    Level::Ring(&lower[l - 1])
+                    Layer::Ring(&lower[l - 1])
                 };
                 let own_l = &own[l];
                 if !own_l.contains(&r) {

@@ -1,4 +1,4 @@
-//! The engine's scratch rows: the forces a row sends down, the rows of the levels in
+//! The engine's scratch rows: the forces a row sends down, the rows of the layers in
 //! flight, and each worker thread's set of them. All are chunk-major — the lanes of one
 //! chunk of columns sit together — so the row kernel reaches all of a chunk's values with
 //! one pointer and constant offsets (the state itself stays structure-of-arrays).
@@ -51,7 +51,7 @@ impl<V: Vector> RowForces<V> {
     }
 }
 
-/// One row of positions and velocities outside the state buffers: a level in flight, or
+/// One row of positions and velocities outside the state buffers: a layer in flight, or
 /// a row handed from colour 0 to colour 1. Group `j` holds columns `(j − 1)·LANES ..` as
 /// `[x, y, z, vx, vy, vz]` lanes; groups 0 and `chunks + 1`, and the lanes past the row,
 /// stay zero.
@@ -85,26 +85,26 @@ impl<V: Vector> Row<V> {
     }
 }
 
-/// A worker's buffers for the levels in flight, reused across bands and passes.
+/// A worker's buffers for the layers in flight, reused across bands and passes.
 pub(super) struct Scratch<V> {
     cols: usize,
-    /// `rings[l]`: the last two rows of level `l` (row `r` in slot `r % 2`), for
-    /// `l in 1..levels` (`rings[0]` is unused: level 0 is the front buffer).
+    /// `rings[l]`: the last two rows of layer `l` (row `r` in slot `r % 2`), for
+    /// `l in 1..layers` (`rings[0]` is unused: layer 0 is the front buffer).
     pub rings: Vec<[Row<V>; 2]>,
-    /// `prev[l]`: the springs of the row before the one level `l` integrates next.
+    /// `prev[l]`: the springs of the row before the one layer `l` integrates next.
     pub prev: Vec<RowForces<V>>,
     /// The row being evaluated; swapped into `prev[l]` once its row is integrated.
     pub cur: RowForces<V>,
 }
 
 impl<V: Vector> Scratch<V> {
-    fn new(cols: usize, levels: usize) -> Self {
+    fn new(cols: usize, layers: usize) -> Self {
         Self {
             cols,
-            rings: (0..levels)
+            rings: (0..layers)
                 .map(|_| [Row::new(cols), Row::new(cols)])
                 .collect(),
-            prev: (0..=levels).map(|_| RowForces::new(cols)).collect(),
+            prev: (0..=layers).map(|_| RowForces::new(cols)).collect(),
             cur: RowForces::new(cols),
         }
     }
@@ -115,17 +115,17 @@ thread_local! {
     static SCRATCH: RefCell<Option<Box<dyn Any>>> = const { RefCell::new(None) };
 }
 
-/// Takes this thread's scratch, for `cols` columns and at least `levels` levels, out of
+/// Takes this thread's scratch, for `cols` columns and at least `layers` layers, out of
 /// its slot (made anew if the one there is of another vector type or width, or has fewer
-/// levels); give it back with [`put_scratch`]. A band that panics in between drops it,
+/// layers); give it back with [`put_scratch`]. A band that panics in between drops it,
 /// and the next band makes a new one. Taking and putting back, rather than lending it to
 /// a closure, keeps the band's loop in the function that entered the SIMD level: a
 /// closure is compiled on its own, without the level's instruction set.
-pub(super) fn take_scratch<V: Vector>(cols: usize, levels: usize) -> Box<Scratch<V>> {
+pub(super) fn take_scratch<V: Vector>(cols: usize, layers: usize) -> Box<Scratch<V>> {
     let held = SCRATCH.with(|s| s.borrow_mut().take());
     match held.map(|b| b.downcast::<Scratch<V>>()) {
-        Some(Ok(s)) if s.cols == cols && s.rings.len() >= levels => s,
-        _ => Box::new(Scratch::new(cols, levels)),
+        Some(Ok(s)) if s.cols == cols && s.rings.len() >= layers => s,
+        _ => Box::new(Scratch::new(cols, layers)),
     }
 }
 

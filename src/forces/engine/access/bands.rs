@@ -8,7 +8,7 @@
 //! colour, and [`Colour::claim`] hands band `b`'s parts to the first call that claims
 //! `b`, and to no other:
 //!
-//! * **rows**: band `b` writes the rows `cut(b) .. cut(b + 1)` of the pass's last level.
+//! * **rows**: band `b` writes the rows `cut(b) .. cut(b + 1)` of the pass's last layer.
 //!   [`Bands::new`] asserts that the cuts never decrease, so no two bands' rows overlap,
 //!   and each part is checked to lie inside the buffers;
 //! * **handoff slots**: only the even colour writes them, band `b` its slots `b` and
@@ -23,8 +23,8 @@
 //! The one `unsafe` here takes a part of a buffer ([`Disjoint::part`]) on that argument.
 
 use super::super::Handoff;
+use crate::forces::engine::tiling::Tiling;
 use crate::jobs::Disjoint;
-use crate::springs::Tiling;
 use crate::state::Xyz;
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -72,7 +72,7 @@ impl<'a, V> Bands<'a, V> {
         slots: &'a mut [Handoff<V>],
         claims: &'a mut Claims,
     ) -> Self {
-        let cut = |b| tiling.cut(b, tiling.levels);
+        let cut = |b| tiling.cut(b, tiling.layers);
         assert!(
             (0..tiling.bands()).all(|b| cut(b) <= cut(b + 1)),
             "the bands of {tiling:?} overlap"
@@ -146,7 +146,7 @@ impl<'s, V> Colour<'s, V> {
             return None;
         }
         let cols = self.cols;
-        let rows = self.tiling.rows_at(b, self.tiling.levels);
+        let rows = self.tiling.rows_at(b, self.tiling.layers);
         let span = rows.start * cols..rows.end * cols;
         // Written out: a closure passed to `array::map` is compiled on its own.
         let [x, y, z, vx, vy, vz] = &self.back;

@@ -32,7 +32,7 @@
 //! instructions, measured with callgrind — and even one check per view and chunk kept
 //! the compiler from holding the kernel's values in registers: 1–3% more instructions.)
 //! [`RowPair::around`] and [`RowPair::spring`], for the springs a band evaluates above
-//! its first row, check the index: they run once per band and level.
+//! its first row, check the index: they run once per band and layer.
 //!
 //! `tests/miri.rs` runs these paths under Miri on every width around the lane count, in
 //! single steps and passes, with uniform and edited springs.
@@ -262,7 +262,7 @@ impl<V: Vector> Shared<V> {
 }
 
 /// `(coefficient, rest length)` as lanes. (A named `#[inline(always)]` function, never a
-/// closure, where lanes are made: a closure is compiled on its own, without the level's
+/// closure, where lanes are made: a closure is compiled on its own, without the layer's
 /// target features, and the intrinsics in it become calls.)
 #[inline(always)]
 fn splat2<V: Vector>((c, r): (f32, f32)) -> (V, V) {
@@ -600,7 +600,7 @@ const CACHE_LINE: usize = 64;
 /// chunks before the last run with no mask, no partial store and no call, and chunks
 /// narrower than a cache line go in pairs that start on a pair boundary of the buffers
 /// (`odd_start`: the row starts an odd number of chunks into its buffers): the
-/// non-temporal stores of a large grid's last level then fill each line in one iteration
+/// non-temporal stores of a large grid's last layer then fill each line in one iteration
 /// at AVX2, or its halves in two in a row at SSE2 (AVX2 at 2048²: 1.4-1.6x the speed of
 /// one chunk per iteration, or of pairs that straddle lines). A chunk a line wide
 /// (AVX-512) goes alone, which keeps fewer registers live. The order, and so the
