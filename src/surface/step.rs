@@ -3,9 +3,9 @@
 //! [`Surface::run`], which goes down one road:
 //!
 //! ```text
-//! run(n, dt) ── bodies? ──yes──▶ n × floating_step (bodies/) ───┐
-//!     │                                                           │ one step at a time
-//!     no                                                          ▼
+//! run(n, dt) ── bodies? ──yes──▶ n × floating_step: prepare the bodies, ─┐
+//!     │                             apply their reactions (bodies/)     │ one step
+//!     no                                                                ▼ at a time
 //!     └────────────────────────────────────────────────▶ water(n, dt)
 //!                                  on the host's threads (pool, job system or here)
 //!                                                                 ▼
@@ -13,6 +13,8 @@
 //!                                  the engine's passes of up to `pass_steps` steps
 //!                                                                 ▼
 //!                                  commit(k): swap the back buffers, count the steps
+//!                                                                 ▼
+//!                       with bodies: commit the bodies, or undo their reactions
 //! ```
 //!
 //! A step is transactional wherever it runs: the new state goes to back buffers, is checked
@@ -59,6 +61,31 @@ impl Surface {
             return self.water(n, dt);
         }
         (0..n).try_for_each(|_| self.floating_step(dt))
+    }
+
+    /// One step of model time `dt` with the bodies, in four stages (the bodies' side of each
+    /// is in `bodies/coupling.rs`):
+    ///
+    /// 1. **prepare the bodies**: each reads the water under it and takes its implicit step,
+    ///    in parallel; its reactions become shares of the nodes under it;
+    /// 2. **apply the reactions**: the water column turns the shares into what the water
+    ///    gets, added to the external forces all or nothing;
+    /// 3. **advance the lattice** one step with those forces;
+    /// 4. **commit or undo**: if the water's step succeeded, the bodies take their new
+    ///    poses and the column its share; otherwise the forces and the column go back to
+    ///    what they were, and the surface is unchanged, bodies included.
+    fn floating_step(&mut self, dt: f32) -> Result<()> {
+        let mut c = self.bodies.take_scratch();
+        let stepped = self
+            .prepare_bodies(dt, &mut c)
+            .and_then(|()| self.apply_reactions(&c))
+            .and_then(|()| self.water(1, dt).inspect_err(|_| self.state.ext.undo()));
+        match stepped {
+            Ok(()) => self.commit_bodies(dt, &mut c),
+            Err(_) => self.discard_bodies(),
+        }
+        self.bodies.keep_scratch(c);
+        stepped
     }
 
     /// `n` steps of the water alone, on the host's threads if they are set (see

@@ -307,33 +307,38 @@ impl Context<'_> {
 }
 
 impl Surface {
-    /// One step of model time `dt` with the bodies: their reactions go into the external
-    /// forces, the water takes its step, and the bodies move only if it succeeded. On any
-    /// error the surface is unchanged, bodies and pending forces included.
-    pub(crate) fn floating_step(&mut self, dt: f32) -> Result<()> {
-        let mut c = std::mem::take(&mut self.bodies.scratch);
+    /// The coupled step's second stage: the bodies' shares (`c`, in the bodies' order) go
+    /// through the column, and what the water gets is added to the external forces, all or
+    /// nothing: refused, with nothing changed, if a node's force would not be finite.
+    pub(crate) fn apply_reactions(&mut self, c: &Coupling) -> Result<()> {
         let n = self.node_count();
-        let coupled = self.couple(dt, &mut c).and_then(|()| {
-            let shares = c.slots.iter().flat_map(|slot| &slot.shares);
-            self.bodies.column.gather(shares, n);
-            self.push_water()
-        });
-        let coupled =
-            coupled.and_then(|()| self.water(1, dt).inspect_err(|_| self.state.ext.undo()));
-        match coupled {
-            Ok(()) => {
-                for ((_, body), slot) in self.bodies.bodies.iter_mut().zip(&mut c.slots) {
-                    if let Some(Ok(moved)) = slot.moved.take() {
-                        *body = moved;
-                    }
-                }
-                let seconds = dt / self.params.time_scale;
-                self.bodies.column.commit(column::rate(seconds));
+        let shares = c.slots.iter().flat_map(|slot| &slot.shares);
+        self.bodies.column.gather(shares, n);
+        let water = self.bodies.column.water();
+        self.state.ext.add(water).map_err(|_| Error::InvalidParam {
+            name: "accumulated force",
+            value: f64::INFINITY,
+            expected: "finite: the bodies' reactions overflow f32",
+        })
+    }
+
+    /// The coupled step's last stage, once the water's step of model time `dt` succeeded:
+    /// the bodies take their new poses and velocities, and the column takes up its share
+    /// of what the water got.
+    pub(crate) fn commit_bodies(&mut self, dt: f32, c: &mut Coupling) {
+        for ((_, body), slot) in self.bodies.bodies.iter_mut().zip(&mut c.slots) {
+            if let Some(Ok(moved)) = slot.moved.take() {
+                *body = moved;
             }
-            Err(_) => self.bodies.column.discard(),
         }
-        self.bodies.scratch = c;
-        coupled
+        let seconds = dt / self.params.time_scale;
+        self.bodies.column.commit(column::rate(seconds));
+    }
+
+    /// The coupled step failed: this step's pushes are forgotten (the external forces were
+    /// taken back by their own undo).
+    pub(crate) fn discard_bodies(&mut self) {
+        self.bodies.column.discard();
     }
 
     /// Makes every body's mesh match its shape (after a restore or a change of shape).
@@ -364,10 +369,11 @@ impl Surface {
         }
     }
 
-    /// Steps every body (in parallel, into `c.slots`) and gathers the reactions'
-    /// shares of the nodes (in the bodies' order, into `c.shares`). `dt` is model time;
-    /// the bodies step `dt / time_scale` seconds.
-    fn couple(&self, dt: f32, c: &mut Coupling) -> Result<()> {
+    /// The coupled step's first stage: every body reads the water under it and takes its
+    /// step (in parallel, into `c.slots`), and its reactions become shares of the nodes.
+    /// `dt` is model time; the bodies step `dt / time_scale` seconds. Changes nothing of
+    /// the surface.
+    pub(crate) fn prepare_bodies(&self, dt: f32, c: &mut Coupling) -> Result<()> {
         self.fit_meshes(c)?;
         let bodies = &self.bodies.bodies;
         c.slots.resize_with(bodies.len(), Slot::default);
@@ -408,17 +414,6 @@ impl Surface {
             Some(e) => Err(e.clone()),
             None => Ok(()),
         }
-    }
-
-    /// Adds what the water gets (from the column) to the external forces, all or
-    /// nothing: refused, with nothing changed, if a node's force would not be finite.
-    fn push_water(&mut self) -> Result<()> {
-        let water = self.bodies.column.water();
-        self.state.ext.add(water).map_err(|_| Error::InvalidParam {
-            name: "accumulated force",
-            value: f64::INFINITY,
-            expected: "finite: the bodies' reactions overflow f32",
-        })
     }
 
     /// The water's force and torque on a body another physics engine owns, over the

@@ -17,7 +17,7 @@ use crate::body::rigid;
 use crate::error::{Error, Result};
 use crate::floater::{self, Buoyancy, Floater, FloaterId};
 use crate::params;
-use coupling::Coupling;
+pub(crate) use coupling::Coupling;
 use glam::Vec3;
 
 /// The bodies of one surface, their world, the water column under them, and the scratch
@@ -55,6 +55,17 @@ impl BodySet {
     /// The water column under the bodies.
     pub fn column(&self) -> &Column {
         &self.column
+    }
+
+    /// Lends the coupled step's buffers (see [`BodySet::keep_scratch`]): a step borrows
+    /// them while it borrows the surface too.
+    pub fn take_scratch(&mut self) -> Coupling {
+        std::mem::take(&mut self.scratch)
+    }
+
+    /// Takes back the buffers [`BodySet::take_scratch`] lent.
+    pub fn keep_scratch(&mut self, scratch: Coupling) {
+        self.scratch = scratch;
     }
 
     /// Takes a checked snapshot's bodies, world and column (a new surface's).
