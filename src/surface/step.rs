@@ -3,9 +3,10 @@
 //! [`Surface::run`], which goes down one road:
 //!
 //! ```text
-//! run(n, dt) ── bodies? ──yes──▶ n × floating_step: prepare the bodies, ─┐
-//!     │                             apply their reactions (bodies/)     │ one step
-//!     no                                                                ▼ at a time
+//! run(n, dt) ── bodies? ──yes──▶ n × floating_step, one step at a time:
+//!     │                            prepare the bodies, apply their reactions
+//!     no                           (bodies/), then ────────────────┐
+//!     │                                                            ▼
 //!     └────────────────────────────────────────────────▶ water(n, dt)
 //!                                  on the host's threads (pool, job system or here)
 //!                                                                 ▼
@@ -13,8 +14,8 @@
 //!                                  the engine's passes of up to `pass_steps` steps
 //!                                                                 ▼
 //!                                  commit(k): swap the back buffers, count the steps
-//!                                                                 ▼
-//!                       with bodies: commit the bodies, or undo their reactions
+//!                                  (with bodies: then commit the bodies, or undo
+//!                                  their reactions if the water's step failed)
 //! ```
 //!
 //! A step is transactional wherever it runs: the new state goes to back buffers, is checked
