@@ -173,7 +173,7 @@ try {
   // rounds, the ratio the median of each round's SIMD128 over SSE2.
   // The pool page is closed first: its frames, drawn in software, would take the cores.
   // The rates are taken in a page of the same origin that runs nothing else.
-  const ROUNDS = 5;
+  const ROUNDS = 9;
   const SECONDS = 0.3;
   const ratePage = await browser.newPage();
   ratePage.on("pageerror", (e) => errors.push(String(e)));

@@ -8,7 +8,7 @@ export const SIZE = 256;
 // stepped for `warmup` seconds first: the engines compile a hot wasm function again, fully
 // optimised, in the background (V8's Liftoff, then TurboFan), and a run before that is
 // over times the first compiler's code.
-export function rateSurface(sw, warmup = 1) {
+export function rateSurface(sw, warmup = 2) {
   const water = new sw.WaterSurface(SIZE, SIZE);
   water.dropAt(SIZE / 2, SIZE / 2, 1, 4);
   run(water, warmup);
