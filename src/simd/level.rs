@@ -22,7 +22,8 @@ pub enum SimdLevel {
     Avx512,
     /// The lane kernels on 8 lanes of plain `f32` arrays, vectorised (or not) by the
     /// compiler: what targets without a SIMD level here run (a `wasm32` build without
-    /// `+simd128`, RISC-V, …). Runs everywhere.
+    /// `+simd128`, RISC-V, …). Runs everywhere but in a `wasm32` build with `+simd128`,
+    /// which runs SIMD128 in its place ([`SimdLevel::is_available`]).
     Portable,
     /// NEON (Advanced SIMD), part of every AArch64 CPU: 8 lanes in two 128-bit registers.
     Neon,
@@ -52,13 +53,23 @@ impl SimdLevel {
         *DETECTED.get_or_init(detect_cpu)
     }
 
-    /// Whether this CPU runs `self`: the scalar reference and the portable lanes run
-    /// everywhere; an x86-64 level where the CPU has it; NEON on AArch64; SIMD128 in a
-    /// `wasm32` build with `+simd128`.
+    /// Whether this CPU runs `self`: the scalar reference everywhere; the portable lanes
+    /// everywhere but in a `wasm32` build with `+simd128`; an x86-64 level where the CPU
+    /// has it; NEON on AArch64; SIMD128 in a `wasm32` build with `+simd128`.
+    ///
+    /// A `wasm32` build with `+simd128` leaves the portable lanes out: every engine that
+    /// loads such a module runs SIMD128, which gives the same bits, and a second copy of
+    /// every kernel made a third of the module (the npm package ships it to browsers).
+    /// There `portable` runs SIMD128, as a level of another architecture does.
     pub fn is_available(self) -> bool {
         let best = Self::detect();
         match self {
-            Self::Scalar | Self::Portable => true,
+            Self::Scalar => true,
+            Self::Portable => !cfg!(all(
+                target_arch = "wasm32",
+                target_feature = "simd128",
+                not(miri)
+            )),
             Self::Sse2 | Self::Avx2 | Self::Avx512 => {
                 matches!(best, Self::Sse2 | Self::Avx2 | Self::Avx512) && self <= best
             }

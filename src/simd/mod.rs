@@ -398,7 +398,8 @@ impl<K: Kernel, V: Vector> Task<V> for Each<K> {
 
 /// Runs `k` with the vector type of `level`, clamped to what the CPU has. The portable
 /// lanes stand in for [`SimdLevel::Scalar`] (callers with a scalar twin run it
-/// themselves) and for every level under Miri.
+/// themselves) and for every level under Miri; SIMD128 stands in for both in a `wasm32`
+/// build with `+simd128`.
 #[inline]
 pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, k: K) -> K::Output {
     match level.clamped() {
@@ -410,10 +411,13 @@ pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, k: K) -> K::Output {
         SimdLevel::Sse2 => sse2::F32x8::enter(Each(k)),
         #[cfg(all(target_arch = "aarch64", not(miri)))]
         SimdLevel::Neon => neon::F32x8::enter(Each(k)),
+        // Every level in a `wasm32` build with `+simd128`, whose kernels are not compiled
+        // for the portable lanes (`SimdLevel::is_available`).
         #[cfg(all(target_arch = "wasm32", target_feature = "simd128", not(miri)))]
-        SimdLevel::Simd128 => simd128::F32x8::enter(Each(k)),
+        _ => simd128::F32x8::enter(Each(k)),
         // The scalar reference, the portable level, and (never reached: `clamped` returns
         // only levels of this target) the levels of other targets.
+        #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128", not(miri))))]
         _ => portable::F32x8::enter(Each(k)),
     }
 }
