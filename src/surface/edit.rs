@@ -193,14 +193,7 @@ impl Surface {
     /// timestep (the bound uses the smallest mass ever set).
     pub fn set_mass(&mut self, node: usize, mass: f32) -> Result<()> {
         self.check_node(node)?;
-        params::positive("mass", mass)?;
-        if !(1.0 / mass).is_finite() {
-            return Err(Error::InvalidParam {
-                name: "mass",
-                value: mass as f64,
-                expected: "at least 1.2e-38 (the reciprocal must be finite)",
-            });
-        }
+        check_mass(mass)?;
         let min_mass = self.min_mass.min(mass);
         params::check_dt(
             self.params.dt,
@@ -229,6 +222,52 @@ impl Surface {
         self.max_viscosity = max_viscosity;
         self.state.viscosity.set(node, viscosity);
         self.window_custom = true;
+        Ok(())
+    }
+
+    /// Sets every node's mass from `masses`, row-major, one per node: each checked as by
+    /// [`Surface::set_mass`] and the lightest against the critical timestep, all before
+    /// anything changes, so a refused call changes nothing. The same state as setting the
+    /// nodes one by one.
+    pub fn set_masses(&mut self, masses: &[f32]) -> Result<()> {
+        same_length("masses", masses.len(), self.node_count())?;
+        let mut min_mass = self.min_mass;
+        for &mass in masses {
+            check_mass(mass)?;
+            min_mass = min_mass.min(mass);
+        }
+        params::check_dt(
+            self.params.dt,
+            self.limit(min_mass, self.max_stiffness, self.max_viscosity),
+        )?;
+        self.min_mass = min_mass;
+        self.window_custom = true;
+        let state = &mut self.state;
+        state.mass.assign(|i| masses[i]);
+        let pinned = &state.pinned;
+        state
+            .inv_mass
+            .assign(|i| if pinned[i] { 0.0 } else { 1.0 / masses[i] });
+        Ok(())
+    }
+
+    /// Sets every node's viscosity from `viscosities`, row-major, one per node: each
+    /// checked as by [`Surface::set_viscosity`] and the largest against the critical
+    /// timestep, all before anything changes, so a refused call changes nothing.
+    pub fn set_viscosities(&mut self, viscosities: &[f32]) -> Result<()> {
+        same_length("viscosities", viscosities.len(), self.node_count())?;
+        let mut max_viscosity = self.max_viscosity;
+        for &viscosity in viscosities {
+            params::non_negative("viscosity", viscosity)?;
+            max_viscosity = max_viscosity.max(viscosity);
+        }
+        params::check_dt(
+            self.params.dt,
+            self.limit(self.min_mass, self.max_stiffness, max_viscosity),
+        )?;
+        self.max_viscosity = max_viscosity;
+        self.window_custom = true;
+        self.state.viscosity.assign(|i| viscosities[i]);
         Ok(())
     }
 
@@ -308,4 +347,18 @@ impl Surface {
             })
         }
     }
+}
+
+/// A node mass [`Surface::set_mass`] takes, apart from the timestep: positive, with a
+/// finite reciprocal.
+fn check_mass(mass: f32) -> Result<()> {
+    params::positive("mass", mass)?;
+    if !(1.0 / mass).is_finite() {
+        return Err(Error::InvalidParam {
+            name: "mass",
+            value: mass as f64,
+            expected: "at least 1.2e-38 (the reciprocal must be finite)",
+        });
+    }
+    Ok(())
 }
