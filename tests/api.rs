@@ -245,6 +245,50 @@ fn edits_take_effect() {
 }
 
 #[test]
+fn whole_tables_of_masses_and_viscosities_are_set_at_once_or_not_at_all() {
+    let mut s = Surface::new(Params::with_size(6, 5)).unwrap();
+    s.set_pinned(8, true).unwrap();
+    let masses: Vec<f32> = (0..30).map(|i| 4.0 + 0.25 * i as f32).collect();
+    let viscosities: Vec<f32> = (0..30).map(|i| 0.01 * (i % 3) as f32).collect();
+    let (hash, critical) = (s.state_hash(), s.critical_dt());
+    // The last value refused: a tiny mass puts dt past the critical timestep.
+    for bad in [f32::NAN, -1.0, 0.1] {
+        let mut m = masses.clone();
+        m[29] = bad;
+        assert!(s.set_masses(&m).is_err(), "mass {bad}");
+    }
+    for bad in [f32::NAN, -1.0, f32::INFINITY] {
+        let mut v = viscosities.clone();
+        v[29] = bad;
+        assert!(s.set_viscosities(&v).is_err(), "viscosity {bad}");
+    }
+    assert!(s.set_viscosities(&[1e9; 30]).is_err(), "too viscous for dt");
+    assert!(matches!(
+        s.set_masses(&masses[1..]),
+        Err(Error::LengthMismatch { .. })
+    ));
+    assert_eq!((s.state_hash(), s.critical_dt()), (hash, critical));
+
+    // The same state as setting the nodes one by one.
+    let mut one_by_one = Surface::new(Params::with_size(6, 5)).unwrap();
+    one_by_one.set_pinned(8, true).unwrap();
+    for i in 0..30 {
+        one_by_one.set_mass(i, masses[i]).unwrap();
+        one_by_one.set_viscosity(i, viscosities[i]).unwrap();
+    }
+    s.set_masses(&masses).unwrap();
+    s.set_viscosities(&viscosities).unwrap();
+    assert_eq!(s.masses().to_vec(), masses);
+    assert_eq!(s.viscosities().to_vec(), viscosities);
+    s.drop_at(2.0, 2.0, 0.5, 1.0).unwrap();
+    one_by_one.drop_at(2.0, 2.0, 0.5, 1.0).unwrap();
+    s.step_n(20).unwrap();
+    one_by_one.step_n(20).unwrap();
+    assert_eq!(s.state_hash(), one_by_one.state_hash());
+    assert_eq!(s.critical_dt(), one_by_one.critical_dt());
+}
+
+#[test]
 fn an_overflowing_step_leaves_the_state_bitwise_unchanged() {
     let mut s = Surface::new(Params::with_size(9, 9)).unwrap();
     s.drop_at(4.0, 4.0, 1.0, 2.0).unwrap();

@@ -118,6 +118,14 @@ typedef struct SwSample {
   float velocity[3];
 } SwSample;
 
+// A boolean: 0 false, 1 true.
+typedef int32_t SwBool;
+
+// A family of springs, by the direction from a spring's origin node to its other end
+// (`SW_FAMILY_*`). Every grid edge and both diagonals of every cell carry one spring, kept
+// at its origin: an interior node is the origin of four springs and the far end of four.
+typedef int32_t SwFamily;
+
 // One node's packed vertex: 8 floats, 32 bytes (position at byte 0, normal at 12, the
 // refracted bottom texture coordinate at 24). The layout of the library's `Vertex`.
 typedef struct SwVertex {
@@ -128,9 +136,6 @@ typedef struct SwVertex {
   // Bottom texture coordinate seen through the surface.
   float uv[2];
 } SwVertex;
-
-// A boolean: 0 false, 1 true.
-typedef int32_t SwBool;
 
 // Kinetic and spring potential energy (a diagnostic).
 typedef struct SwEnergy {
@@ -327,6 +332,18 @@ typedef struct SwJobSystem {
 
 // WebAssembly SIMD128 (a `wasm32` build made with `+simd128`).
 #define SW_SIMD_SIMD128 6
+
+// East, to node `(col + 1, row)`.
+#define SW_FAMILY_E 0
+
+// South, to node `(col, row + 1)`.
+#define SW_FAMILY_S 1
+
+// South-east diagonal, to node `(col + 1, row + 1)`.
+#define SW_FAMILY_SE 2
+
+// South-west diagonal, to node `(col − 1, row + 1)`.
+#define SW_FAMILY_SW 3
 
 // A ball of `SwFloater::radius`.
 #define SW_SHAPE_SPHERE 0
@@ -580,6 +597,94 @@ SwStatus sw_surface_sample_each(const struct SwSurface *surface,
                                 size_t out_len,
                                 uint8_t *found,
                                 size_t found_len);
+
+// Pins (`pinned` 1) or frees (0) a node: a pinned node never moves, and pinning zeroes
+// its velocity. A node past the last, or another `pinned` value, is
+// `SW_ERROR_INVALID_ARGUMENT` and changes nothing.
+SwStatus sw_surface_set_pinned(struct SwSurface *surface, size_t node, SwBool pinned);
+
+// Writes 1 to `out` if the node is pinned, 0 if it is free.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_is_pinned(const struct SwSurface *surface, size_t node, SwBool *out);
+
+// Writes every node's pin, 1 pinned or 0 free, to `out[0..nodes]` (`len` at least the
+// node count).
+//
+// # Safety
+//
+// `out` is NULL or points to `len` writable bytes.
+SwStatus sw_surface_write_pinned(const struct SwSurface *surface, uint8_t *out, size_t len);
+
+// Sets a node's mass (> 0, in the lattice's mass units). Refused, with nothing changed, if
+// it would put the surface's `dt` at or past the critical timestep (the bound remembers
+// the smallest mass ever set).
+SwStatus sw_surface_set_mass(struct SwSurface *surface, size_t node, float mass);
+
+// Sets every node's mass from `masses[0..nodes]` (`len` at least the node count),
+// each checked as by `sw_surface_set_mass`, all before anything changes: a refused call
+// changes no node.
+//
+// # Safety
+//
+// `masses` is NULL or points to `len` floats.
+SwStatus sw_surface_set_masses(struct SwSurface *surface, const float *masses, size_t len);
+
+// Writes every node's mass to `out[0..nodes]` (`len` at least the node count).
+//
+// # Safety
+//
+// `out` is NULL or points to `len` writable floats.
+SwStatus sw_surface_write_masses(const struct SwSurface *surface, float *out, size_t len);
+
+// Sets a node's viscosity (≥ 0, in the lattice's units, like `SwParams::viscosity`).
+// Refused, with nothing changed, if it would put the surface's `dt` at or past the
+// critical timestep (the bound remembers the largest viscosity ever set).
+SwStatus sw_surface_set_viscosity(struct SwSurface *surface, size_t node, float viscosity);
+
+// Sets every node's viscosity from `viscosities[0..nodes]` (`len` at least the node
+// count), each checked as by `sw_surface_set_viscosity`, all before anything changes: a
+// refused call changes no node.
+//
+// # Safety
+//
+// `viscosities` is NULL or points to `len` floats.
+SwStatus sw_surface_set_viscosities(struct SwSurface *surface,
+                                    const float *viscosities,
+                                    size_t len);
+
+// Writes every node's viscosity, the absorbing frame's ramp included, to
+// `out[0..nodes]` (`len` at least the node count).
+//
+// # Safety
+//
+// `out` is NULL or points to `len` writable floats.
+SwStatus sw_surface_write_viscosities(const struct SwSurface *surface, float *out, size_t len);
+
+// Writes the spring of `family` whose origin is `node` to `out[0..2]`: its rest length
+// (world units) and its coefficient. A spring the grid does not have (its other end off
+// the grid, an unknown family, a node past the last) is `SW_ERROR_INVALID_ARGUMENT`, and
+// nothing is written.
+//
+// # Safety
+//
+// `out` is NULL or points to 2 writable floats.
+SwStatus sw_surface_spring(const struct SwSurface *surface,
+                           SwFamily family,
+                           size_t node,
+                           float *out);
+
+// Sets the rest length (≥ 0, world units) and coefficient (> 0) of the spring of
+// `family` whose origin is `node`. Refused, with nothing changed, if the grid has no such
+// spring or the coefficient would put the surface's `dt` at or past the critical
+// timestep.
+SwStatus sw_surface_set_spring(struct SwSurface *surface,
+                               SwFamily family,
+                               size_t node,
+                               float rest,
+                               float stiffness);
 
 // Writes every node's position, interleaved `x, y, z`, row-major (node `(col, row)` at
 // `3·(row·cols + col)`). `len` is in floats and must be at least `3 · nodes`.
@@ -928,6 +1033,17 @@ SwStatus sw_surface_push_floater_at(struct SwSurface *surface,
                                     float x,
                                     float y,
                                     float z);
+
+// Adds the torque `(tx, ty, tz)` about a floating body's centre of mass (world axes; mass
+// units × world units² per second²) for the next step only: a rudder, a player's twist.
+// Pushes add up until that step. Refused (nothing changes) when a component, or the sum
+// with what was pushed before, is not finite. An unknown id is
+// `SW_ERROR_NO_SUCH_FLOATER`.
+SwStatus sw_surface_push_floater_torque(struct SwSurface *surface,
+                                        SwFloaterId id,
+                                        float tx,
+                                        float ty,
+                                        float tz);
 
 // The water's force and torque on a sphere or box body another physics engine owns
 // (`floater`, which the surface does not keep), over the engine's coming tick of

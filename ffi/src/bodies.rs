@@ -1,5 +1,5 @@
 //! Rigid bodies from C beyond spheres and boxes: hull meshes (`SwHull`), pushes at a
-//! point, and the water's force and torque on a body another physics engine owns
+//! point and torques, and the water's force and torque on a body another physics engine owns
 //! (`sw_surface_body_forces`, the library's `Surface::body_forces`).
 //!
 //! A hull is a handle, made once from the game's mesh and shared by every body of that
@@ -206,6 +206,25 @@ pub extern "C" fn sw_surface_push_floater_at(
     handle::call(surface, |w| {
         let id = FloaterId::from_raw(id);
         Ok(w.surface.push_floater_at(id, [fx, fy, fz], [x, y, z])?)
+    })
+}
+
+/// Adds the torque `(tx, ty, tz)` about a floating body's centre of mass (world axes; mass
+/// units × world units² per second²) for the next step only: a rudder, a player's twist.
+/// Pushes add up until that step. Refused (nothing changes) when a component, or the sum
+/// with what was pushed before, is not finite. An unknown id is
+/// `SW_ERROR_NO_SUCH_FLOATER`.
+#[no_mangle]
+pub extern "C" fn sw_surface_push_floater_torque(
+    surface: *mut SwSurface,
+    id: SwFloaterId,
+    tx: f32,
+    ty: f32,
+    tz: f32,
+) -> SwStatus {
+    handle::call(surface, |w| {
+        let id = FloaterId::from_raw(id);
+        Ok(w.surface.push_floater_torque(id, [tx, ty, tz])?)
     })
 }
 

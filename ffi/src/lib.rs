@@ -56,6 +56,9 @@ mod window;
 // Forces and queries at points.
 mod queries;
 
+// The lattice node by node: pins, masses, viscosities, single springs.
+mod lattice;
+
 // What a renderer uploads: positions, normals, refraction, vertices, LOD indices.
 mod buffers;
 
@@ -68,7 +71,8 @@ mod engine;
 // Floating bodies.
 mod floaters;
 
-// Hull meshes, pushes at a point, and the forces on bodies another engine owns.
+// Hull meshes, pushes at a point and torques, and the forces on bodies another engine
+// owns.
 mod bodies;
 
 // The host's job system.
@@ -96,6 +100,7 @@ pub use errors::*;
 pub use floaters::*;
 pub use handle::SwSurface;
 pub use jobs::*;
+pub use lattice::*;
 pub use params::*;
 pub use queries::*;
 pub use snapshots::*;

@@ -7,7 +7,8 @@
 //!   values recomputed here through the Rust API), snapshots and state hashes, two threads;
 //!   `Tests~/RigidBodies.cs`: a box heeled 15° rights itself as a built-in body (its
 //!   orientation the Rust API's bits), in an engine's own integrator driven by
-//!   `BodyForces`, and as a `Hull`;
+//!   `BodyForces`, and as a `Hull`; `Tests~/Lattice.cs`: pins, masses, viscosities, a
+//!   spring and a torque push, read back (the state's hash the Rust API's);
 //! * the declarations against `include/springwater.h`: every function, constant, struct,
 //!   field, size and offset of the header (the C compiler's `sizeof` and `offsetof`) must be
 //!   in `Native` and the structs with the same types (`Tests~/Layout.cs` prints them);
@@ -20,7 +21,7 @@
 mod common;
 
 use common::{assert_ok, build_release, floater_floats, fnv, righted_box, tool_missing};
-use springwater::{Boundary, Floater, FloaterId, Params, Surface};
+use springwater::{Boundary, Family, Floater, FloaterId, Params, Spring, SpringId, Surface};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -186,6 +187,32 @@ fn window() -> Vec<(&'static str, String)> {
     ]
 }
 
+/// `Lattice()` of Lattice.cs through the Rust API.
+fn lattice() -> Vec<(&'static str, String)> {
+    let mut s = Surface::new(Params::with_size(20, 16)).unwrap();
+    let masses: Vec<f32> = (0..320).map(|i| 4.0 + 0.25 * (i % 8) as f32).collect();
+    s.set_masses(&masses).unwrap();
+    s.set_mass(21, 5.0).unwrap();
+    s.set_viscosity(5 * 20 + 5, 0.2).unwrap();
+    s.set_pinned(8 * 20 + 10, true).unwrap();
+    let spring = Spring {
+        rest: 0.9,
+        stiffness: 6.0,
+    };
+    let id = SpringId {
+        family: Family::SE,
+        origin: 6 * 20 + 6,
+    };
+    s.set_spring(id, spring).unwrap();
+    let body = s
+        .add_floater(Floater::cuboid([1.0, 0.5, 1.0], 2.0, [10.0, 0.0, 8.0]))
+        .unwrap();
+    s.push_floater_torque(body, [0.0, 30.0, 0.0]).unwrap();
+    s.drop_at(10.0, 8.0, 0.5, 2.0).unwrap();
+    s.advance(0.5).unwrap();
+    vec![("lattice_hash", format!("{:016x}", s.state_hash()))]
+}
+
 /// The tests Runner.cs must report as passed.
 const RUNNER_TESTS: &[&str] = &[
     "frame_loop_writes_what_the_command_line_computes",
@@ -199,6 +226,7 @@ const RUNNER_TESTS: &[&str] = &[
     "two_threads_each_owning_a_surface_get_the_same_bits",
     "queries_agree_with_the_buffers",
     "a_heeled_box_rights_itself",
+    "the_lattice_node_by_node",
 ];
 
 #[test]
@@ -211,7 +239,11 @@ fn the_csharp_tests_pass_under_mono_with_the_command_lines_bits() {
     mcs(
         &exe,
         &[],
-        &[test_source("Runner.cs"), test_source("RigidBodies.cs")],
+        &[
+            test_source("Runner.cs"),
+            test_source("RigidBodies.cs"),
+            test_source("Lattice.cs"),
+        ],
     );
     let out = mono(&exe, &[&dir]);
     let stdout = String::from_utf8_lossy(&out.stdout);
@@ -227,7 +259,12 @@ fn the_csharp_tests_pass_under_mono_with_the_command_lines_bits() {
         .filter_map(|l| l.strip_prefix("value "))
         .filter_map(|l| l.split_once(' '))
         .collect();
-    for (key, want) in floaters().into_iter().chain(window()).chain(righted_box()) {
+    for (key, want) in floaters()
+        .into_iter()
+        .chain(window())
+        .chain(righted_box())
+        .chain(lattice())
+    {
         assert_eq!(
             values.get(key).copied(),
             Some(want.as_str()),

@@ -193,14 +193,7 @@ impl Surface {
     /// timestep (the bound uses the smallest mass ever set).
     pub fn set_mass(&mut self, node: usize, mass: f32) -> Result<()> {
         self.check_node(node)?;
-        params::positive("mass", mass)?;
-        if !(1.0 / mass).is_finite() {
-            return Err(Error::InvalidParam {
-                name: "mass",
-                value: mass as f64,
-                expected: "at least 1.2e-38 (the reciprocal must be finite)",
-            });
-        }
+        check_mass(mass)?;
         let stability = self.stability.with_mass(mass);
         self.admit_bounds(stability)?;
         self.stability = stability;
@@ -223,6 +216,46 @@ impl Surface {
         self.stability = stability;
         self.state.viscosity.set(node, viscosity);
         self.window_custom = true;
+        Ok(())
+    }
+
+    /// Sets every node's mass from `masses`, row-major, one per node: each checked as by
+    /// [`Surface::set_mass`] and the lightest against the critical timestep, all before
+    /// anything changes, so a refused call changes nothing. The same state as setting the
+    /// nodes one by one.
+    pub fn set_masses(&mut self, masses: &[f32]) -> Result<()> {
+        same_length("masses", masses.len(), self.node_count())?;
+        let mut stability = self.stability;
+        for &mass in masses {
+            check_mass(mass)?;
+            stability = stability.with_mass(mass);
+        }
+        self.admit_bounds(stability)?;
+        self.stability = stability;
+        self.window_custom = true;
+        let state = &mut self.state;
+        state.mass.assign(|i| masses[i]);
+        let pinned = &state.pinned;
+        state
+            .inv_mass
+            .assign(|i| if pinned[i] { 0.0 } else { 1.0 / masses[i] });
+        Ok(())
+    }
+
+    /// Sets every node's viscosity from `viscosities`, row-major, one per node: each
+    /// checked as by [`Surface::set_viscosity`] and the largest against the critical
+    /// timestep, all before anything changes, so a refused call changes nothing.
+    pub fn set_viscosities(&mut self, viscosities: &[f32]) -> Result<()> {
+        same_length("viscosities", viscosities.len(), self.node_count())?;
+        let mut stability = self.stability;
+        for &viscosity in viscosities {
+            params::non_negative("viscosity", viscosity)?;
+            stability = stability.with_viscosity(viscosity);
+        }
+        self.admit_bounds(stability)?;
+        self.stability = stability;
+        self.window_custom = true;
+        self.state.viscosity.assign(|i| viscosities[i]);
         Ok(())
     }
 
@@ -299,4 +332,18 @@ impl Surface {
             })
         }
     }
+}
+
+/// A node mass [`Surface::set_mass`] takes, apart from the timestep: positive, with a
+/// finite reciprocal.
+fn check_mass(mass: f32) -> Result<()> {
+    params::positive("mass", mass)?;
+    if !(1.0 / mass).is_finite() {
+        return Err(Error::InvalidParam {
+            name: "mass",
+            value: mass as f64,
+            expected: "at least 1.2e-38 (the reciprocal must be finite)",
+        });
+    }
+    Ok(())
 }

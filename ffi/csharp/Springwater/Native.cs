@@ -58,6 +58,15 @@ namespace Springwater
         /// <summary><c>sizeof(SwFloater)</c> in version 1 of the header, which the calls still take.</summary>
         public const int SW_FLOATER_SIZE_V1 = 80;
 
+        /// <summary>East springs: from node (col, row) to (col + 1, row).</summary>
+        public const int SW_FAMILY_E = 0;
+        /// <summary>South springs: from node (col, row) to (col, row + 1).</summary>
+        public const int SW_FAMILY_S = 1;
+        /// <summary>South-east diagonals: from node (col, row) to (col + 1, row + 1).</summary>
+        public const int SW_FAMILY_SE = 2;
+        /// <summary>South-west diagonals: from node (col, row) to (col − 1, row + 1).</summary>
+        public const int SW_FAMILY_SW = 3;
+
         /// <summary>Success.</summary>
         public const int SW_OK = 0;
         /// <summary>A required pointer argument was NULL.</summary>
@@ -282,6 +291,65 @@ namespace Springwater
             UIntPtr out_len,
             byte* found,
             UIntPtr found_len);
+
+        /// <summary>Pins (`pinned` 1) or frees (0) a node; pinning zeroes its velocity.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_set_pinned(IntPtr surface, UIntPtr node, int pinned);
+
+        /// <summary>Writes 1 to `out` if the node is pinned, 0 if it is free.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_is_pinned(IntPtr surface, UIntPtr node, int* @out);
+
+        /// <summary>Writes every node's pin, 1 pinned or 0 free, to `out[0..nodes]`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_write_pinned(IntPtr surface, byte* @out, UIntPtr len);
+
+        /// <summary>Sets a node's mass (> 0); refused if it would put `dt` past the critical
+        /// timestep.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_set_mass(IntPtr surface, UIntPtr node, float mass);
+
+        /// <summary>Sets every node's mass from `masses[0..nodes]`, all checked before any
+        /// changes.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_set_masses(IntPtr surface, float* masses, UIntPtr len);
+
+        /// <summary>Writes every node's mass to `out[0..nodes]`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_write_masses(IntPtr surface, float* @out, UIntPtr len);
+
+        /// <summary>Sets a node's viscosity (≥ 0); refused if it would put `dt` past the critical
+        /// timestep.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_set_viscosity(IntPtr surface, UIntPtr node, float viscosity);
+
+        /// <summary>Sets every node's viscosity from `viscosities[0..nodes]`, all checked before
+        /// any changes.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_set_viscosities(
+            IntPtr surface,
+            float* viscosities,
+            UIntPtr len);
+
+        /// <summary>Writes every node's viscosity, the absorbing frame's ramp included, to
+        /// `out[0..nodes]`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_write_viscosities(IntPtr surface, float* @out, UIntPtr len);
+
+        /// <summary>Writes the rest length and coefficient of the spring of `family` (`SW_FAMILY_*`)
+        /// whose origin is `node` to `out[0..2]`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_spring(IntPtr surface, int family, UIntPtr node, float* @out);
+
+        /// <summary>Sets the rest length (≥ 0) and coefficient (> 0) of the spring of `family`
+        /// whose origin is `node`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_set_spring(
+            IntPtr surface,
+            int family,
+            UIntPtr node,
+            float rest,
+            float stiffness);
 
         /// <summary>Writes every node's position, interleaved `x, y, z`, row-major (node `(col, row)`
         /// at `3·(row·cols + col)`). `len` is in floats and must be at least `3 · nodes`.</summary>
@@ -551,6 +619,16 @@ namespace Springwater
             float x,
             float y,
             float z);
+
+        /// <summary>Adds the torque `(tx, ty, tz)` about a body's centre of mass (world axes) for the
+        /// next step only; pushes add up until that step.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_push_floater_torque(
+            IntPtr surface,
+            ulong id,
+            float tx,
+            float ty,
+            float tz);
 
         /// <summary>The water's force and torque on a sphere or box body another engine owns, over
         /// its coming tick of `seconds`, written to `out`; the water gets the opposite.</summary>

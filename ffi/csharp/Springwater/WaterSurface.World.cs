@@ -72,6 +72,13 @@ namespace Springwater
                     s.Ptr, id, force.x, force.y, force.z, point.x, point.y, point.z));
         }
 
+        /// <summary>Adds a torque about a body's centre of mass (world axes) for the next step only.</summary>
+        public void PushFloaterTorque(ulong id, float tx, float ty, float tz)
+        {
+            using (var s = Enter())
+                SpringwaterException.Check(Native.sw_surface_push_floater_torque(s.Ptr, id, tx, ty, tz));
+        }
+
         /// <summary>
         /// The water's force and torque on a sphere or box body your own engine owns, over
         /// its coming tick of <paramref name="seconds"/> (the engine's fixed step): apply both

@@ -29,6 +29,7 @@ static unsafe partial class Runner
         Run("two_threads_each_owning_a_surface_get_the_same_bits", TwoThreads);
         Run("queries_agree_with_the_buffers", Queries);
         Run("a_heeled_box_rights_itself", RigidBodies);
+        Run("the_lattice_node_by_node", Lattice);
         Console.WriteLine(failures == 0 ? "all passed" : failures + " failed");
         Environment.Exit(failures == 0 ? 0 : 1);
     }
@@ -302,6 +303,20 @@ static unsafe partial class Runner
             var buoyancy = w.Buoyancy;
             buoyancy.gravity = -1;
             Refused("buoyancy_negative", Arg, "gravity = -1", () => w.Buoyancy = buoyancy);
+            Refused("torque_nan", Arg, "NaN", () => w.PushFloaterTorque(id, 0, float.NaN, 0));
+            Refused("pin_past_the_last_node", Arg, "node", () => w.SetPinned(n, true));
+            Refused("csharp_negative_node", Arg, "node -1", () => w.SetMass(-1, 4));
+            Refused("mass_negative", Arg, "mass = -1", () => w.SetMass(3, -1));
+            Refused("masses_short", Small, "masses holds 1", () => w.SetMasses(new float[1]));
+            var heavy = new float[n];
+            for (int i = 0; i < n; i++)
+                heavy[i] = 4;
+            heavy[n - 1] = 0.01f;
+            Refused("masses_one_too_light", Arg, "critical", () => w.SetMasses(heavy));
+            Refused("viscosity_nan", Arg, "NaN", () => w.SetViscosity(3, float.NaN));
+            Refused("pinned_short", Small, "needs " + n, () => w.WritePinned(new byte[n - 1]));
+            Refused("spring_off_the_grid", Arg, "no spring", () => { float r, c; w.Spring(Native.SW_FAMILY_E, 23, out r, out c); });
+            Refused("spring_family_unknown", Arg, "family is 4", () => w.SetSpring(4, 3, 1, 7));
             Refused("raw_null_out", Null, "NULL", () =>
                 SpringwaterException.Check(Native.sw_surface_height_at(w.RawHandle, 1, 1, null)));
             Assert(w.StateHash() == state, "the refused calls changed nothing");
