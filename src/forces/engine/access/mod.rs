@@ -262,7 +262,7 @@ impl<V: Vector> Shared<V> {
 }
 
 /// `(coefficient, rest length)` as lanes. (A named `#[inline(always)]` function, never a
-/// closure, where lanes are made: a closure is compiled on its own, without the layer's
+/// closure, where lanes are made: a closure is compiled on its own, without the level's
 /// target features, and the intrinsics in it become calls.)
 #[inline(always)]
 fn splat2<V: Vector>((c, r): (f32, f32)) -> (V, V) {
@@ -604,10 +604,8 @@ const CACHE_LINE: usize = 64;
 /// at AVX2, or its halves in two in a row at SSE2 (AVX2 at 2048²: 1.4-1.6x the speed of
 /// one chunk per iteration, or of pairs that straddle lines). A chunk a line wide
 /// (AVX-512) goes alone, which keeps fewer registers live, and so does every chunk on
-/// WebAssembly, which has no non-temporal store: the pairs' reason is absent there, and
-/// their two copies of the chunk's code and the odd start's third were 9% of the npm
-/// package's SIMD128 module and 19% of its portable one. The order, and so the results,
-/// are the same whatever the shape.
+/// WebAssembly, which has no non-temporal store (the pairs' extra code was 9–19% of the npm
+/// package's modules). The order, and so the results, are the same whatever the shape.
 #[inline(always)]
 pub(super) fn each_chunk<V, S, P, W, D>(
     views: &mut RowViews<'_, '_, V, S, P>,
