@@ -108,8 +108,7 @@ fn run(steps: u64, every: u64) -> Result<(), String> {
     let start = Instant::now();
     for n in 1..=steps {
         rain.apply(&mut s, seconds).map_err(|e| e.to_string())?;
-        s.step()
-            .map_err(|e| format!("step {n} failed: {e}"))?;
+        s.step().map_err(|e| format!("step {n} failed: {e}"))?;
         if n % 8 == 0 {
             let [x, z] = path(n, seconds as f64);
             s.follow(x, z).map_err(|e| e.to_string())?;
@@ -148,11 +147,7 @@ fn bring_back(s: &mut Surface, ids: &[FloaterId]) -> Result<(), String> {
         if back_x.is_none() && back_z.is_none() {
             continue;
         }
-        f.position = Vec3::new(
-            ox + back_x.unwrap_or(x),
-            0.0,
-            oz + back_z.unwrap_or(z),
-        );
+        f.position = Vec3::new(ox + back_x.unwrap_or(x), 0.0, oz + back_z.unwrap_or(z));
         f.velocity = Vec3::ZERO;
         f.angular_velocity = Vec3::ZERO;
         f.orientation = Quat::IDENTITY;

@@ -168,10 +168,17 @@ fn check_reaction(
     };
     // What the column carries is not the call's business.
     for &(node, carried, _) in &after {
-        assert_eq!(carried, at(before, node).0, "body_forces changed a carried load");
+        assert_eq!(
+            carried,
+            at(before, node).0,
+            "body_forces changed a carried load"
+        );
     }
     for &(node, ..) in before {
-        assert!(after.binary_search_by_key(&node, |e| e.0).is_ok(), "lost {node}");
+        assert!(
+            after.binary_search_by_key(&node, |e| e.0).is_ok(),
+            "lost {node}"
+        );
     }
     let p = s.params();
     let ts2 = (p.time_scale as f64).powi(2);
@@ -186,7 +193,8 @@ fn check_reaction(
         sum += d;
         let (x, z) = ((node % cols) as f64 * h, (node / cols) as f64 * h);
         moment += (z - c.z) * d.x - (x - c.x) * d.z;
-        let held = DVec3::from(now.map(f64::from)).length() + DVec3::from(was.map(f64::from)).length();
+        let held =
+            DVec3::from(now.map(f64::from)).length() + DVec3::from(was.map(f64::from)).length();
         size += held * to_body;
     }
     // The largest terms that cancel: the pressure on the whole hull at the depth of its

@@ -71,7 +71,15 @@ impl Body {
         let mut f = if sphere {
             sw_floater_sphere(size, size * size, at[0], at[1], at[2])
         } else {
-            sw_floater_box(size, 0.5 * size, 1.5 * size, size * size, at[0], at[1], at[2])
+            sw_floater_box(
+                size,
+                0.5 * size,
+                1.5 * size,
+                size * size,
+                at[0],
+                at[1],
+                at[2],
+            )
         };
         if let Some(r) = &self.raw {
             let [radius, hx, hy, hz, mass, drag] = r.size;
@@ -143,7 +151,10 @@ fn state(s: *mut SwSurface) -> (Vec<u8>, u64) {
             return (Vec::new(), 0);
         }
         let mut bytes = vec![0u8; size];
-        assert_eq!(sw_surface_save(s, bytes.as_mut_ptr(), size, &mut size), SW_OK);
+        assert_eq!(
+            sw_surface_save(s, bytes.as_mut_ptr(), size, &mut size),
+            SW_OK
+        );
         assert_eq!(sw_surface_state_hash(s, &mut hash), SW_OK);
         (bytes, hash)
     }
@@ -155,7 +166,10 @@ fn unchanged_unless_ok(s: *mut SwSurface, call: impl FnOnce() -> SwStatus) -> Sw
     let status = call();
     assert!(status <= SW_OK, "status {status}");
     if status != SW_OK {
-        assert!(state(s) == before, "a failing call ({status}) changed the surface");
+        assert!(
+            state(s) == before,
+            "a failing call ({status}) changed the surface"
+        );
     }
     status
 }
@@ -167,11 +181,17 @@ fn check_finite(s: *mut SwSurface) {
         let mut nodes = 0;
         assert_eq!(sw_surface_node_count(s, &mut nodes), SW_OK);
         let mut xyz = vec![0.0f32; 3 * nodes];
-        assert_eq!(sw_surface_write_positions(s, xyz.as_mut_ptr(), xyz.len()), SW_OK);
+        assert_eq!(
+            sw_surface_write_positions(s, xyz.as_mut_ptr(), xyz.len()),
+            SW_OK
+        );
         assert!(xyz.iter().all(|v| v.is_finite()), "non-finite water");
         let mut ids = [0u64; 8];
         let mut count = 0;
-        assert_eq!(sw_surface_floater_ids(s, ids.as_mut_ptr(), 8, &mut count), SW_OK);
+        assert_eq!(
+            sw_surface_floater_ids(s, ids.as_mut_ptr(), 8, &mut count),
+            SW_OK
+        );
         for &id in &ids[..count.min(8)] {
             let mut f = SwFloater::default();
             assert_eq!(sw_surface_floater(s, id, &mut f), SW_OK);
@@ -233,7 +253,10 @@ fuzz_target!(|calls: Vec<Call>| {
                     lie,
                 } => {
                     // Pointers with their true counts, or NULL with any count.
-                    let (v, t) = (&xyz[..xyz.len().min(96) / 3 * 3], &triangles[..triangles.len().min(96) / 3 * 3]);
+                    let (v, t) = (
+                        &xyz[..xyz.len().min(96) / 3 * 3],
+                        &triangles[..triangles.len().min(96) / 3 * 3],
+                    );
                     let (vp, vn, tp, tn) = match lie {
                         None => (v.as_ptr(), v.len() / 3, t.as_ptr(), t.len() / 3),
                         Some((a, b)) => (null(), *a as usize, null(), *b as usize),
@@ -255,10 +278,23 @@ fuzz_target!(|calls: Vec<Call>| {
                         let pick = |bit: i32, v: f32| if i & bit == 0 { -v } else { v };
                         xyz.extend([pick(1, e[0]), pick(2, e[1]), pick(4, e[2])]);
                     }
-                    let quads = [[0, 4, 6, 2], [1, 3, 7, 5], [0, 1, 5, 4], [2, 6, 7, 3], [0, 2, 3, 1], [4, 5, 7, 6]];
-                    let t: Vec<u32> = quads.iter().flat_map(|&[a, b, c, d]| [a, b, c, a, c, d]).collect();
+                    let quads = [
+                        [0, 4, 6, 2],
+                        [1, 3, 7, 5],
+                        [0, 1, 5, 4],
+                        [2, 6, 7, 3],
+                        [0, 2, 3, 1],
+                        [4, 5, 7, 6],
+                    ];
+                    let t: Vec<u32> = quads
+                        .iter()
+                        .flat_map(|&[a, b, c, d]| [a, b, c, a, c, d])
+                        .collect();
                     let mut h = null_mut();
-                    assert_eq!(sw_hull_create(xyz.as_ptr(), 8, t.as_ptr(), 12, &mut h), SW_OK);
+                    assert_eq!(
+                        sw_hull_create(xyz.as_ptr(), 8, t.as_ptr(), 12, &mut h),
+                        SW_OK
+                    );
                     hulls.push(h);
                 }
                 Call::DestroyHull(h) => sw_hull_destroy(hull(h, &hulls)),
@@ -294,7 +330,8 @@ fuzz_target!(|calls: Vec<Call>| {
                         }
                     }
                     let mut id = u64::MAX;
-                    let status = unchanged_unless_ok(s, || sw_surface_add_hull_floater(s, hp, &f, &mut id));
+                    let status =
+                        unchanged_unless_ok(s, || sw_surface_add_hull_floater(s, hp, &f, &mut id));
                     if status == SW_OK {
                         ids.push(id);
                     }
@@ -313,7 +350,9 @@ fuzz_target!(|calls: Vec<Call>| {
                 }
                 Call::Push(h, id, [x, y, z]) => {
                     let s = pick(h);
-                    unchanged_unless_ok(s, || sw_surface_push_floater(s, id_of(id, &ids), *x, *y, *z));
+                    unchanged_unless_ok(s, || {
+                        sw_surface_push_floater(s, id_of(id, &ids), *x, *y, *z)
+                    });
                 }
                 Call::PushAt(h, id, [fx, fy, fz, x, y, z]) => {
                     let s = pick(h);
@@ -327,7 +366,9 @@ fuzz_target!(|calls: Vec<Call>| {
                     if !sized {
                         out.struct_size = 7;
                     }
-                    let status = unchanged_unless_ok(s, || sw_surface_body_forces(s, &f, *seconds, &mut out));
+                    let status = unchanged_unless_ok(s, || {
+                        sw_surface_body_forces(s, &f, *seconds, &mut out)
+                    });
                     if status == SW_OK {
                         assert!(out.force.iter().chain(&out.torque).all(|v| v.is_finite()));
                     }
@@ -337,7 +378,9 @@ fuzz_target!(|calls: Vec<Call>| {
                     let mut f = b.floater();
                     f.shape = SW_SHAPE_HULL;
                     let mut out = sw_body_forces_default();
-                    unchanged_unless_ok(s, || sw_surface_hull_body_forces(s, hp, &f, *seconds, &mut out));
+                    unchanged_unless_ok(s, || {
+                        sw_surface_hull_body_forces(s, hp, &f, *seconds, &mut out)
+                    });
                 }
                 Call::Step(h) => {
                     let s = pick(h);
@@ -357,7 +400,9 @@ fuzz_target!(|calls: Vec<Call>| {
                     let s = pick(h);
                     let mut buf = vec![0u8; *len as usize];
                     let mut size = 0;
-                    let status = unchanged_unless_ok(s, || sw_surface_save(s, buf.as_mut_ptr(), buf.len(), &mut size));
+                    let status = unchanged_unless_ok(s, || {
+                        sw_surface_save(s, buf.as_mut_ptr(), buf.len(), &mut size)
+                    });
                     if status == SW_OK {
                         buf.truncate(size);
                         frames.push((buf, state(s).1));
@@ -370,7 +415,9 @@ fuzz_target!(|calls: Vec<Call>| {
                     let s = pick(h);
                     let mut bytes = frame.clone();
                     edits.apply(&mut bytes);
-                    let status = unchanged_unless_ok(s, || sw_surface_restore(s, bytes.as_ptr(), bytes.len()));
+                    let status = unchanged_unless_ok(s, || {
+                        sw_surface_restore(s, bytes.as_ptr(), bytes.len())
+                    });
                     if status == SW_OK && bytes == *frame {
                         assert_eq!(state(s).1, *hash, "a restored frame hashes differently");
                     }

@@ -38,7 +38,7 @@ enum Input {
 #[derive(Debug, Arbitrary)]
 struct Damage {
     base: u8,
-    /// Vertex, and its move in sixteenths of the base's size.
+    /// Vertex, and its move (up to a quarter of the base's size).
     moves: Vec<(u8, [i8; 3])>,
     /// Triangles whose winding is reversed.
     flips: Vec<u8>,
@@ -47,7 +47,9 @@ struct Damage {
     seams: bool,
     /// Size, from 1e-30 to 1e9.
     scale: u8,
-    offset: [Num; 3],
+    /// A move in sixteenths of the size, or (sometimes) any distance.
+    offset: [i8; 3],
+    far: Option<[Num; 3]>,
     /// Vertices set to a raw number (NaN, infinity, 1e38).
     raw: Option<(u8, [f32; 3])>,
 }
@@ -82,7 +84,12 @@ fn base(kind: u8) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
             (v, t)
         }
         _ => {
-            let v = vec![[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, 1.0, 0.0]];
+            let v = vec![
+                [0.0, 0.0, 0.0],
+                [1.0, 0.0, 0.0],
+                [0.0, 0.0, 1.0],
+                [0.0, 1.0, 0.0],
+            ];
             let t = vec![[0, 1, 2], [1, 0, 3], [2, 1, 3], [0, 2, 3]];
             (v, t)
         }
@@ -95,7 +102,7 @@ fn damaged(d: &Damage) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
         let n = v.len();
         let p = &mut v[k as usize % n];
         for (c, dm) in p.iter_mut().zip(m) {
-            *c += dm as f32 / 16.0;
+            *c += dm as f32 / 512.0;
         }
     }
     for &k in d.flips.iter().take(4) {
@@ -120,7 +127,10 @@ fn damaged(d: &Damage) -> (Vec<[f32; 3]>, Vec<[u32; 3]>) {
         v = split_v;
     }
     let scale = log_range(d.scale, 1e-30, 1e9);
-    let offset = common::vec3(d.offset).to_array();
+    let offset = match d.far {
+        Some(far) => common::vec3(far).to_array(),
+        None => d.offset.map(|v| v as f32 / 16.0 * scale),
+    };
     for p in &mut v {
         for k in 0..3 {
             p[k] = p[k] * scale + offset[k];
@@ -242,7 +252,11 @@ fuzz_target!(|input: Input| {
     };
     let hull = Hull::new(&vertices, &triangles);
     let body = Floater::hull(&vertices, &triangles, 1.0, [0.0; 3]);
-    assert_eq!(hull.is_ok(), body.is_ok(), "Floater::hull and Hull::new disagree");
+    assert_eq!(
+        hull.is_ok(),
+        body.is_ok(),
+        "Floater::hull and Hull::new disagree"
+    );
     if let Ok(hull) = hull {
         check(&hull, &vertices, &triangles);
         float(&hull);

@@ -120,16 +120,25 @@ fuzz_target!(|input: Input| {
         Ok(loaded) => {
             let read = &bytes[..bytes.len() - rest.len()];
             let again = Surface::from_bytes(read).expect("load and from_bytes disagree");
-            assert!(state(&loaded) == state(&again), "load differs from from_bytes");
+            assert!(
+                state(&loaded) == state(&again),
+                "load differs from from_bytes"
+            );
         }
         Err(_) => assert!(fresh.is_err(), "from_bytes took what load refused"),
     }
     match (restored, fresh) {
         (Err(_), Err(_)) => {
-            assert!(state(&live) == before, "a refused restore changed the surface");
+            assert!(
+                state(&live) == before,
+                "a refused restore changed the surface"
+            );
         }
         (Ok(()), Ok(mut fresh)) => {
-            assert!(state(&live) == state(&fresh), "restored differs from a fresh load");
+            assert!(
+                state(&live) == state(&fresh),
+                "restored differs from a fresh load"
+            );
             // Saving into a used buffer gives what a fresh save gives.
             let mut saved = before.0;
             live.save_into(&mut saved);
@@ -147,6 +156,10 @@ fuzz_target!(|input: Input| {
                 common::check_finite(&live);
             }
         }
-        (r, f) => panic!("restore {:?} and from_bytes {:?} disagree", r.err(), f.err()),
+        (r, f) => panic!(
+            "restore {:?} and from_bytes {:?} disagree",
+            r.err(),
+            f.err()
+        ),
     }
 });

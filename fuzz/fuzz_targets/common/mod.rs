@@ -149,9 +149,10 @@ pub fn state(s: &Surface) -> (Vec<u8>, u64) {
     (s.to_bytes(), s.state_hash())
 }
 
-/// `lo · (hi/lo)^(b/255)`.
+/// `lo · (hi/lo)^(b/255)`, in `f64` (a range such as 1e-30 to 1e9 overflows `f32`).
 pub fn log_range(b: u8, lo: f32, hi: f32) -> f32 {
-    lo * (hi / lo).powf(b as f32 / 255.0)
+    let (lo, hi) = (lo as f64, hi as f64);
+    (lo * (hi / lo).powf(b as f64 / 255.0)) as f32
 }
 
 /// CRC-32 (IEEE), bitwise: the targets repair a snapshot's checksum after editing it
