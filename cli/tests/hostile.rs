@@ -179,7 +179,15 @@ fn a_snapshot_too_large_to_load_is_refused_before_it_is_read() {
     let file = std::fs::File::create(&snap).unwrap();
     file.set_len(196 + 77 * 2048 * 2048).unwrap();
     let out = dir.join("big.pc2");
-    let bake = ["bake", "--load", s(&snap), "--frames", "1", "--out", s(&out)];
+    let bake = [
+        "bake",
+        "--load",
+        s(&snap),
+        "--frames",
+        "1",
+        "--out",
+        s(&out),
+    ];
     let Some(err) = refused_under(800_000, &bake) else {
         return;
     };
