@@ -341,9 +341,15 @@ impl Surface {
     pub(crate) fn floating_step(&mut self, dt: f32) -> Result<()> {
         let mut c = std::mem::take(&mut self.bodies.scratch);
         let n = self.node_count();
+        // The column is undone only if this step gathered into it: a step that failed
+        // before (a body's own step refused) has nothing to undo, and the column's mark of
+        // where this step's entries begin is stale then (a load, a shift or `body_forces`
+        // since the last step moved it).
+        let mut gathered = false;
         let coupled = self.couple(dt, &mut c).and_then(|()| {
             let shares = c.slots.iter().flat_map(|slot| &slot.shares);
             self.bodies.column.gather(shares, n, &mut c.water);
+            gathered = true;
             self.push_water(&mut c)
         });
         let coupled = coupled.and_then(|()| self.water(1, dt).inspect_err(|_| self.undo(&c)));
@@ -357,7 +363,8 @@ impl Surface {
                 let seconds = dt / self.params.time_scale;
                 self.bodies.column.commit(column::rate(seconds));
             }
-            Err(_) => self.bodies.column.discard(),
+            Err(_) if gathered => self.bodies.column.discard(),
+            Err(_) => {}
         }
         self.bodies.scratch = c;
         coupled
