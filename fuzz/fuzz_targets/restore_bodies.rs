@@ -1,9 +1,10 @@
-//! `restore`, `Surface::from_bytes` and `Surface::load` of arbitrary bytes into a live
-//! surface that has floating bodies: either all three refuse and the live surface is
-//! bitwise unchanged (its snapshot bytes and state hash), or all three accept and the
-//! restored surface equals a fresh load of the same bytes: the same bytes and hash, and
-//! the same bits after two more steps (so no cache of the old bodies, such as a hull's
-//! wet mesh kept for a body's place in the list, outlives the restore).
+//! `restore` and `Surface::from_bytes` of arbitrary bytes into a live surface that has
+//! floating bodies: either both refuse and the live surface is bitwise unchanged (its
+//! snapshot bytes and state hash), or both accept and the restored surface equals a fresh
+//! load of the same bytes: the same bytes and hash, and the same bits after two more steps,
+//! failed steps included (so no cache of the old bodies, such as a hull's wet mesh kept for
+//! a body's place in the list, outlives the restore). `Surface::load` reads one snapshot
+//! from a stream: it takes exactly what `from_bytes` takes of the bytes it reads.
 //!
 //! The bytes are raw, or a snapshot with fuzzer-chosen edits (XOR masks, a cut, a repaired
 //! checksum so that the damage reaches the content checks) of either the live surface at an
