@@ -633,3 +633,28 @@ fn a_bodys_velocity_is_its_change_of_position_per_second() {
         "moved {moved} in 1 s, mean velocity {mean} (started at {v0})"
     );
 }
+
+#[test]
+fn a_step_a_body_refuses_changes_nothing_after_a_load_or_body_forces() {
+    // Found by the restore_bodies fuzz target (fuzz/regressions/restore_bodies/): a step
+    // that failed in a body's own step, before the water column gathered anything, undid
+    // the column from a stale mark of where that step's entries began. A surface just
+    // loaded (mark 0) lost every load its column carried. The same with `body_forces`
+    // loads waiting, which also move entries past the mark.
+    let mut s = Surface::new(Params::with_size(16, 16).with_dt(0.2)).unwrap();
+    let id = s.add_floater(ball(&s, 1.5, 0.5, [8.0, 0.0, 8.0])).unwrap();
+    s.step_n(20).unwrap();
+    assert!(!s.water_column().is_empty(), "the column carries the ball");
+    // A push no body's step takes (its velocity would pass 1e11 in a step).
+    let overwhelm = |s: &mut Surface| {
+        s.push_floater(id, [0.0, 0.0, -4e28]).unwrap();
+        let before = s.to_bytes();
+        assert!(s.step().is_err());
+        assert!(s.to_bytes() == before, "a failed step changed the surface");
+    };
+    let mut loaded = Surface::from_bytes(&s.to_bytes()).unwrap();
+    overwhelm(&mut loaded);
+    let probe = ball(&s, 0.5, 0.5, [3.0, 0.0, 3.0]);
+    s.body_forces(&probe, 1.0 / 60.0).unwrap();
+    overwhelm(&mut s);
+}

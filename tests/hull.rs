@@ -122,6 +122,30 @@ fn a_degenerate_inertia_is_refused() {
 }
 
 #[test]
+fn a_hull_whose_volume_is_below_the_smallest_f32_is_refused() {
+    // Found by the `hulls` fuzz target (fuzz/regressions/hulls/volume-below-f32): a box
+    // 1e-15 across is well shaped, but its volume of 6e-45 is 0 as an f32, so the hull
+    // reported a volume of 0 and no body could be made of it.
+    let tiny = |scale: f32| {
+        let (v, t) = box_mesh();
+        let v: Vec<[f32; 3]> = v.iter().map(|p| p.map(|c| c * scale)).collect();
+        Hull::new(&v, &t)
+    };
+    let message = tiny(1e-15).unwrap_err().to_string();
+    assert!(
+        message.contains("less than the smallest normal f32"),
+        "{message}"
+    );
+    // 4.8e-38 cubic units: kept, with a positive volume.
+    let smallest = tiny(1e-13).unwrap();
+    assert!(
+        smallest.volume() >= f32::MIN_POSITIVE,
+        "{}",
+        smallest.volume()
+    );
+}
+
+#[test]
 fn vertices_split_at_seams_are_joined_by_position() {
     // The box with its own four vertices per face, as a game mesh with hard normals has.
     let (v, t) = box_mesh();

@@ -163,11 +163,11 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     output::distinct(&paths)?;
 
     let model = &start.model;
+    // The surface, its normals and refraction coordinates, the triangles and the writer's
+    // rest frame: 134 bytes a node for a point cache and 180 for a .glb, measured on
+    // 2048 x 2048.
+    let per_node = if format == Format::Glb { 192 } else { 144 };
     if start.load.is_none() {
-        // The surface, its normals and refraction coordinates, the triangles and the
-        // writer's rest frame: 134 bytes a node for a point cache and 180 for a .glb,
-        // measured on 2048 x 2048.
-        let per_node = if format == Format::Glb { 192 } else { 144 };
         // A .glb past the format's 4 GiB is refused before the grid is built (with --load,
         // once the snapshot gives the grid, below).
         if format == Format::Glb {
@@ -239,6 +239,21 @@ pub fn run(p: &mut Parser) -> CliResult<()> {
     }
     if format == Format::Glb {
         glb::check_size(&out, &params, frames, surface.floaters().len())?;
+    }
+    if let Some(load) = &start.load {
+        // The snapshot gave the grid: what the bake adds to the surface it built (the
+        // surface itself is the 64 bytes a node `bench` measures), asked before any step.
+        let nodes = params.cols as u64 * params.rows as u64;
+        crate::memory::check(
+            nodes.saturating_mul(per_node - 64),
+            &format!(
+                "bake --load {} (a {}x{} grid)",
+                load.display(),
+                params.cols,
+                params.rows
+            ),
+            "bake a snapshot of a smaller grid",
+        )?;
     }
 
     // Rain and wake sized in cells, as `render` makes them.

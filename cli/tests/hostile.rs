@@ -168,6 +168,37 @@ fn bench_and_render_past_the_memory_there_is_are_refused_not_aborted() {
 }
 
 #[test]
+fn a_snapshot_too_large_to_load_is_refused_before_it_is_read() {
+    // `bake --load` of a real 2048 x 2048 snapshot (323 MB) under an 800 MB limit aborted
+    // while loading ("memory allocation of 16777216 bytes failed", exit 134): loading holds
+    // the file, the decoded snapshot and the surface at once, more than the bake needs
+    // after it. The file's length bounds its grid, so that memory is asked for before the
+    // file is read; a sparse file of that length (nothing on disk) shows it.
+    let dir = fresh("load-memory");
+    let snap = dir.join("big.snap");
+    let file = std::fs::File::create(&snap).unwrap();
+    file.set_len(196 + 77 * 2048 * 2048).unwrap();
+    let out = dir.join("big.pc2");
+    let bake = [
+        "bake",
+        "--load",
+        s(&snap),
+        "--frames",
+        "1",
+        "--out",
+        s(&out),
+    ];
+    let Some(err) = refused_under(800_000, &bake) else {
+        return;
+    };
+    assert!(err.contains("--load") && err.contains("memory"), "{err}");
+    let simulate = ["simulate", "--load", s(&snap), "--steps", "1"];
+    let err = refused_under(800_000, &simulate).unwrap();
+    assert!(err.contains("--load") && err.contains("memory"), "{err}");
+    assert_eq!(names(&dir), ["big.snap"]);
+}
+
+#[test]
 fn two_outputs_of_render_on_one_path_are_refused_before_any_work() {
     let dir = fresh("same-path");
     let same = dir.join("same.gif");

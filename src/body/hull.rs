@@ -44,7 +44,8 @@ use glam::{DVec3, Mat3, Vec3};
 ///   Vertices at exactly the same position count as one, so a game mesh split at its
 ///   texture seams is closed if its positions are;
 /// * wound outward: the enclosed volume is positive, and not vanishingly small against the
-///   mesh's size (at least 1e-6 of the cube of its bounding box's largest side);
+///   mesh's size (at least 1e-6 of the cube of its bounding box's largest side) nor in
+///   itself (at least 1.2e-38 cubic units, the smallest normal `f32`);
 /// * a positive definite inertia (a mesh that turns inside out in places can pass the
 ///   other tests and fail this one).
 ///
@@ -439,6 +440,14 @@ impl MassSums {
                 "the mesh encloses almost no volume ({} against a bounding box {} wide): it \
                  is flat or folded onto itself",
                 volume as f32, self.extent as f32
+            ));
+        }
+        // The volume is handed out in f32 (`Hull::volume`, a body's displacement): a mesh
+        // enclosing less than the smallest normal f32 would float with no volume at all.
+        if (volume as f32) < f32::MIN_POSITIVE {
+            return refuse(format!(
+                "the mesh encloses {volume:e} cubic units, less than the smallest normal f32 \
+                 (1.2e-38): scale it up"
             ));
         }
         let c = self.first / (24.0 * volume);
