@@ -231,13 +231,13 @@ impl Waters<'_> {
         Some((s.blend3(cols, self.velocities), room, s.spread()))
     }
 
-    /// The four nodes a force at `(x, z)` spreads onto and their bilinear weights (those
-    /// [`Surface::add_force_at`] uses), or `None` off the footprint.
     /// Nodes per row of the grid.
     pub fn cols(&self) -> usize {
         self.view.cols()
     }
 
+    /// The cell a force at `(x, z)` spreads onto and its corners' bilinear weights (those
+    /// [`Surface::add_force_at`] uses), or `None` off the footprint.
     pub fn spread(&self, x: f32, z: f32) -> Option<Spread> {
         Some(self.sample(x, z)?.spread())
     }
