@@ -140,7 +140,7 @@ pub fn load_snapshot(path: &Path) -> CliResult<Surface> {
 /// Refuses a snapshot file whose loading needs more memory than the system gives, before
 /// reading it. Loading holds the file's bytes, the decoded snapshot and the new surface at
 /// once: 248 bytes a node at the peak (resident memory, measured loading 2048 x 2048;
-/// asked here as 256). A snapshot has 77 bytes a node besides 196 of header and checksum,
+/// asked here as 256). A snapshot has 77 bytes a node besides 204 of header and checksum,
 /// and its bodies take bytes but no nodes, so its length bounds its nodes from above. A
 /// path that is not a regular file (a FIFO, a device) has no length to go by.
 fn check_load_memory(path: &Path) -> CliResult<()> {
@@ -150,7 +150,7 @@ fn check_load_memory(path: &Path) -> CliResult<()> {
     if !meta.is_file() {
         return Ok(());
     }
-    let nodes = meta.len().saturating_sub(196) / 77;
+    let nodes = meta.len().saturating_sub(204) / 77;
     crate::memory::check(
         nodes.saturating_mul(256),
         &format!(

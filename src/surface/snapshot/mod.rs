@@ -145,7 +145,7 @@ const CRC: usize = 4;
 /// the bodies that name one mesh one `Arc`; [`Surface::restore`] reuses the surface's own
 /// `Arc` where it has the stored bits.
 ///
-/// The total is `196 + 77 n + 176 f + m` bytes. Version 5 has a header of 136 bytes
+/// The total is `204 + 77 n + 176 f + m + 32 k` bytes. Version 5 has a header of 136 bytes
 /// (without the hull section's count and length), bodies of 80 bytes (the first 80 above,
 /// spheres and boxes) and no hull section: its bodies load upright (the identity
 /// orientation), not spinning, with no torque pushed or felt and the shape's inertia.
