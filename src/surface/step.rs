@@ -77,22 +77,13 @@ impl Surface {
     ///    what they were, and the surface is unchanged, bodies included.
     fn floating_step(&mut self, dt: f32) -> Result<()> {
         let mut c = self.bodies.take_scratch();
-        // The column is undone only if this step gathered into it: a step that failed
-        // before (a body's own step refused) has nothing to undo there, and the column's
-        // mark of where this step's entries begin is stale then (a load, a shift or
-        // `body_forces` since the last step moved it).
-        let mut gathered = false;
         let stepped = self
             .prepare_bodies(dt, &mut c)
-            .and_then(|()| {
-                gathered = true;
-                self.apply_reactions(&c)
-            })
+            .and_then(|()| self.apply_reactions(&c))
             .and_then(|()| self.water(1, dt).inspect_err(|_| self.state.ext.undo()));
         match stepped {
             Ok(()) => self.commit_bodies(dt, &mut c),
-            Err(_) if gathered => self.discard_bodies(),
-            Err(_) => {}
+            Err(_) => self.discard_bodies(),
         }
         self.bodies.keep_scratch(c);
         stepped

@@ -66,7 +66,8 @@ pub(crate) struct Column {
     /// The entry of each node, `NONE` for nodes without one; rebuilt when it does not
     /// match the grid or the entries (empty until first used).
     slot: Vec<u32>,
-    /// Entries before this step's gather: a failed step drops the ones after.
+    /// Entries before this step's gather: a failed step drops the ones after. Equal to
+    /// the entries' count between steps (every change but a gather keeps it so).
     kept: usize,
     /// A restore decodes into this buffer, checks it, then swaps it in: a rollback
     /// reuses both lists' memory.
@@ -126,6 +127,7 @@ impl Column {
         self.entries.clear();
         self.entries.extend(entries);
         self.slot.clear();
+        self.kept = self.entries.len();
     }
 
     /// The buffer a restore decodes into before [`Column::take_spare`] swaps it in.
@@ -152,6 +154,7 @@ impl Column {
         });
         self.entries.sort_unstable_by_key(|e| e.node);
         self.slot.clear();
+        self.kept = self.entries.len();
     }
 
     /// The entry of `node` on a grid of `nodes`, made (at the end) if it has none.
@@ -342,6 +345,18 @@ mod tests {
             .hold(&[(7, [0.0; 3]), (5, [f32::MAX, 0.0, 0.0])], 16)
             .is_err());
         assert_eq!(c.entries(), &kept[..]);
+    }
+
+    #[test]
+    fn a_step_that_fails_before_gathering_changes_nothing_after_a_load_or_a_shift() {
+        let mut c = Column::default();
+        c.set_entries([(3, [1.0; 3]), (7, [2.0; 3])].map(|(n, l)| Entry::stored(n, l, [0.0; 3])));
+        c.discard();
+        assert_eq!(c.entries().len(), 2);
+        c.shift(|i| (i > 4).then(|| i - 4));
+        c.discard();
+        let nodes: Vec<usize> = c.entries().iter().map(|e| e.node).collect();
+        assert_eq!(nodes, [3]);
     }
 
     #[test]
