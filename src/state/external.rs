@@ -72,11 +72,8 @@ impl External {
     pub fn add(&mut self, batch: impl IntoIterator<Item = (usize, [f32; 3])>) -> Result<(), f32> {
         self.log.clear();
         self.before = (self.pending, self.nodes.as_ref().map(Vec::len));
-        let [fx, fy, fz] = &mut self.forces;
-        // Plain slices of one length, taken once, rather than the buffers' view at every
-        // index.
+        let [fx, fy, fz] = slices(&mut self.forces);
         let n = fx.len();
-        let (fx, fy, fz) = (&mut fx[..n], &mut fy[..n], &mut fz[..n]);
         let mut finite = true;
         for (i, f) in batch {
             assert!(i < n, "node {i} of {n}");
@@ -112,8 +109,7 @@ impl External {
     /// newest first, and the flag and list go back to what they were (a list that
     /// overflowed stays `None`, which is still correct).
     pub fn undo(&mut self) {
-        let [fx, fy, fz] = &mut self.forces;
-        let (fx, fy, fz) = (&mut fx[..], &mut fy[..], &mut fz[..]);
+        let [fx, fy, fz] = slices(&mut self.forces);
         for &(i, old) in self.log.iter().rev() {
             (fx[i], fy[i], fz[i]) = (old[0], old[1], old[2]);
         }
@@ -124,10 +120,9 @@ impl External {
         }
     }
 
-    /// Replaces every node's force with `force` (finite, `len` values each), as a step
-    /// that reads every row.
+    /// Replaces every node's force with `force` (finite, `len` values each, so every
+    /// node is written), as a step that reads every row.
     pub fn set(&mut self, force: [&[f32]; 3]) {
-        self.clear();
         for (dst, src) in self.forces.iter_mut().zip(force) {
             dst[..src.len()].copy_from_slice(src);
         }
@@ -139,11 +134,9 @@ impl External {
         if self.pending {
             match &mut self.nodes {
                 Some(nodes) => {
-                    let [fx, fy, fz] = &mut self.forces;
-                    let n = fx.len();
-                    let (fx, fy, fz) = (&mut fx[..n], &mut fy[..n], &mut fz[..n]);
+                    let [fx, fy, fz] = slices(&mut self.forces);
                     for &i in nodes.iter() {
-                        assert!(i < n, "node {i} of {n}");
+                        assert!(i < fx.len(), "node {i} of {}", fx.len());
                         (fx[i], fy[i], fz[i]) = (0.0, 0.0, 0.0);
                     }
                     nodes.clear();
@@ -205,13 +198,22 @@ impl External {
     /// Loads the forces of a snapshot (`pending` as it recorded; `read` fills the three
     /// buffers' first `len` values).
     pub fn load(&mut self, pending: bool, read: impl FnOnce(&mut Xyz)) {
-        self.mark_all();
+        // Nothing pending means every force is zero: clearing what may be pending is
+        // enough before reading.
         self.clear();
         if pending {
             read(&mut self.forces);
             self.mark_all();
         }
     }
+}
+
+/// The three buffers as plain slices of one length, taken once, rather than the buffers'
+/// view at every index (a bounds check a node, not one an axis).
+fn slices(forces: &mut Xyz) -> [&mut [f32]; 3] {
+    let [x, y, z] = forces;
+    let n = x.len().min(y.len()).min(z.len());
+    [&mut x[..n], &mut y[..n], &mut z[..n]]
 }
 
 #[cfg(test)]
