@@ -13,7 +13,10 @@
 
 #![no_main]
 
+mod common;
+
 use arbitrary::{Arbitrary, Unstructured};
+use common::crc32;
 use glam::{Quat, Vec3};
 use libfuzzer_sys::fuzz_target;
 use springwater::body::Hull;
@@ -141,19 +144,3 @@ fuzz_target!(|data: &[u8]| {
         }
     }
 });
-
-/// CRC-32 (IEEE), bitwise: the fuzzer repairs checksums without the crate's helper.
-fn crc32(data: &[u8]) -> u32 {
-    let mut crc = !0u32;
-    for &b in data {
-        crc ^= b as u32;
-        for _ in 0..8 {
-            crc = if crc & 1 != 0 {
-                (crc >> 1) ^ 0xEDB8_8320
-            } else {
-                crc >> 1
-            };
-        }
-    }
-    !crc
-}

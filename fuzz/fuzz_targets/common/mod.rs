@@ -1,5 +1,5 @@
-//! Pieces the rigid-body targets share (`hulls`, `rigid_bodies`, `body_forces`,
-//! `restore_bodies`): numbers that are sometimes raw bits and sometimes sane, boundaries,
+//! Pieces the targets share (the rigid-body ones, `hulls`, `rigid_bodies`, `body_forces`,
+//! `restore_bodies`, `ffi_bodies`, and the snapshot's checksum for `snapshot`): numbers that are sometimes raw bits and sometimes sane, boundaries,
 //! a few hulls, and the checks of a surface's state. Not a target of its own.
 
 #![allow(dead_code)] // each target uses its own part
