@@ -76,8 +76,7 @@ struct Slot {
     /// lattice's units.
     shares: Vec<(usize, [f32; 3])>,
     /// The nodes under the body, a window of rows, while the shares are summed.
-    window: Vec<Option<[f32; 3]>>,
-    /// The body after its step, or `None` if it failed (not finite, out of range).
+    window: Vec<Sum>,
     /// The body after its step, or why its step failed (`None` until it steps).
     moved: Option<Result<Floater>>,
 }
@@ -244,7 +243,8 @@ impl Context<'_> {
     /// in the lattice's units, summed node by node into `slot.shares`, row by row (forces
     /// off the patch push nothing), each node's in the order of the forces. The sums are
     /// kept in a window of the grid just wide enough for the body's spreads, where a node
-    /// is found by its place.
+    /// is found by its place: on the stack for a body whose forces fall on at most 5 × 5
+    /// nodes (every small body's do), else in the slot's buffer.
     fn shares(&self, slot: &mut Slot, factor: f64) {
         let Slot {
             spreads,
@@ -269,8 +269,15 @@ impl Context<'_> {
             return;
         }
         let width = hi[0] - lo[0] + 1;
-        window.clear();
-        window.resize(width * (hi[1] - lo[1] + 1), None);
+        let nodes = width * (hi[1] - lo[1] + 1);
+        let mut patch = [NO_SUM; PATCH];
+        let sums = if nodes <= PATCH {
+            &mut patch[..nodes]
+        } else {
+            window.clear();
+            window.resize(nodes, NO_SUM);
+            &mut window[..]
+        };
         // The lattice's forces are per unit of model time²: a body's force in seconds goes
         // in divided by `time_scale²`.
         let scale = factor / ((self.scale as f64) * (self.scale as f64));
@@ -289,22 +296,35 @@ impl Context<'_> {
                 .zip(weights)
             {
                 let add = reaction.map(|f| f * w);
-                window[k] = Some(match window[k] {
-                    Some(sum) => [sum[0] + add[0], sum[1] + add[1], sum[2] + add[2]],
-                    None => add,
-                });
+                let (sum, seen) = &mut sums[k];
+                // A node's first share is taken as it is (its sign of zero kept).
+                *sum = if *seen {
+                    [sum[0] + add[0], sum[1] + add[1], sum[2] + add[2]]
+                } else {
+                    add
+                };
+                *seen = true;
             }
         }
         let cols = self.waters.cols();
-        for (r, row) in (lo[1]..).zip(window.chunks_exact(width)) {
-            for (c, sum) in (lo[0]..).zip(row) {
-                if let Some(f) = sum {
-                    shares.push((r * cols + c, *f));
+        for (r, row) in (lo[1]..).zip(sums.chunks_exact(width)) {
+            for (c, &(f, seen)) in (lo[0]..).zip(row) {
+                if seen {
+                    shares.push((r * cols + c, f));
                 }
             }
         }
     }
 }
+
+/// A node's sum of shares while a body's are summed, and whether it has any.
+type Sum = ([f32; 3], bool);
+
+/// A node without shares.
+const NO_SUM: Sum = ([0.0; 3], false);
+
+/// Nodes of the window kept on the stack: 5 × 5.
+const PATCH: usize = 25;
 
 impl Surface {
     /// The coupled step's second stage: the bodies' shares (`c`, in the bodies' order) go
