@@ -62,7 +62,8 @@
 //! Not modelled: added mass, slamming, bodies touching each other or the pool's walls
 //! (a physics engine that owns the bodies does that: [`Surface::body_forces`]).
 
-use crate::body::rigid::{self, outer, Rigid};
+use crate::body::math::{self, outer};
+use crate::body::rigid::Rigid;
 use crate::body::{tessellate, Hull};
 use crate::error::{Error, Result};
 use crate::params;
@@ -140,16 +141,42 @@ impl Shape {
     }
 }
 
-/// The mesh the water presses on for `shape`: triangles at most about `cell` across
-/// (the `tessellate` module of [`crate::body`]).
-pub(crate) fn wet_mesh(shape: &Shape, cell: f32) -> Result<Arc<Hull>> {
-    match shape {
-        Shape::Sphere { radius } => tessellate::sphere(*radius as f64, cell as f64).map(Arc::new),
-        Shape::Box { half_extents } => {
-            tessellate::cuboid(half_extents.as_dvec3(), cell as f64).map(Arc::new)
+/// The widest a ball or box may be, in cells of the water, to meet the water as a plane
+/// (the `small` module of [`crate::body`]): its bounding radius at most 1.75 cells, so a
+/// ball at most 3.5 cells across and a cube of side 2 (its corners √3 cells out) do.
+const SMALL_CELLS: f32 = 1.75;
+
+impl Shape {
+    /// Whether the shape meets the water of grid spacing `spacing` as one plane (the
+    /// `small` module of [`crate::body`]): a ball or a box at most [`SMALL_CELLS`] cells
+    /// from its centre to its farthest point. Hulls never do.
+    pub(crate) fn is_small(&self, spacing: f32) -> bool {
+        let most = SMALL_CELLS * spacing;
+        match self {
+            Shape::Sphere { radius } => *radius <= most,
+            Shape::Box { half_extents } => half_extents.length_squared() <= most * most,
+            Shape::Hull(_) => false,
         }
-        Shape::Hull(hull) => tessellate::cut(hull, cell),
     }
+}
+
+/// The mesh the water presses on for `shape` on a grid of `spacing`, the one place that
+/// decides it: none for a small ball (its cap under the plane is computed in closed form),
+/// a small box's 12 triangles (clipped at the plane exactly), else the shape cut into
+/// triangles at most about a cell across (the `tessellate` module of [`crate::body`]).
+pub(crate) fn wet_mesh(shape: &Shape, spacing: f32) -> Result<Option<Arc<Hull>>> {
+    let cell = spacing as f64;
+    let small = shape.is_small(spacing);
+    let mesh = match shape {
+        Shape::Sphere { .. } if small => return Ok(None),
+        Shape::Box { half_extents } if small => Hull::cuboid(half_extents.to_array()).map(Arc::new),
+        Shape::Sphere { radius } => tessellate::sphere(*radius as f64, cell).map(Arc::new),
+        Shape::Box { half_extents } => {
+            tessellate::cuboid(half_extents.as_dvec3(), cell).map(Arc::new)
+        }
+        Shape::Hull(hull) => tessellate::cut(hull, spacing),
+    };
+    mesh.map(Some)
 }
 
 /// A floating body. Plain data: build one, hand it to [`Surface::add_floater`], read it
@@ -362,7 +389,7 @@ impl Floater {
         {
             return Ok(());
         }
-        rigid::check_unit(
+        math::check_unit(
             self.orientation,
             "floater orientation",
             "floater orientation's squared norm",

@@ -62,7 +62,7 @@
 //! still gives a rotation), and every sum runs in `f64` in the mesh's order, so every
 //! platform gets the same bits.
 
-use super::{rigid, Hull};
+use super::{math, rigid, Hull};
 use crate::error::{Error, Result};
 use crate::{params, Buoyancy};
 use glam::{DVec3, Quat, Vec2, Vec3};
@@ -283,8 +283,8 @@ impl Hull {
 /// The body-to-world rotation of `q`, as a function of body-frame vectors, scaled by
 /// `2 / |q|²` so that it is a rotation for any `q` near unit length.
 fn rotation(q: Quat) -> Result<impl Fn(DVec3) -> DVec3> {
-    let n = rigid::check_unit(q, "body orientation", "body orientation's squared norm")?;
-    let m = rigid::rotation_scaled(q.as_dquat(), 2.0 / n);
+    let n = math::check_unit(q, "body orientation", "body orientation's squared norm")?;
+    let m = math::rotation_scaled(q.as_dquat(), 2.0 / n);
     let (cx, cy, cz) = (m.x_axis, m.y_axis, m.z_axis);
     Ok(move |v: DVec3| cx * v.x + cy * v.y + cz * v.z)
 }
@@ -385,7 +385,7 @@ impl Sums {
             let cx = self.lid[1] / (6.0 * area);
             let cz = self.lid[2] / (6.0 * area);
             let (xx, xz, zz) = (self.lid[3] / 12.0, self.lid[4] / 24.0, self.lid[5] / 12.0);
-            rigid::Waterplane {
+            rigid::Section {
                 area,
                 centre: [origin.x + cx, origin.z + cz],
                 second: [
@@ -395,7 +395,7 @@ impl Sums {
                 ],
             }
         } else {
-            rigid::Waterplane {
+            rigid::Section {
                 area: 0.0,
                 centre: [origin.x, origin.z],
                 second: [0.0; 3],
@@ -421,7 +421,7 @@ pub(crate) struct Pressure {
     pub force: DVec3,
     /// About the body's origin.
     pub torque: DVec3,
-    pub plane: rigid::Waterplane,
+    pub plane: rigid::Section,
 }
 
 impl Pressure {

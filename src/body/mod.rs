@@ -47,6 +47,7 @@
 mod boat;
 mod hull;
 mod hydrostatics;
+pub(crate) mod math;
 pub(crate) mod rigid;
 pub(crate) mod small;
 pub(crate) mod tessellate;

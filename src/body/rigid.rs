@@ -79,9 +79,8 @@
 //! by the torques, which cannot make a free spin speed up, and a floating body's spin is
 //! slow and damped by the water.
 
-use crate::error::{Error, Result};
-use crate::params;
-use glam::{DMat3, DQuat, DVec3, Quat};
+use super::math::{normalised, outer, rotation, skew};
+use glam::{DMat3, DQuat, DVec3};
 
 /// A rigid body's state for one step, in `f64`: what [`step`] needs of a floating body.
 #[derive(Debug, Clone, Copy)]
@@ -98,11 +97,6 @@ pub(crate) struct Rigid {
     /// External force through the centre of mass, and torque about it.
     pub push: DVec3,
     pub push_torque: DVec3,
-}
-
-/// `a bᵀ`.
-pub(crate) fn outer(a: DVec3, b: DVec3) -> DMat3 {
-    DMat3::from_cols(a * b.x, a * b.y, a * b.z)
 }
 
 /// The form part of the drag: along a piece's normal, per unit of its share of the rate.
@@ -143,9 +137,11 @@ impl Piece {
     }
 }
 
-/// The water's section through the body: area and moments, world `(x, z)`.
+/// The water's section through the body, seen from above (its waterplane), in `f64`: area
+/// and moments, world `(x, z)`. The public [`Waterplane`](super::Waterplane) is this
+/// rounded to `f32`.
 #[derive(Debug, Clone, Copy, Default)]
-pub(crate) struct Waterplane {
+pub(crate) struct Section {
     pub area: f64,
     /// Its centroid's world `(x, z)`.
     pub centre: [f64; 2],
@@ -178,58 +174,13 @@ pub(crate) struct Moved {
     pub torque: DVec3,
 }
 
-/// The body-to-world rotation matrix of a unit quaternion.
-pub(crate) fn rotation(q: DQuat) -> DMat3 {
-    rotation_scaled(q, 2.0)
-}
-
-/// The matrix of `q` with its products scaled by `s` instead of 2: with `s = 2 / |q|²` it
-/// is a rotation for any `q` near unit length.
-pub(crate) fn rotation_scaled(q: DQuat, s: f64) -> DMat3 {
-    let (x, y, z, w) = (q.x, q.y, q.z, q.w);
-    let (xx, yy, zz) = (s * x * x, s * y * y, s * z * z);
-    let (xy, yz, zx) = (s * x * y, s * y * z, s * z * x);
-    let (wx, wy, wz) = (s * w * x, s * w * y, s * w * z);
-    DMat3::from_cols(
-        DVec3::new(1.0 - (yy + zz), xy + wz, zx - wy),
-        DVec3::new(xy - wz, 1.0 - (xx + zz), yz + wx),
-        DVec3::new(zx + wy, yz - wx, 1.0 - (xx + yy)),
-    )
-}
-
-/// Checks that `q` is a unit quaternion within rounding: finite components (else an error
-/// naming `name`), squared norm within 1e-3 of 1 (else naming `norm_name`). Returns the
-/// squared norm.
-pub(crate) fn check_unit(q: Quat, name: &'static str, norm_name: &'static str) -> Result<f64> {
-    for v in q.to_array() {
-        params::finite(name, v)?;
-    }
-    let [x, y, z, w] = q.to_array().map(f64::from);
-    let n = x * x + y * y + z * z + w * w;
-    // (The components are finite, so n is a number.)
-    if (n - 1.0) * (n - 1.0) > 1e-6 {
-        return Err(Error::InvalidParam {
-            name: norm_name,
-            value: n,
-            expected: "1 within 1e-3: a unit quaternion (normalise it)",
-        });
-    }
-    Ok(n)
-}
-
-/// `q / |q|` (with `sqrt`, the same bits everywhere).
-pub(crate) fn normalised(q: DQuat) -> DQuat {
-    let n = (q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w).sqrt();
-    DQuat::from_xyzw(q.x / n, q.y / n, q.z / n, q.w / n)
-}
-
 /// One implicit step of `body` under the wet `pieces` and `plane` (see the module docs).
 /// Fills `forces` with each force the body feels and the point it acts at (the pieces'
 /// pressure and drag, then the four waterplane forces): the water gets minus each.
 pub(crate) fn step(
     body: &Rigid,
     pieces: &[Piece],
-    plane: &Waterplane,
+    plane: &Section,
     world: World,
     forces: &mut Vec<(DVec3, DVec3)>,
 ) -> Moved {
@@ -374,15 +325,6 @@ pub(crate) fn step(
         force,
         torque,
     }
-}
-
-/// `[a]×`, the matrix of `x ↦ a × x`.
-fn skew(a: DVec3) -> DMat3 {
-    DMat3::from_cols(
-        DVec3::new(0.0, a.z, -a.y),
-        DVec3::new(-a.z, 0.0, a.x),
-        DVec3::new(a.y, -a.x, 0.0),
-    )
 }
 
 /// Four points (offsets from the centre) that, each with a quarter of the area `a`,

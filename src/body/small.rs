@@ -56,7 +56,7 @@
 //! point turns only about its lever arm to the centre of mass).
 
 use super::hydrostatics::Pressure;
-use super::rigid::Waterplane;
+use super::rigid::Section;
 use super::{Hull, HullScratch};
 use crate::error::Result;
 use glam::{DVec3, Quat, Vec3};
@@ -86,7 +86,7 @@ pub(crate) struct Wet {
     pub volume: f64,
     pub centre: DVec3,
     pub force: DVec3,
-    pub plane: Waterplane,
+    pub plane: Section,
 }
 
 /// A ball of `radius` centred at `centre` in the water below `water` (see the module docs).
@@ -98,7 +98,7 @@ pub(crate) fn sphere(radius: f64, centre: DVec3, water: Plane, rho_g: f64) -> We
     let n = a / norm;
     let delta = (water.height_at(centre.x, centre.z) - centre.y) / norm;
     let k = r + delta;
-    let no_plane = Waterplane {
+    let no_plane = Section {
         area: 0.0,
         centre: [centre.x, centre.z],
         second: [0.0; 3],
@@ -130,7 +130,7 @@ pub(crate) fn sphere(radius: f64, centre: DVec3, water: Plane, rho_g: f64) -> We
         volume,
         centre: centre - n * below,
         force: a * (rho_g * volume),
-        plane: Waterplane {
+        plane: Section {
             area,
             centre: [centre.x + delta * n.x, centre.z + delta * n.z],
             second: [

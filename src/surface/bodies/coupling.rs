@@ -25,11 +25,8 @@ use std::sync::Arc;
 /// Buffers the coupled step reuses; not state.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct Coupling {
-    /// Each body's shape and the mesh the water presses on (parallel to the bodies; a
-    /// body whose shape changed, or a restored one, gets its mesh again).
-    meshes: Vec<(Shape, Arc<Hull>)>,
     /// Meshes of the bodies [`Surface::body_forces`] was asked about, newest last.
-    foreign: Vec<(Shape, Arc<Hull>)>,
+    foreign: Vec<(Shape, Option<Arc<Hull>>)>,
     /// One per body: its workspace and its step's outcome.
     slots: Vec<Slot>,
     /// The workspace of [`Surface::body_forces`].
@@ -41,26 +38,6 @@ const FOREIGN_MESHES: usize = 16;
 
 /// Bodies per task when they step in parallel.
 const BODIES_PER_TASK: usize = 16;
-
-impl Coupling {
-    /// Keeps `mesh` as body `k`'s (the last body, or one already listed).
-    pub fn keep_mesh(&mut self, k: usize, shape: &Shape, mesh: Arc<Hull>) {
-        let entry = (shape.clone(), mesh);
-        match k.cmp(&self.meshes.len()) {
-            std::cmp::Ordering::Less => self.meshes[k] = entry,
-            std::cmp::Ordering::Equal => self.meshes.push(entry),
-            // The list is behind (after a restore): `fit_meshes` catches up.
-            std::cmp::Ordering::Greater => {}
-        }
-    }
-
-    /// Forgets body `k`'s mesh (it was removed).
-    pub fn forget_mesh(&mut self, k: usize) {
-        if k < self.meshes.len() {
-            self.meshes.remove(k);
-        }
-    }
-}
 
 /// One body's workspace and outcome in a step.
 #[derive(Debug, Clone, Default)]
@@ -97,13 +74,15 @@ struct Context<'a> {
 }
 
 impl Context<'_> {
-    /// Body `body` pressing on `mesh`: its implicit step over `seconds` (see the
-    /// `rigid` module of [`crate::body`]), leaving the forces it feels in `slot.forces`.
-    /// A small body meets the water as a plane ([`Context::step_small`]).
-    fn step(&self, body: &Floater, mesh: &Hull, slot: &mut Slot) -> Result<rigid::Moved> {
-        if is_small(&body.shape, self.spacing) {
-            return self.step_small(body, mesh, slot);
-        }
+    /// Body `body` pressing on `mesh` (its [`floater::wet_mesh`]): its implicit step over
+    /// `seconds` (see the `rigid` module of [`crate::body`]), leaving the forces it feels
+    /// in `slot.forces`. A small body meets the water as a plane ([`Context::step_small`]).
+    fn step(&self, body: &Floater, mesh: Option<&Hull>, slot: &mut Slot) -> Result<rigid::Moved> {
+        let mesh = match mesh {
+            _ if body.shape.is_small(self.spacing) => return self.step_small(body, mesh, slot),
+            Some(mesh) => mesh,
+            None => return Err(no_mesh()),
+        };
         let rho_g = self.rho_g();
         let h = self.spacing as f64;
         let pieces = &mut slot.pieces;
@@ -191,7 +170,12 @@ impl Context<'_> {
     /// water sampled once, at the body's centre, as a plane; the pressure of that plane as
     /// one force at the centre of buoyancy `B`, and the drag there towards the water's
     /// velocity under `B`. `mesh` is a box's 12 triangles (a ball needs none).
-    fn step_small(&self, body: &Floater, mesh: &Hull, slot: &mut Slot) -> Result<rigid::Moved> {
+    fn step_small(
+        &self,
+        body: &Floater,
+        mesh: Option<&Hull>,
+        slot: &mut Slot,
+    ) -> Result<rigid::Moved> {
         let rho_g = self.rho_g();
         let c = body.position;
         // Off the patch the water is calm, at height 0.
@@ -201,9 +185,14 @@ impl Context<'_> {
             height: height as f64,
             slope: slope.map(f64::from),
         };
-        let wet = match body.shape {
-            Shape::Sphere { radius } => small::sphere(radius as f64, c.as_dvec3(), water, rho_g),
-            _ => small::mesh(mesh, c, body.orientation, water, rho_g, &mut slot.hull)?,
+        let wet = match (&body.shape, mesh) {
+            (&Shape::Sphere { radius }, _) => {
+                small::sphere(radius as f64, c.as_dvec3(), water, rho_g)
+            }
+            (_, Some(mesh)) => {
+                small::mesh(mesh, c, body.orientation, water, rho_g, &mut slot.hull)?
+            }
+            (_, None) => return Err(no_mesh()),
         };
         let b = wet.centre;
         let under = self
@@ -361,20 +350,6 @@ impl Surface {
         self.bodies.column.discard();
     }
 
-    /// Makes every body's mesh match its shape (after a restore or a change of shape).
-    fn fit_meshes(&self, c: &mut Coupling) -> Result<()> {
-        let bodies = &self.bodies.bodies;
-        c.meshes.truncate(bodies.len());
-        for (k, (_, body)) in bodies.iter().enumerate() {
-            let fits = matches!(c.meshes.get(k), Some((shape, _)) if same(shape, &body.shape));
-            if !fits {
-                let mesh = wet_mesh(&body.shape, self.params.spacing)?;
-                c.keep_mesh(k, &body.shape, mesh);
-            }
-        }
-        Ok(())
-    }
-
     fn context(&self, seconds: f32) -> Context<'_> {
         Context {
             waters: self.waters(),
@@ -394,11 +369,10 @@ impl Surface {
     /// `dt` is model time; the bodies step `dt / time_scale` seconds. Changes nothing of
     /// the surface.
     pub(crate) fn prepare_bodies(&self, dt: f32, c: &mut Coupling) -> Result<()> {
-        self.fit_meshes(c)?;
         let bodies = &self.bodies.bodies;
         c.slots.resize_with(bodies.len(), Slot::default);
         let cx = self.context(dt / self.params.time_scale);
-        let meshes = &c.meshes;
+        let meshes = &self.bodies.meshes;
         jobs::for_each_part(
             Runner::of(self.host.as_ref()),
             bodies.len(),
@@ -408,7 +382,7 @@ impl Surface {
             &|range, slots: &mut [Slot]| {
                 for (k, slot) in range.zip(slots) {
                     let (id, body) = &bodies[k];
-                    let step = cx.step(body, &meshes[k].1, slot);
+                    let step = cx.step(body, meshes[k].as_deref(), slot);
                     slot.moved = Some(step.and_then(|m| {
                         let moved = moved(body, &m);
                         // Shape, mass, inertia and drag are the valid body's: what the
@@ -495,25 +469,29 @@ impl Surface {
 
     /// The water's forces on `body` over `seconds`, its reactions' shares in `c.shares`.
     fn foreign_forces(&self, body: &Floater, seconds: f32, c: &mut Coupling) -> Result<BodyForces> {
-        let mesh = match c.foreign.iter().position(|(s, _)| same(s, &body.shape)) {
+        let mesh = match c
+            .foreign
+            .iter()
+            .position(|(s, _)| super::same(s, &body.shape))
+        {
             Some(k) => {
                 let entry = c.foreign.remove(k);
-                let mesh = Arc::clone(&entry.1);
+                let mesh = entry.1.clone();
                 c.foreign.push(entry);
                 mesh
             }
             None => {
-                let mesh = wet_mesh(&body.shape, self.params.spacing)?;
+                let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
                 if c.foreign.len() == FOREIGN_MESHES {
                     c.foreign.remove(0);
                 }
-                c.foreign.push((body.shape.clone(), Arc::clone(&mesh)));
+                c.foreign.push((body.shape.clone(), mesh.clone()));
                 mesh
             }
         };
         let cx = self.context(seconds);
         let slot = &mut c.foreign_slot;
-        let moved = cx.step(body, &mesh, slot)?;
+        let moved = cx.step(body, mesh.as_deref(), slot)?;
         let (force, torque) = (moved.force.as_vec3(), moved.torque.as_vec3());
         if !(force.is_finite() && torque.is_finite()) {
             return Err(Error::InvalidParam {
@@ -530,40 +508,12 @@ impl Surface {
     }
 }
 
-/// The widest a ball or box may be, in cells of the water, to meet the water as a plane
-/// (the `small` module of [`crate::body`]): its bounding radius at most 1.75 cells, so a
-/// ball at most 3.5 cells across and a cube of side 2 (its corners √3 cells out) do.
-const SMALL_CELLS: f32 = 1.75;
-
-/// Whether `shape` takes the small-body path on a grid of `spacing`: a ball or a box at most
-/// [`SMALL_CELLS`] cells from its centre to its farthest point. Hulls never do.
-fn is_small(shape: &Shape, spacing: f32) -> bool {
-    let most = SMALL_CELLS * spacing;
-    match shape {
-        Shape::Sphere { radius } => *radius <= most,
-        Shape::Box { half_extents } => half_extents.length_squared() <= most * most,
-        _ => false,
-    }
-}
-
-/// The mesh the water presses on for `shape`: a small box's 12 triangles (the water under
-/// it is a plane), else the shape cut into triangles a cell across
-/// ([`floater::wet_mesh`]).
-pub(crate) fn wet_mesh(shape: &Shape, spacing: f32) -> Result<Arc<Hull>> {
-    match shape {
-        Shape::Box { half_extents } if is_small(shape, spacing) => {
-            Hull::cuboid(half_extents.to_array()).map(Arc::new)
-        }
-        _ => floater::wet_mesh(shape, spacing),
-    }
-}
-
-/// Whether two shapes are the same (a hull shared through one `Arc` without comparing
-/// its triangles).
-fn same(a: &Shape, b: &Shape) -> bool {
-    match (a, b) {
-        (Shape::Hull(a), Shape::Hull(b)) => Arc::ptr_eq(a, b) || a == b,
-        _ => a == b,
+/// A body without the mesh its shape needs (never: every body's is made with it).
+fn no_mesh() -> Error {
+    Error::InvalidParam {
+        name: "floater mesh",
+        value: 0.0,
+        expected: "the mesh of the body's shape",
     }
 }
 

@@ -3,7 +3,7 @@
 //!
 //! | file | owns |
 //! |---|---|
-//! | `mod.rs` | the bodies' data ([`BodySet`]) and the public calls that add, read and push them |
+//! | `mod.rs` | the bodies' data ([`BodySet`]: each body with the mesh the water presses on) and the public calls that add, read and push them |
 //! | `coupling.rs` | the coupled step: the water under each body, the bodies' steps, their reactions; [`Surface::body_forces`] |
 //! | `column.rs` | the water column: what of the bodies' push the lattice gets, and what it carries to the bottom |
 
@@ -13,12 +13,13 @@ mod coupling;
 pub(crate) use column::{Column, Entry};
 
 use super::Surface;
-use crate::body::rigid;
+use crate::body::{math, Hull};
 use crate::error::{Error, Result};
-use crate::floater::{self, Buoyancy, Floater, FloaterId};
+use crate::floater::{self, Buoyancy, Floater, FloaterId, Shape};
 use crate::params;
 pub(crate) use coupling::Coupling;
 use glam::Vec3;
+use std::sync::Arc;
 
 /// The bodies of one surface, their world, the water column under them, and the scratch
 /// of the coupled step.
@@ -26,6 +27,12 @@ use glam::Vec3;
 pub(crate) struct BodySet {
     /// Bodies in the order they were added (ids increase along it).
     bodies: Vec<(FloaterId, Floater)>,
+    /// Each body's mesh, the water presses on (parallel to `bodies`): what
+    /// [`floater::wet_mesh`] gives for its shape, made when the body comes or its shape
+    /// changes, and kept through a restore that leaves the shape as it was.
+    meshes: Vec<Option<Arc<Hull>>>,
+    /// A restore's meshes, made before it is kept (parallel to the restored bodies).
+    restored_meshes: Vec<Option<Arc<Hull>>>,
     /// The id the next added body gets.
     next_id: u64,
     buoyancy: Buoyancy,
@@ -68,17 +75,25 @@ impl BodySet {
         self.scratch = scratch;
     }
 
-    /// Takes a checked snapshot's bodies, world and column (a new surface's).
+    /// Takes a checked snapshot's bodies, world and column (a new surface's, of grid
+    /// spacing `spacing`); refused, with nothing changed, if a body's mesh cannot be made.
     pub fn load(
         &mut self,
         bodies: Vec<(FloaterId, Floater)>,
         next_id: u64,
         buoyancy: Buoyancy,
         column: Vec<Entry>,
-    ) {
+        spacing: f32,
+    ) -> Result<()> {
+        let meshes = bodies
+            .iter()
+            .map(|(_, body)| floater::wet_mesh(&body.shape, spacing))
+            .collect::<Result<_>>()?;
         self.bodies = bodies;
+        self.meshes = meshes;
         self.set_world(next_id, buoyancy);
         self.column.set_entries(column);
+        Ok(())
     }
 
     /// Takes a snapshot's next id and buoyancy (checked).
@@ -94,15 +109,34 @@ impl BodySet {
         (&mut self.bodies, self.column.spare())
     }
 
+    /// The meshes of the bodies a restore decoded after the first `old` (checked bodies),
+    /// on a grid of `spacing`: body `k` keeps the mesh of the current body `k` if its shape
+    /// is the same (a rollback makes none), else gets its own. Refused, with the current
+    /// bodies unchanged, if one cannot be made.
+    pub fn mesh_restored(&mut self, old: usize, spacing: f32) -> Result<()> {
+        self.restored_meshes.clear();
+        for (k, (_, body)) in self.bodies[old..].iter().enumerate() {
+            let kept = match (self.bodies[..old].get(k), self.meshes.get(k)) {
+                (Some((_, was)), Some(mesh)) if same(&was.shape, &body.shape) => mesh.clone(),
+                _ => floater::wet_mesh(&body.shape, spacing)?,
+            };
+            self.restored_meshes.push(kept);
+        }
+        Ok(())
+    }
+
     /// Ends a restore begun with [`BodySet::restoring`] when the list held `old` bodies:
-    /// the restored ones replace them if `keep`, else they are dropped.
+    /// the restored ones (meshed by [`BodySet::mesh_restored`]) replace them if `keep`,
+    /// else they are dropped.
     pub fn finish_restore(&mut self, old: usize, keep: bool) {
         if keep {
             self.bodies.drain(..old);
+            std::mem::swap(&mut self.meshes, &mut self.restored_meshes);
             self.column.take_spare();
         } else {
             self.bodies.truncate(old);
         }
+        self.restored_meshes.clear();
     }
 
     /// The window moved: the column's loads move with their water (`to` gives a node's
@@ -142,16 +176,15 @@ impl Surface {
     pub fn add_floater(&mut self, body: Floater) -> Result<FloaterId> {
         let body = self.admit(body, Vec3::ZERO, Vec3::ZERO)?;
         self.admit_with(self.bodies.buoyancy)?;
-        let mesh = coupling::wet_mesh(&body.shape, self.params.spacing)?;
+        let mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
         let id = FloaterId(self.bodies.next_id);
         self.bodies.next_id = id.0.checked_add(1).ok_or(Error::InvalidParam {
             name: "floater id",
             value: id.0 as f64,
             expected: "fewer than 2^64 − 1 floaters ever added to one surface",
         })?;
-        let k = self.bodies.bodies.len();
-        self.bodies.scratch.keep_mesh(k, &body.shape, mesh);
         self.bodies.bodies.push((id, body));
+        self.bodies.meshes.push(mesh);
         Ok(id)
     }
 
@@ -165,14 +198,14 @@ impl Surface {
         };
         body.validate()?;
         floater::check_footprint(&body.shape, self.params.spacing)?;
-        body.orientation = rigid::normalised(body.orientation.as_dquat()).as_quat();
+        body.orientation = math::normalised(body.orientation.as_dquat()).as_quat();
         Ok(body)
     }
 
     /// Removes a body and returns it.
     pub fn remove_floater(&mut self, id: FloaterId) -> Result<Floater> {
         let k = self.bodies.index(id)?;
-        self.bodies.scratch.forget_mesh(k);
+        self.bodies.meshes.remove(k);
         Ok(self.bodies.bodies.remove(k).1)
     }
 
@@ -189,9 +222,8 @@ impl Surface {
         let k = self.bodies.index(id)?;
         let old = &self.bodies.bodies[k].1;
         let body = self.admit(body, old.water_force, old.water_torque)?;
-        if body.shape != self.bodies.bodies[k].1.shape {
-            let mesh = coupling::wet_mesh(&body.shape, self.params.spacing)?;
-            self.bodies.scratch.keep_mesh(k, &body.shape, mesh);
+        if !same(&body.shape, &self.bodies.bodies[k].1.shape) {
+            self.bodies.meshes[k] = floater::wet_mesh(&body.shape, self.params.spacing)?;
         }
         self.bodies.bodies[k].1 = body;
         Ok(())
@@ -282,5 +314,67 @@ impl Surface {
                 .buoyancy
                 .node_stiffness(self.params.spacing, self.params.time_scale)
         }
+    }
+}
+
+/// Whether two shapes are the same (a hull shared through one `Arc` without comparing
+/// its triangles).
+fn same(a: &Shape, b: &Shape) -> bool {
+    match (a, b) {
+        (Shape::Hull(a), Shape::Hull(b)) => Arc::ptr_eq(a, b) || a == b,
+        _ => a == b,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Params, Surface};
+
+    /// Every body's mesh is its shape's, after each way the list changes.
+    fn meshes_fit(s: &Surface) {
+        let set = &s.bodies;
+        assert_eq!(set.meshes.len(), set.bodies.len());
+        assert!(set.restored_meshes.is_empty());
+        for ((_, body), mesh) in set.bodies.iter().zip(&set.meshes) {
+            let want = floater::wet_mesh(&body.shape, s.params.spacing).unwrap();
+            assert_eq!(mesh.as_deref(), want.as_deref(), "{:?}", body.shape);
+        }
+    }
+
+    #[test]
+    fn each_body_keeps_the_mesh_of_its_shape() {
+        let mut s = Surface::new(Params::with_size(48, 48)).unwrap();
+        let ball = s
+            .add_floater(Floater::sphere(0.5, 0.1, [10.0, 0.0, 10.0]))
+            .unwrap();
+        let boxy = s.add_floater(Floater::cuboid([1.0, 0.5, 1.0], 0.5, [20.0, 0.0, 20.0]));
+        let boxy = boxy.unwrap();
+        s.add_floater(Floater::sphere(3.0, 40.0, [30.0, 0.0, 30.0]))
+            .unwrap();
+        meshes_fit(&s);
+        // A small ball is a cap under the plane: no mesh.
+        assert!(s.bodies.meshes[0].is_none() && s.bodies.meshes[2].is_some());
+        let saved = s.to_bytes();
+        s.remove_floater(ball).unwrap();
+        let mut wide = s.floater(boxy).unwrap().clone();
+        wide.shape = Shape::Box {
+            half_extents: Vec3::new(3.0, 0.5, 3.0),
+        };
+        s.set_floater(boxy, wide).unwrap();
+        meshes_fit(&s);
+        s.step_n(3).unwrap();
+        // A rollback to three bodies of other shapes in other places.
+        s.restore(&saved).unwrap();
+        meshes_fit(&s);
+        assert_eq!(s.to_bytes(), saved);
+        // A restore that is refused leaves the bodies and their meshes as they were.
+        let mut bad = saved.clone();
+        let last = bad.len() - 1;
+        bad[last] ^= 1;
+        assert!(s.restore(&bad).is_err());
+        meshes_fit(&s);
+        let loaded = Surface::from_bytes(&saved).unwrap();
+        meshes_fit(&loaded);
     }
 }

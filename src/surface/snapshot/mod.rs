@@ -477,9 +477,10 @@ impl Surface {
         let mut surface = Surface::from_parts(p, state, springs, scalars.bounds, (0, 0.0));
         surface.take_scalars(&scalars);
         let (next_id, buoyancy) = (snap.next_floater_id, snap.buoyancy);
+        let spacing = surface.params.spacing;
         surface
             .bodies
-            .load(snap.floaters, next_id, buoyancy, snap.column);
+            .load(snap.floaters, next_id, buoyancy, snap.column, spacing)?;
         Ok(surface)
     }
 

@@ -6,8 +6,9 @@
 //!
 //! The bodies are decoded after the surface's own, in the same list (whose capacity a
 //! rollback reuses), borrowing their hull meshes where the stored mesh has the bits of one
-//! the surface holds; they replace the old bodies once everything is checked, and are
-//! dropped if anything is refused.
+//! the surface holds; each gets the mesh the water presses on (the current body's at its
+//! place when the shape is the same, so a rollback makes none); they replace the old
+//! bodies once everything is checked, and are dropped if anything is refused.
 
 use super::read::{self, Layout, Le};
 use super::validate::{blocks, first_bad, spring_columns, Contents, NodeFloats, NodePins, BLOCK};
@@ -38,7 +39,12 @@ impl Surface {
         let checked = saved.bodies.decode_into(bodies);
         saved.column.decode_into(column);
         let checked = checked.and_then(|()| Self::check(&saved, &scalars, &bodies[old..], column));
-        if checked.is_err() || !same_model(&self.params, &scalars.params) {
+        let same = same_model(&self.params, &scalars.params);
+        let checked = checked.and_then(|()| match same {
+            true => self.bodies.mesh_restored(old, scalars.params.spacing),
+            false => Ok(()),
+        });
+        if checked.is_err() || !same {
             self.bodies.finish_restore(old, false);
             return checked.map(|()| false);
         }
