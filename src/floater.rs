@@ -179,6 +179,38 @@ pub(crate) fn wet_mesh(shape: &Shape, spacing: f32) -> Result<Option<Arc<Hull>>>
     mesh.map(Some)
 }
 
+/// What a step changes of a body: its pose, its velocities and the water's force and
+/// torque on it, in the body's `f32` fields.
+#[derive(Debug, Clone, Copy)]
+pub(crate) struct Motion {
+    pub position: Vec3,
+    pub orientation: Quat,
+    pub velocity: Vec3,
+    pub angular_velocity: Vec3,
+    pub water_force: Vec3,
+    pub water_torque: Vec3,
+}
+
+impl Motion {
+    /// Whether every field is within what [`Floater::validate`] accepts (a NaN is not):
+    /// one comparison per component.
+    pub fn in_range(&self) -> bool {
+        let [x, y, z, w] = self.orientation.to_array().map(f64::from);
+        let norm = x * x + y * y + z * z + w * w;
+        within(self.position, params::MAX_EXTENT as f32)
+            && within(self.velocity, MAX_SPEED)
+            && within(self.angular_velocity, MAX_SPIN)
+            && within(self.water_force, f32::MAX)
+            && within(self.water_torque, f32::MAX)
+            && (norm - 1.0) * (norm - 1.0) <= 1e-6
+    }
+}
+
+/// Whether every component of `v` is at most `max` in size (a NaN is not).
+fn within(v: Vec3, max: f32) -> bool {
+    v.abs().cmple(Vec3::splat(max)).all()
+}
+
 /// A floating body. Plain data: build one, hand it to [`Surface::add_floater`], read it
 /// back with [`Surface::floater`].
 ///
@@ -366,27 +398,33 @@ impl Floater {
         self.validate_motion()
     }
 
+    /// Takes the pose, velocities and water's force and torque a step gave, its push
+    /// spent.
+    pub(crate) fn take_motion(&mut self, m: &Motion) {
+        self.position = m.position;
+        self.orientation = m.orientation;
+        self.velocity = m.velocity;
+        self.angular_velocity = m.angular_velocity;
+        self.water_force = m.water_force;
+        self.water_torque = m.water_torque;
+        self.push = Vec3::ZERO;
+        self.push_torque = Vec3::ZERO;
+    }
+
     /// The part of [`Floater::validate`] a step changes: orientation, position,
     /// velocities, pushes and the water's force and torque.
     pub(crate) fn validate_motion(&self) -> Result<()> {
         // Nearly every step's body is in range: one comparison per component says so
         // (a NaN fails it), and only a body that fails looks for the field to name.
-        let within = |v: Vec3, max: f32| v.abs().cmple(Vec3::splat(max)).all();
-        let [x, y, z, w] = self.orientation.to_array().map(f64::from);
-        let norm = x * x + y * y + z * z + w * w;
-        if within(self.position, params::MAX_EXTENT as f32)
-            && within(self.velocity, MAX_SPEED)
-            && within(self.angular_velocity, MAX_SPIN)
-            && [
-                self.push,
-                self.push_torque,
-                self.water_force,
-                self.water_torque,
-            ]
-            .into_iter()
-            .all(|v| within(v, f32::MAX))
-            && (norm - 1.0) * (norm - 1.0) <= 1e-6
-        {
+        let motion = Motion {
+            position: self.position,
+            orientation: self.orientation,
+            velocity: self.velocity,
+            angular_velocity: self.angular_velocity,
+            water_force: self.water_force,
+            water_torque: self.water_torque,
+        };
+        if motion.in_range() && within(self.push, f32::MAX) && within(self.push_torque, f32::MAX) {
             return Ok(());
         }
         math::check_unit(

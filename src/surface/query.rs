@@ -7,9 +7,19 @@ use glam::Vec3;
 
 /// `x.floor()` for finite `|x| < 2⁶³` (every query point, in cells, is within 1e15), without
 /// the library call that `floor` is on x86-64 CPUs before SSE4.1: the same bits.
+///
+/// Below 2²² in size, adding and taking away `1.5 · 2²³` rounds `x` to a whole number (the
+/// sum lies in `[2²³, 2²⁴)`, where the floats are the integers), one below when that went
+/// up; `0.0` and `-0.0` both give `0.0`, as `floor`'s truncation does. Larger points
+/// truncate through an integer, which Rust's saturating cast makes longer.
 #[inline]
 fn floor(x: f32) -> f32 {
-    let t = x as i64 as f32;
+    const ROUND: f32 = 12_582_912.0;
+    let t = if x.abs() < 4_194_304.0 {
+        (x + ROUND) - ROUND
+    } else {
+        x as i64 as f32
+    };
     if t > x {
         t - 1.0
     } else {
@@ -450,5 +460,43 @@ impl Surface {
         batch(&view, self.window_origin, points, out, |s| {
             s.blend3(view.cols(), vel) * scale
         })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::floor;
+
+    /// The library's floor, with `-0.0` as `0.0`.
+    fn want(x: f32) -> u32 {
+        (x.floor() + 0.0).to_bits()
+    }
+
+    #[test]
+    fn floor_is_the_library_floor_with_zero_unsigned() {
+        let edges = [
+            -4_194_304.5,
+            -4_194_303.5,
+            -2.5,
+            -0.5,
+            -0.0,
+            0.0,
+            0.5,
+            2.5,
+            3.5,
+            4_194_303.5,
+        ];
+        for x in edges
+            .into_iter()
+            .chain([1e15, -1e15, 8_388_607.5, -6_000_000.5])
+        {
+            assert_eq!(floor(x).to_bits(), want(x), "{x}");
+        }
+        let (mut x, mut step) = (-9_000_000.0f32, 0.37f32);
+        while x < 9_000_000.0 {
+            assert_eq!(floor(x).to_bits(), want(x), "{x}");
+            x += step;
+            step *= 1.0001;
+        }
     }
 }

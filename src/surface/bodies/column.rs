@@ -157,8 +157,8 @@ impl Column {
         self.kept = self.entries.len();
     }
 
-    /// The entry of `node` on a grid of `nodes`, made (at the end) if it has none.
-    fn entry(&mut self, node: usize, nodes: usize) -> &mut Entry {
+    /// Makes the slots match a grid of `nodes` and the entries, if they do not.
+    fn fit_slots(&mut self, nodes: usize) {
         if self.slot.len() != nodes {
             self.slot.clear();
             self.slot.resize(nodes, NONE);
@@ -166,6 +166,12 @@ impl Column {
                 self.slot[e.node] = k as u32;
             }
         }
+    }
+
+    /// The entry of `node`, made (at the end) if it has none; the slots fit the grid
+    /// ([`Column::fit_slots`]).
+    #[inline]
+    fn entry(&mut self, node: usize) -> &mut Entry {
         let k = match self.slot[node] {
             NONE => {
                 self.slot[node] = self.entries.len() as u32;
@@ -181,9 +187,10 @@ impl Column {
     /// engine owns. Refused, with nothing changed, if a sum is not finite.
     pub fn hold(&mut self, shares: &[(usize, [f32; 3])], nodes: usize) -> Result<()> {
         let before = self.entries.len();
+        self.fit_slots(nodes);
         let mut finite = true;
         for &(i, f) in shares {
-            let e = self.entry(i, nodes);
+            let e = self.entry(i);
             finite &= (0..3).all(|k| (e.pending[k] + f[k]).is_finite());
         }
         if !finite {
@@ -191,7 +198,7 @@ impl Column {
             return Err(overflow());
         }
         for &(i, f) in shares {
-            let e = self.entry(i, nodes);
+            let e = self.entry(i);
             e.pending = std::array::from_fn(|k| e.pending[k] + f[k]);
         }
         self.sort_if_grown(before);
@@ -206,8 +213,9 @@ impl Column {
         nodes: usize,
     ) {
         self.kept = self.entries.len();
+        self.fit_slots(nodes);
         for &(i, f) in shares {
-            let e = self.entry(i, nodes);
+            let e = self.entry(i);
             e.fresh = std::array::from_fn(|k| e.fresh[k] + f[k]);
         }
     }

@@ -15,7 +15,7 @@ use crate::body::rigid::{self, Piece, World};
 use crate::body::small::{self, Plane};
 use crate::body::{Hull, HullScratch};
 use crate::error::{Error, Result};
-use crate::floater::{self, BodyForces, Buoyancy, Floater, Shape};
+use crate::floater::{self, BodyForces, Buoyancy, Floater, Motion, Shape};
 use crate::jobs::{self, Runner};
 use crate::surface::query::{Spread, Waters};
 use crate::surface::Surface;
@@ -54,8 +54,8 @@ struct Slot {
     shares: Vec<(usize, [f32; 3])>,
     /// The nodes under the body, a window of rows, while the shares are summed.
     window: Vec<Sum>,
-    /// The body after its step, or why its step failed (`None` until it steps).
-    moved: Option<Result<Floater>>,
+    /// What the step changes of the body, or why its step failed (`None` until it steps).
+    moved: Option<Result<Motion>>,
 }
 
 /// What every body's step reads: the water and the world.
@@ -232,8 +232,7 @@ impl Context<'_> {
     /// in the lattice's units, summed node by node into `slot.shares`, row by row (forces
     /// off the patch push nothing), each node's in the order of the forces. The sums are
     /// kept in a window of the grid just wide enough for the body's spreads, where a node
-    /// is found by its place: on the stack for a body whose forces fall on at most 5 × 5
-    /// nodes (every small body's do), else in the slot's buffer.
+    /// is found by its place.
     fn shares(&self, slot: &mut Slot, factor: f64) {
         let Slot {
             spreads,
@@ -259,14 +258,9 @@ impl Context<'_> {
         }
         let width = hi[0] - lo[0] + 1;
         let nodes = width * (hi[1] - lo[1] + 1);
-        let mut patch = [NO_SUM; PATCH];
-        let sums = if nodes <= PATCH {
-            &mut patch[..nodes]
-        } else {
-            window.clear();
-            window.resize(nodes, NO_SUM);
-            &mut window[..]
-        };
+        window.clear();
+        window.resize(nodes, NO_SUM);
+        let sums = &mut window[..];
         // The lattice's forces are per unit of model time²: a body's force in seconds goes
         // in divided by `time_scale²`.
         let scale = factor / ((self.scale as f64) * (self.scale as f64));
@@ -312,9 +306,6 @@ type Sum = ([f32; 3], bool);
 /// A node without shares.
 const NO_SUM: Sum = ([0.0; 3], false);
 
-/// Nodes of the window kept on the stack: 5 × 5.
-const PATCH: usize = 25;
-
 impl Surface {
     /// The coupled step's second stage: the bodies' shares (`c`, in the bodies' order) go
     /// through the column, and what the water gets is added to the external forces, all or
@@ -336,8 +327,8 @@ impl Surface {
     /// of what the water got.
     pub(crate) fn commit_bodies(&mut self, dt: f32, c: &mut Coupling) {
         for ((_, body), slot) in self.bodies.bodies.iter_mut().zip(&mut c.slots) {
-            if let Some(Ok(moved)) = slot.moved.take() {
-                *body = moved;
+            if let Some(Ok(motion)) = slot.moved.take() {
+                body.take_motion(&motion);
             }
         }
         let seconds = dt / self.params.time_scale;
@@ -384,12 +375,12 @@ impl Surface {
                     let (id, body) = &bodies[k];
                     let step = cx.step(body, meshes[k].as_deref(), slot);
                     slot.moved = Some(step.and_then(|m| {
-                        let moved = moved(body, &m);
+                        let motion = motion(&m);
                         // Shape, mass, inertia and drag are the valid body's: what the
                         // step changed must be finite and in range.
-                        match moved.validate_motion() {
-                            Ok(()) => Ok(moved),
-                            Err(_) => Err(Error::FloaterNonFinite {
+                        match motion.in_range() {
+                            true => Ok(motion),
+                            false => Err(Error::FloaterNonFinite {
                                 step: cx.steps,
                                 floater: id.0,
                             }),
@@ -517,17 +508,14 @@ fn no_mesh() -> Error {
     }
 }
 
-/// `body` after its step `m`, its push spent.
-fn moved(body: &Floater, m: &rigid::Moved) -> Floater {
-    Floater {
+/// What the step `m` changes of a body, in its `f32` fields.
+fn motion(m: &rigid::Moved) -> Motion {
+    Motion {
         position: m.position.as_vec3(),
         orientation: m.orientation.as_quat(),
         velocity: m.velocity.as_vec3(),
         angular_velocity: m.angular_velocity.as_vec3(),
-        push: Vec3::ZERO,
-        push_torque: Vec3::ZERO,
         water_force: m.force.as_vec3(),
         water_torque: m.torque.as_vec3(),
-        ..body.clone()
     }
 }
