@@ -16,13 +16,23 @@ fn the_checked_in_header_is_what_cbindgen_generates() {
     let mut generated = Vec::new();
     bindings.write(&mut generated);
     let generated = String::from_utf8(generated).unwrap();
+    // cbindgen found the crate's functions: an empty header cannot pass, nor be blessed.
+    let functions = generated
+        .lines()
+        .filter(|l| !l.starts_with("//") && l.contains(" sw_") && l.contains('('))
+        .count();
+    assert!(
+        functions >= 70,
+        "cbindgen declared only {functions} functions"
+    );
 
     let path = dir.join("include").join("springwater.h");
     if std::env::var_os("SPRINGWATER_BLESS").is_some() {
         std::fs::write(&path, &generated).unwrap();
         return;
     }
-    let checked_in = std::fs::read_to_string(&path).unwrap_or_default();
+    let checked_in = std::fs::read_to_string(&path)
+        .unwrap_or_else(|e| panic!("{}: {e} (bless it first)", path.display()));
     assert!(
         checked_in == generated,
         "ffi/include/springwater.h is out of date with ffi/src: regenerate it with \
