@@ -283,13 +283,13 @@ impl Floater {
 
     /// A sphere of `radius` and `mass` centred at `position`, at rest.
     pub fn sphere(radius: f32, mass: f32, position: impl Into<Vec3>) -> Self {
-        Self::new(Shape::Sphere { radius }, mass, position.into())
+        Self::with_shape(Shape::Sphere { radius }, mass, position)
     }
 
     /// A box of `half_extents` and `mass` centred at `position`, at rest, upright.
     pub fn cuboid(half_extents: impl Into<Vec3>, mass: f32, position: impl Into<Vec3>) -> Self {
         let half_extents = half_extents.into();
-        Self::new(Shape::Box { half_extents }, mass, position.into())
+        Self::with_shape(Shape::Box { half_extents }, mass, position)
     }
 
     /// A body whose hull is the closed mesh `vertices`, `triangles` (counter-clockwise
@@ -309,16 +309,20 @@ impl Floater {
 
     /// [`Floater::hull`] with a hull already validated, shared with other bodies.
     pub fn with_hull(hull: Arc<Hull>, mass: f32, position: impl Into<Vec3>) -> Self {
-        Self::new(Shape::Hull(hull), mass, position.into())
+        Self::with_shape(Shape::Hull(hull), mass, position)
     }
 
-    fn new(shape: Shape, mass: f32, position: Vec3) -> Self {
+    /// A body of any `shape` and `mass` at `position`, at rest, upright, with the default
+    /// drag and the shape's inertia: what [`Floater::sphere`], [`Floater::cuboid`] and
+    /// [`Floater::with_hull`] build, for a caller that holds a [`Shape`] (a face that
+    /// decodes one, or a body copied with another shape).
+    pub fn with_shape(shape: Shape, mass: f32, position: impl Into<Vec3>) -> Self {
         Self {
             shape,
             mass,
             inertia: None,
             drag: Self::DEFAULT_DRAG,
-            position,
+            position: position.into(),
             orientation: Quat::IDENTITY,
             velocity: Vec3::ZERO,
             angular_velocity: Vec3::ZERO,

@@ -492,8 +492,7 @@ pub(crate) fn rust_floater(f: SwFloater, hull: Option<Arc<Hull>>) -> Outcome<Flo
             )))
         }
     };
-    let mut body = Floater::sphere(1.0, f.mass, f.position);
-    body.shape = shape;
+    let mut body = Floater::with_shape(shape, f.mass, f.position);
     body.inertia = inertia;
     body.drag = f.drag;
     body.orientation = Quat::from_array(f.orientation);
