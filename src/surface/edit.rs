@@ -26,7 +26,7 @@ impl Surface {
         params::positive("drop radius", radius)?;
         let grid = self.grid();
         let h = self.params.spacing;
-        let [oc, or] = self.window_origin;
+        let [oc, or] = self.window.origin;
         let inv_r2 = 1.0 / (radius * radius);
         // `d2 * inv_r2` is 0 × ∞ = NaN at the centre when radius² underflows: the weight
         // there is 1 by definition.
@@ -168,7 +168,7 @@ impl Surface {
     pub fn set_pinned(&mut self, node: usize, pinned: bool) -> Result<()> {
         self.check_node(node)?;
         self.state.pinned[node] = pinned;
-        self.window_custom = true;
+        self.window.customised();
         if pinned {
             for v in &mut self.state.vel {
                 v[node] = 0.0;
@@ -198,7 +198,7 @@ impl Surface {
         self.admit_bounds(stability)?;
         self.stability = stability;
         self.state.mass.set(node, mass);
-        self.window_custom = true;
+        self.window.customised();
         if !self.state.pinned[node] {
             self.state.inv_mass.set(node, 1.0 / mass);
         }
@@ -215,7 +215,7 @@ impl Surface {
         self.admit_bounds(stability)?;
         self.stability = stability;
         self.state.viscosity.set(node, viscosity);
-        self.window_custom = true;
+        self.window.customised();
         Ok(())
     }
 
@@ -232,7 +232,7 @@ impl Surface {
         }
         self.admit_bounds(stability)?;
         self.stability = stability;
-        self.window_custom = true;
+        self.window.customised();
         let state = &mut self.state;
         state.mass.assign(|i| masses[i]);
         let pinned = &state.pinned;
@@ -254,7 +254,7 @@ impl Surface {
         }
         self.admit_bounds(stability)?;
         self.stability = stability;
-        self.window_custom = true;
+        self.window.customised();
         self.state.viscosity.assign(|i| viscosities[i]);
         Ok(())
     }

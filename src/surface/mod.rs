@@ -99,11 +99,8 @@ pub struct Surface {
     host: Option<Host>,
     /// Floating bodies, their world and the water column under them.
     bodies: bodies::BodySet,
-    /// Whole cells the window has travelled, `[cols, rows]` (see [`window`]).
-    window_origin: [i64; 2],
-    /// Whether a per-node mass, viscosity or pin may differ from its place's default (a
-    /// shift then moves them; see [`window`]).
-    window_custom: bool,
+    /// Where the moving window is, and what a shift must move (see [`window`]).
+    window: window::Placement,
 }
 
 /// The node state for the unit tests of `state.rs` (the fields are private to `surface/`).
@@ -189,8 +186,7 @@ impl Surface {
             params,
             host: None,
             bodies: Default::default(),
-            window_origin: [0, 0],
-            window_custom: false,
+            window: Default::default(),
         }
     }
 

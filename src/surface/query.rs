@@ -318,7 +318,7 @@ impl Surface {
     /// True if `(x, z)` is finite and inside the rest footprint
     /// `[0, (cols−1)h] × [0, (rows−1)h]`, where the queries answer.
     pub fn contains(&self, x: f32, z: f32) -> bool {
-        Sample::at(&self.mesh_view(), self.window_origin, x, z).is_ok()
+        Sample::at(&self.mesh_view(), self.window.origin, x, z).is_ok()
     }
 
     /// Height (y) of the water at world `(x, z)`, interpolated bilinearly between nodes.
@@ -336,7 +336,7 @@ impl Surface {
     /// ```
     pub fn height_at(&self, x: f32, z: f32) -> Result<f32> {
         let view = self.mesh_view();
-        Ok(Sample::at(&view, self.window_origin, x, z)?.blend(view.cols(), view.y()))
+        Ok(Sample::at(&view, self.window.origin, x, z)?.blend(view.cols(), view.y()))
     }
 
     /// Adds `force` at the world point `(x, z)` for the next step only, in the lattice's
@@ -365,7 +365,7 @@ impl Surface {
             crate::params::finite("force", f)?;
         }
         let view = self.mesh_view();
-        let sample = Sample::at(&view, self.window_origin, x, z)?;
+        let sample = Sample::at(&view, self.window.origin, x, z)?;
         let cols = view.cols();
         let (w, corners) = (sample.weights(), sample.corners(cols));
         let batch = std::array::from_fn::<_, 4, _>(|k| (corners[k], w[k]));
@@ -380,7 +380,7 @@ impl Surface {
     pub(crate) fn waters(&self) -> Waters<'_> {
         Waters {
             view: self.mesh_view(),
-            origin: self.window_origin,
+            origin: self.window.origin,
             velocities: self.velocities(),
             mass: &self.state.mass,
             viscosity: &self.state.viscosity,
@@ -391,21 +391,21 @@ impl Surface {
     /// renormalised.
     pub fn normal_at(&self, x: f32, z: f32) -> Result<Vec3> {
         let view = self.mesh_view();
-        Ok(Sample::at(&view, self.window_origin, x, z)?.normal(&view))
+        Ok(Sample::at(&view, self.window.origin, x, z)?.normal(&view))
     }
 
     /// Velocity of the water at world `(x, z)`, interpolated bilinearly between nodes, in
     /// world units per second.
     pub fn velocity_at(&self, x: f32, z: f32) -> Result<Vec3> {
         let view = self.mesh_view();
-        let s = Sample::at(&view, self.window_origin, x, z)?;
+        let s = Sample::at(&view, self.window.origin, x, z)?;
         Ok(s.blend3(view.cols(), self.velocities()) * self.params.time_scale)
     }
 
     /// Height, normal and velocity at world `(x, z)` in one lookup of the cell.
     pub fn sample_at(&self, x: f32, z: f32) -> Result<WaterSample> {
         let view = self.mesh_view();
-        let s = Sample::at(&view, self.window_origin, x, z)?;
+        let s = Sample::at(&view, self.window.origin, x, z)?;
         Ok(s.water(&view, self.velocities(), self.params.time_scale))
     }
 
@@ -427,7 +427,7 @@ impl Surface {
     /// ```
     pub fn samples_at(&self, points: &[[f32; 2]], out: &mut Vec<Option<WaterSample>>) {
         let view = self.mesh_view();
-        let (origin, vel) = (self.window_origin, self.velocities());
+        let (origin, vel) = (self.window.origin, self.velocities());
         let scale = self.params.time_scale;
         out.clear();
         out.extend(points.iter().map(|&[x, z]| {
@@ -441,7 +441,7 @@ impl Surface {
     /// ([`Surface::samples_at`] answers point by point).
     pub fn heights_at(&self, points: &[[f32; 2]], out: &mut Vec<f32>) -> Result<()> {
         let view = self.mesh_view();
-        batch(&view, self.window_origin, points, out, |s| {
+        batch(&view, self.window.origin, points, out, |s| {
             s.blend(view.cols(), view.y())
         })
     }
@@ -449,7 +449,7 @@ impl Surface {
     /// [`Surface::normal_at`] for every `[x, z]` of `points`, into `out`.
     pub fn normals_at(&self, points: &[[f32; 2]], out: &mut Vec<Vec3>) -> Result<()> {
         let view = self.mesh_view();
-        batch(&view, self.window_origin, points, out, |s| s.normal(&view))
+        batch(&view, self.window.origin, points, out, |s| s.normal(&view))
     }
 
     /// [`Surface::velocity_at`] for every `[x, z]` of `points`, into `out` (world units
@@ -457,7 +457,7 @@ impl Surface {
     pub fn velocities_at(&self, points: &[[f32; 2]], out: &mut Vec<Vec3>) -> Result<()> {
         let view = self.mesh_view();
         let (vel, scale) = (self.velocities(), self.params.time_scale);
-        batch(&view, self.window_origin, points, out, |s| {
+        batch(&view, self.window.origin, points, out, |s| {
             s.blend3(view.cols(), vel) * scale
         })
     }

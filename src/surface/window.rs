@@ -312,19 +312,43 @@ fn shifted_origin(origin: [i64; 2], dcols: i32, drows: i32) -> Result<[i64; 2]> 
     ])
 }
 
+/// Where a surface's window is: the whole cells it has travelled, and whether a shift must
+/// move per-node values with their water.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Placement {
+    /// Whole cells the window has travelled, `[cols, rows]`.
+    pub origin: [i64; 2],
+    /// Whether a per-node mass, viscosity or pin may differ from its place's default (a
+    /// shift then moves them; a window that never had any moves none).
+    custom: bool,
+}
+
+impl Placement {
+    /// A per-node mass, viscosity or pin was set: shifts move them from now on.
+    pub fn customised(&mut self) {
+        self.custom = true;
+    }
+
+    /// A snapshot's origin, whose per-node values may be anything.
+    pub fn load(&mut self, origin: [i64; 2]) {
+        self.origin = origin;
+        self.custom = true;
+    }
+}
+
 impl Surface {
     /// The water-frame position `(x, z)` of node `(0, 0)`'s rest place: `h` times
     /// [`Surface::origin_cells`]. `[0.0, 0.0]` until the window moves. Node `(col, row)`
     /// rests at `origin + (col·h, row·h)`; see [the module docs](crate::window) for the frame.
     pub fn origin(&self) -> [f32; 2] {
         let h = self.params.spacing;
-        self.window_origin.map(|c| c as f32 * h)
+        self.window.origin.map(|c| c as f32 * h)
     }
 
     /// Whole cells the window has travelled since the surface was made, `[cols, rows]`:
     /// the sum of every shift.
     pub fn origin_cells(&self) -> [i64; 2] {
-        self.window_origin
+        self.window.origin
     }
 
     /// Moves the window `dcols` cells along +x and `drows` along +z (negative values go
@@ -382,7 +406,7 @@ impl Surface {
         drows: i32,
         mut far_field: Option<&mut F>,
     ) -> Result<()> {
-        let origin = shifted_origin(self.window_origin, dcols, drows)?;
+        let origin = shifted_origin(self.window.origin, dcols, drows)?;
         if dcols == 0 && drows == 0 {
             return Ok(());
         }
@@ -432,9 +456,9 @@ impl Surface {
         let defaults = Defaults::of(self);
         // Which nodes were pinned before: the outer ring, unless a caller set pins (then a
         // copy, since moving the parameters rewrites them).
-        let was_pinned = self.window_custom.then(|| self.state.pinned.clone());
-        let params_moved = self.window_custom && self.move_parameters(mv, &defaults);
-        self.window_custom = params_moved;
+        let was_pinned = self.window.custom.then(|| self.state.pinned.clone());
+        let params_moved = self.window.custom && self.move_parameters(mv, &defaults);
+        self.window.custom = params_moved;
 
         for family in Family::ALL {
             let default = defaults.spring(family);
@@ -509,7 +533,7 @@ impl Surface {
                 v[i] = 0.0;
             }
         }
-        self.window_origin = origin;
+        self.window.origin = origin;
         Ok(())
     }
 
@@ -563,7 +587,7 @@ impl Surface {
             .into_iter()
             .enumerate()
         {
-            let centre = self.window_origin[k] as f64 + (n - 1) as f64 / 2.0;
+            let centre = self.window.origin[k] as f64 + (n - 1) as f64 / 2.0;
             let off = p as f64 / h - centre;
             if off.abs() <= dead {
                 continue;
@@ -578,7 +602,7 @@ impl Surface {
             }
             shift[k] = cells as i32;
         }
-        shifted_origin(self.window_origin, shift[0], shift[1])?;
+        shifted_origin(self.window.origin, shift[0], shift[1])?;
         self.shift(shift[0], shift[1])?;
         Ok(shift)
     }
@@ -611,7 +635,7 @@ impl Surface {
     /// # Ok::<(), springwater::Error>(())
     /// ```
     pub fn rebase(&mut self, dcols: i64, drows: i64) -> Result<()> {
-        let old = self.window_origin;
+        let old = self.window.origin;
         let expected =
             "a rebase that leaves the window within 15,728,640 cells (2^24 - 2^20) of the new origin";
         let new = [
@@ -636,7 +660,7 @@ impl Surface {
         }
         let (dx, dz) = (dcols as f64 * h as f64, drows as f64 * h as f64);
         self.bodies.rebase(dx, dz);
-        self.window_origin = new;
+        self.window.origin = new;
         Ok(())
     }
 

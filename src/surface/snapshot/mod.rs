@@ -491,12 +491,11 @@ impl Surface {
         self.time = s.model_time;
         self.stability = Stability::from_bounds(s.bounds);
         self.bodies.set_world(s.next_floater_id, s.buoyancy);
-        self.window_origin = s.origin_cells;
+        // Per-node values may differ from their places' defaults (see `window`).
+        self.window.load(s.origin_cells);
         self.clock.owed = s.owed_time;
         (self.clock.max_steps, self.clock.overflow) = s.step_cap;
         self.clock.dropped = s.dropped_seconds;
-        // Per-node values may differ from their places' defaults (see `window`).
-        self.window_custom = true;
     }
 
     /// The snapshot in the binary format of the [`Snapshot`] docs, in a new vector

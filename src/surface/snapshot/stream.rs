@@ -330,7 +330,7 @@ impl Surface {
                 forces_pending: s.ext.is_pending(),
                 next_floater_id: self.bodies.next_id(),
                 buoyancy: self.buoyancy(),
-                origin_cells: self.window_origin,
+                origin_cells: self.window.origin,
                 owed_time: self.clock.owed,
                 step_cap: (self.clock.max_steps, self.clock.overflow),
                 dropped_seconds: self.clock.dropped,
