@@ -61,8 +61,8 @@ impl Surface {
         };
         // Check first, then write: a drop that would overflow a height changes nothing
         // (outside the square the heights do not change, and the state is finite).
-        let pinned = &self.state.pinned;
-        if box_nodes().any(|i| !pinned[i] && !lift(&self.state.pos[1], i).is_finite()) {
+        let pinned = &self.lattice.state.pinned;
+        if box_nodes().any(|i| !pinned[i] && !lift(&self.lattice.state.pos[1], i).is_finite()) {
             return Err(Error::InvalidParam {
                 name: "drop height",
                 value: height as f64,
@@ -70,12 +70,12 @@ impl Surface {
             });
         }
         for i in box_nodes() {
-            if !self.state.pinned[i] {
-                self.state.pos[1][i] = lift(&self.state.pos[1], i);
+            if !self.lattice.state.pinned[i] {
+                self.lattice.state.pos[1][i] = lift(&self.lattice.state.pos[1], i);
             }
         }
         if height >= 0.0 {
-            let y = &mut self.state.pos[1];
+            let y = &mut self.lattice.state.pos[1];
             for i in 0..grid.node_count() {
                 if y[i] == 0.0 && !pinned[i] && !near(i) {
                     y[i] += 0.0;
@@ -94,7 +94,8 @@ impl Surface {
         for f in force {
             params::finite("force", f)?;
         }
-        self.state
+        self.lattice
+            .state
             .ext
             .add([(node, force)])
             .or_else(|sum| params::finite("accumulated force", sum))
@@ -102,7 +103,7 @@ impl Surface {
 
     /// Discards the pending external forces (for example after a step refused them).
     pub fn clear_forces(&mut self) {
-        self.state.ext.clear();
+        self.lattice.state.ext.clear();
     }
 
     /// Adds a velocity change `dv` to a free node now (an impulse divided by its mass), in
@@ -112,13 +113,13 @@ impl Surface {
         for v in dv {
             params::finite("velocity", v)?;
         }
-        let sum: [f32; 3] = std::array::from_fn(|k| self.state.vel[k][node] + dv[k]);
+        let sum: [f32; 3] = std::array::from_fn(|k| self.lattice.state.vel[k][node] + dv[k]);
         for v in sum {
             params::finite("resulting velocity", v)?;
         }
-        if !self.state.pinned[node] {
+        if !self.lattice.state.pinned[node] {
             for (k, v) in sum.into_iter().enumerate() {
-                self.state.vel[k][node] = v;
+                self.lattice.state.vel[k][node] = v;
             }
         }
         Ok(())
@@ -139,7 +140,7 @@ impl Surface {
                 });
             }
         }
-        self.state.ext.set(force);
+        self.lattice.state.ext.set(force);
         Ok(())
     }
 
@@ -148,9 +149,9 @@ impl Surface {
     pub fn forces(&self) -> [&[f32]; 3] {
         let n = self.node_count();
         [
-            &self.state.ext.buffers()[0][..n],
-            &self.state.ext.buffers()[1][..n],
-            &self.state.ext.buffers()[2][..n],
+            &self.lattice.state.ext.buffers()[0][..n],
+            &self.lattice.state.ext.buffers()[1][..n],
+            &self.lattice.state.ext.buffers()[2][..n],
         ]
     }
 
@@ -167,26 +168,26 @@ impl Surface {
     /// Pins (`true`) or frees a node. Pinning zeroes its velocity.
     pub fn set_pinned(&mut self, node: usize, pinned: bool) -> Result<()> {
         self.check_node(node)?;
-        self.state.pinned[node] = pinned;
+        self.lattice.state.pinned[node] = pinned;
         self.window.customised();
         if pinned {
-            for v in &mut self.state.vel {
+            for v in &mut self.lattice.state.vel {
                 v[node] = 0.0;
             }
         }
         let inv_mass = if pinned {
             0.0
         } else {
-            1.0 / self.state.mass.get(node)
+            1.0 / self.lattice.state.mass.get(node)
         };
-        self.state.inv_mass.set(node, inv_mass);
+        self.lattice.state.inv_mass.set(node, inv_mass);
         Ok(())
     }
 
     /// Whether a node is pinned.
     pub fn is_pinned(&self, node: usize) -> Result<bool> {
         self.check_node(node)?;
-        Ok(self.state.pinned[node])
+        Ok(self.lattice.state.pinned[node])
     }
 
     /// Sets a node's mass. Refused if it would put `params().dt` at or past the critical
@@ -194,13 +195,13 @@ impl Surface {
     pub fn set_mass(&mut self, node: usize, mass: f32) -> Result<()> {
         self.check_node(node)?;
         check_mass(mass)?;
-        let stability = self.stability.with_mass(mass);
+        let stability = self.lattice.stability.with_mass(mass);
         self.admit_bounds(stability)?;
-        self.stability = stability;
-        self.state.mass.set(node, mass);
+        self.lattice.stability = stability;
+        self.lattice.state.mass.set(node, mass);
         self.window.customised();
-        if !self.state.pinned[node] {
-            self.state.inv_mass.set(node, 1.0 / mass);
+        if !self.lattice.state.pinned[node] {
+            self.lattice.state.inv_mass.set(node, 1.0 / mass);
         }
         Ok(())
     }
@@ -211,10 +212,10 @@ impl Surface {
     pub fn set_viscosity(&mut self, node: usize, viscosity: f32) -> Result<()> {
         self.check_node(node)?;
         params::non_negative("viscosity", viscosity)?;
-        let stability = self.stability.with_viscosity(viscosity);
+        let stability = self.lattice.stability.with_viscosity(viscosity);
         self.admit_bounds(stability)?;
-        self.stability = stability;
-        self.state.viscosity.set(node, viscosity);
+        self.lattice.stability = stability;
+        self.lattice.state.viscosity.set(node, viscosity);
         self.window.customised();
         Ok(())
     }
@@ -225,15 +226,15 @@ impl Surface {
     /// nodes one by one.
     pub fn set_masses(&mut self, masses: &[f32]) -> Result<()> {
         same_length("masses", masses.len(), self.node_count())?;
-        let mut stability = self.stability;
+        let mut stability = self.lattice.stability;
         for &mass in masses {
             check_mass(mass)?;
             stability = stability.with_mass(mass);
         }
         self.admit_bounds(stability)?;
-        self.stability = stability;
+        self.lattice.stability = stability;
         self.window.customised();
-        let state = &mut self.state;
+        let state = &mut self.lattice.state;
         state.mass.assign(|i| masses[i]);
         let pinned = &state.pinned;
         state
@@ -247,40 +248,40 @@ impl Surface {
     /// timestep, all before anything changes, so a refused call changes nothing.
     pub fn set_viscosities(&mut self, viscosities: &[f32]) -> Result<()> {
         same_length("viscosities", viscosities.len(), self.node_count())?;
-        let mut stability = self.stability;
+        let mut stability = self.lattice.stability;
         for &viscosity in viscosities {
             params::non_negative("viscosity", viscosity)?;
             stability = stability.with_viscosity(viscosity);
         }
         self.admit_bounds(stability)?;
-        self.stability = stability;
+        self.lattice.stability = stability;
         self.window.customised();
-        self.state.viscosity.assign(|i| viscosities[i]);
+        self.lattice.state.viscosity.assign(|i| viscosities[i]);
         Ok(())
     }
 
     /// Node masses, row-major. Uniform masses are not stored per node: the view reads
     /// them where they are (see [`NodeValues`]).
     pub fn masses(&self) -> NodeValues<'_> {
-        NodeValues::new(&self.state.mass)
+        NodeValues::new(&self.lattice.state.mass)
     }
 
     /// Node viscosities `γ`, row-major, the absorbing frame's ramp included. Stored per
     /// node only once a node differs from its default (see [`NodeValues`]).
     pub fn viscosities(&self) -> NodeValues<'_> {
-        NodeValues::new(&self.state.viscosity)
+        NodeValues::new(&self.lattice.state.viscosity)
     }
 
     /// Pinned flags.
     pub fn pinned(&self) -> &[bool] {
-        &self.state.pinned
+        &self.lattice.state.pinned
     }
 
     /// A spring's rest length and coefficient; `None` if the grid has no such spring.
     pub fn spring(&self, id: SpringId) -> Option<Spring> {
         (id.origin < self.node_count() && self.grid().spring_end(id.family, id.origin).is_some())
             .then(|| {
-                let (stiffness, rest) = self.springs.get(id.family, id.origin);
+                let (stiffness, rest) = self.lattice.springs.get(id.family, id.origin);
                 Spring { rest, stiffness }
             })
     }
@@ -314,10 +315,10 @@ impl Surface {
         }
         params::non_negative("rest length", rest)?;
         params::positive("stiffness", coef)?;
-        let stability = self.stability.with_stiffness(coef);
+        let stability = self.lattice.stability.with_stiffness(coef);
         self.admit_bounds(stability)?;
-        self.stability = stability;
-        self.springs.set(id, rest, coef);
+        self.lattice.stability = stability;
+        self.lattice.springs.set(id, rest, coef);
         Ok(())
     }
 

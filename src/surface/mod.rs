@@ -82,15 +82,14 @@ impl Energy {
 #[derive(Debug, Clone)]
 pub struct Surface {
     params: Params,
-    state: State,
-    springs: Springs,
+    /// The nodes, their springs and the stability bounds they have reached.
+    lattice: Lattice,
+    /// The engine's buffers and schedule (band height, steps per pass).
     workspace: Workspace,
+    /// The scalar reference's buffers, for the reference level.
     reference: forces::scalar::Scratch,
     /// The instruction set the engine runs.
     simd: SimdLevel,
-    /// Smallest node mass, largest spring coefficient and largest viscosity ever set: they
-    /// set `critical_dt`.
-    stability: Stability,
     steps: u64,
     time: f64,
     /// The accumulator of [`Surface::advance`] and its cap.
@@ -103,15 +102,26 @@ pub struct Surface {
     window: window::Placement,
 }
 
+/// The lattice a surface steps: the nodes' state (with the external forces waiting for
+/// the next step, [`crate::state::External`]), the spring tables, and the stability
+/// bounds they have reached ([`Stability`]: the smallest node mass, largest spring
+/// coefficient and largest viscosity ever set, which set `critical_dt`).
+#[derive(Debug, Clone)]
+struct Lattice {
+    state: State,
+    springs: Springs,
+    stability: Stability,
+}
+
 /// The node state for the unit tests of `state.rs` (the fields are private to `surface/`).
 #[cfg(test)]
 impl Surface {
     pub(crate) fn state_ref(&self) -> &State {
-        &self.state
+        &self.lattice.state
     }
 
     pub(crate) fn state_mut(&mut self) -> &mut State {
-        &mut self.state
+        &mut self.lattice.state
     }
 }
 
@@ -177,9 +187,11 @@ impl Surface {
             workspace: Workspace::new(None),
             reference: Default::default(),
             simd: SimdLevel::detect(),
-            state,
-            springs,
-            stability: Stability::from_bounds(bounds),
+            lattice: Lattice {
+                state,
+                springs,
+                stability: Stability::from_bounds(bounds),
+            },
             steps: progress.0,
             time: progress.1,
             clock: Default::default(),
@@ -197,12 +209,12 @@ impl Surface {
 
     /// The grid shape.
     pub fn grid(&self) -> Grid {
-        self.state.grid
+        self.lattice.state.grid
     }
 
     /// Number of nodes, `cols × rows` (C: `sw_surface_node_count`).
     pub fn node_count(&self) -> usize {
-        self.state.len()
+        self.lattice.state.len()
     }
 
     /// Number of nodes.
@@ -247,7 +259,7 @@ impl Surface {
     /// While bodies float ([`Surface::add_floater`]) their waterlines stiffen the nodes
     /// under them, and the limit includes that (see [`crate::floater`]).
     pub fn critical_dt(&self) -> f32 {
-        self.stability.critical_dt(self.floater_stiffness())
+        self.lattice.stability.critical_dt(self.floater_stiffness())
     }
 
     /// Refuses `params().dt` for `stability`, the bounds an edit would give the surface,
@@ -260,9 +272,9 @@ impl Surface {
     pub fn positions(&self) -> [&[f32]; 3] {
         let n = self.node_count();
         [
-            &self.state.pos[0][..n],
-            &self.state.pos[1][..n],
-            &self.state.pos[2][..n],
+            &self.lattice.state.pos[0][..n],
+            &self.lattice.state.pos[1][..n],
+            &self.lattice.state.pos[2][..n],
         ]
     }
 
@@ -272,9 +284,9 @@ impl Surface {
     pub fn velocities(&self) -> [&[f32]; 3] {
         let n = self.node_count();
         [
-            &self.state.vel[0][..n],
-            &self.state.vel[1][..n],
-            &self.state.vel[2][..n],
+            &self.lattice.state.vel[0][..n],
+            &self.lattice.state.vel[1][..n],
+            &self.lattice.state.vel[2][..n],
         ]
     }
 
@@ -355,7 +367,7 @@ impl Surface {
 
     /// Kinetic plus spring potential energy, a diagnostic (`O(nodes)`).
     pub fn energy(&self) -> Energy {
-        let s = &self.state;
+        let s = &self.lattice.state;
         let n = self.node_count();
         let mut kinetic = 0.0;
         for i in (0..n).filter(|&i| !s.pinned[i]) {
@@ -369,7 +381,7 @@ impl Surface {
                 .map(|k| (s.pos[k][j] as f64 - s.pos[k][i] as f64).powi(2))
                 .sum::<f64>()
                 .sqrt();
-            let (coef, rest) = self.springs.get(id.family, i);
+            let (coef, rest) = self.lattice.springs.get(id.family, i);
             let stretch = l - rest as f64;
             potential += 0.5 * coef as f64 * stretch * stretch;
         }

@@ -369,7 +369,8 @@ impl Surface {
         let cols = view.cols();
         let (w, corners) = (sample.weights(), sample.corners(cols));
         let batch = std::array::from_fn::<_, 4, _>(|k| (corners[k], w[k]));
-        self.state
+        self.lattice
+            .state
             .ext
             .add(batch.map(|(i, w)| (i, force.map(|f| w * f))))
             .or_else(|sum| crate::params::finite("accumulated force", sum))
@@ -382,8 +383,8 @@ impl Surface {
             view: self.mesh_view(),
             origin: self.window.origin,
             velocities: self.velocities(),
-            mass: &self.state.mass,
-            viscosity: &self.state.viscosity,
+            mass: &self.lattice.state.mass,
+            viscosity: &self.lattice.state.viscosity,
         }
     }
 

@@ -80,7 +80,10 @@ impl Surface {
         let stepped = self
             .prepare_bodies(dt, &mut c)
             .and_then(|()| self.apply_reactions(&c))
-            .and_then(|()| self.water(1, dt).inspect_err(|_| self.state.ext.undo()));
+            .and_then(|()| {
+                self.water(1, dt)
+                    .inspect_err(|_| self.lattice.state.ext.undo())
+            });
         match stepped {
             Ok(()) => self.commit_bodies(dt, &mut c),
             Err(_) => self.discard_bodies(),
@@ -111,7 +114,7 @@ impl Surface {
         let mut left = n;
         while left > 0 {
             if self.simd == SimdLevel::Scalar {
-                let (state, springs) = (&mut self.state, &self.springs);
+                let (state, springs) = (&mut self.lattice.state, &self.lattice.springs);
                 forces::scalar::step(state, springs, &mut self.reference, cfg)
                     .map_err(|node| self.non_finite(node))?;
                 self.commit(1, dt);
@@ -119,7 +122,11 @@ impl Surface {
                 continue;
             }
             let k = left.min(self.workspace.pass_steps as u64) as usize;
-            let (state, springs, ws) = (&mut self.state, &self.springs, &mut self.workspace);
+            let (state, springs, ws) = (
+                &mut self.lattice.state,
+                &self.lattice.springs,
+                &mut self.workspace,
+            );
             match forces::engine::pass(state, springs, ws, cfg, k, self.simd, runner) {
                 PassEnd::Done => self.commit(k, dt),
                 PassEnd::Incomplete => return Err(Error::JobSystem),
@@ -129,7 +136,7 @@ impl Surface {
                     }
                 }
                 PassEnd::NonFinite => {
-                    let node = self.state.first_non_finite_next().unwrap_or(0);
+                    let node = self.lattice.state.first_non_finite_next().unwrap_or(0);
                     return Err(self.non_finite(node));
                 }
             }
@@ -153,8 +160,8 @@ impl Surface {
 
     /// Makes `k` steps written to the back buffers the state.
     fn commit(&mut self, k: usize, dt: f32) {
-        self.state.swap();
-        self.state.ext.clear();
+        self.lattice.state.swap();
+        self.lattice.state.ext.clear();
         self.steps += k as u64;
         for _ in 0..k {
             self.time += dt as f64;

@@ -456,19 +456,23 @@ impl Surface {
         let defaults = Defaults::of(self);
         // Which nodes were pinned before: the outer ring, unless a caller set pins (then a
         // copy, since moving the parameters rewrites them).
-        let was_pinned = self.window.custom.then(|| self.state.pinned.clone());
+        let was_pinned = self
+            .window
+            .custom
+            .then(|| self.lattice.state.pinned.clone());
         let params_moved = self.window.custom && self.move_parameters(mv, &defaults);
         self.window.custom = params_moved;
 
         for family in Family::ALL {
             let default = defaults.spring(family);
-            self.springs
+            self.lattice
+                .springs
                 .shift_family(family, grid, |i| mv.source(i), default);
         }
 
         // The water itself.
         let runner = Runner::of(self.host.as_ref());
-        let state = &mut self.state;
+        let state = &mut self.lattice.state;
         let (pos, vel) = (&mut state.pos, &mut state.vel);
         move_arrays(runner, mv, pos.iter_mut().chain(vel.iter_mut()));
         mv.for_incoming_runs(|r, cs| {
@@ -541,7 +545,7 @@ impl Surface {
     /// holds a value other than its place's default.
     fn move_parameters(&mut self, mv: Move, defaults: &Defaults) -> bool {
         let n = mv.grid.node_count();
-        let state = &mut self.state;
+        let state = &mut self.lattice.state;
         let mass_moved = move_table(&mut state.mass, mv);
         let visc_moved = move_table(&mut state.viscosity, mv);
         let pins_moved = move_param(
@@ -649,7 +653,7 @@ impl Surface {
         let h = self.params.spacing;
         // A calm node lands exactly on its new rest place ([`rest_coordinate`]).
         let rest = |c: usize, o: i64| rest_coordinate(c, o, h);
-        let [x, _, z] = &mut self.state.pos;
+        let [x, _, z] = &mut self.lattice.state.pos;
         for r in 0..grid.rows {
             let (z_old, z_new) = (rest(r, old[1]), rest(r, new[1]));
             let row = r * grid.cols..(r + 1) * grid.cols;

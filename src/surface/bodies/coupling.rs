@@ -315,11 +315,15 @@ impl Surface {
         let shares = c.slots.iter().flat_map(|slot| &slot.shares);
         self.bodies.column.gather(shares, n);
         let water = self.bodies.column.water();
-        self.state.ext.add(water).map_err(|_| Error::InvalidParam {
-            name: "accumulated force",
-            value: f64::INFINITY,
-            expected: "finite: the bodies' reactions overflow f32",
-        })
+        self.lattice
+            .state
+            .ext
+            .add(water)
+            .map_err(|_| Error::InvalidParam {
+                name: "accumulated force",
+                value: f64::INFINITY,
+                expected: "finite: the bodies' reactions overflow f32",
+            })
     }
 
     /// The coupled step's last stage, once the water's step of model time `dt` succeeded:
@@ -349,6 +353,7 @@ impl Surface {
             spacing: self.params.spacing,
             seconds,
             room_rate: self
+                .lattice
                 .stability
                 .damping_room(self.params.dt, self.floater_stiffness()),
             steps: self.steps(),

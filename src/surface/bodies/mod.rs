@@ -302,7 +302,7 @@ impl Surface {
     /// Refuses `params().dt` for the current tables with bodies floating in `buoyancy`.
     fn admit_with(&self, buoyancy: Buoyancy) -> Result<()> {
         let extra = buoyancy.node_stiffness(self.params.spacing, self.params.time_scale);
-        self.stability.admit(self.params.dt, extra)
+        self.lattice.stability.admit(self.params.dt, extra)
     }
 
     /// The waterline stiffness the bodies add to a node (0 without bodies).

@@ -489,7 +489,7 @@ impl Surface {
         self.params = s.params;
         self.steps = s.steps;
         self.time = s.model_time;
-        self.stability = Stability::from_bounds(s.bounds);
+        self.lattice.stability = Stability::from_bounds(s.bounds);
         self.bodies.set_world(s.next_floater_id, s.buoyancy);
         // Per-node values may differ from their places' defaults (see `window`).
         self.window.load(s.origin_cells);

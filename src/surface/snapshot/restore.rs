@@ -50,7 +50,7 @@ impl Surface {
         }
         // Checked: from here on nothing can fail.
         let n = self.node_count();
-        let state = &mut self.state;
+        let state = &mut self.lattice.state;
         for (dst, src) in state.pos.iter_mut().zip(nodes.positions) {
             src.read(0, &mut dst[..n]);
         }
@@ -76,7 +76,7 @@ impl Surface {
         if !self.springs_equal(&saved) {
             let grid = self.grid();
             let (rest, coef) = (nodes.rest.map(Le::to_vec), nodes.stiffness.map(Le::to_vec));
-            self.springs = Springs::from_tables(
+            self.lattice.springs = Springs::from_tables(
                 grid,
                 std::array::from_fn(|f| rest[f].as_slice()),
                 std::array::from_fn(|f| coef[f].as_slice()),
@@ -114,7 +114,7 @@ impl Surface {
     /// Whether every spring of `saved` has the bits of this surface's.
     fn springs_equal(&self, saved: &Layout<'_>) -> bool {
         let grid = self.grid();
-        let tables = self.springs.tables();
+        let tables = self.lattice.springs.tables();
         Family::ALL.into_iter().all(|family| {
             let f = family as usize;
             (0..grid.rows).all(|r| {
@@ -130,7 +130,7 @@ impl Surface {
                     }
                     None if nodes.is_empty() => true,
                     None => {
-                        let (c, l) = self.springs.get(family, nodes.start);
+                        let (c, l) = self.lattice.springs.get(family, nodes.start);
                         all_bits(rest, l) && all_bits(coef, c)
                     }
                 }

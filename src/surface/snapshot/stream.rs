@@ -298,7 +298,7 @@ impl Surface {
         // The family's first spring gives the shared value when there is no table.
         let grid = self.grid();
         let first = (0..grid.node_count()).find(|&i| grid.spring_end(family, i).is_some());
-        let shared = first.map_or(0.0, |i| part(self.springs.get(family, i)));
+        let shared = first.map_or(0.0, |i| part(self.lattice.springs.get(family, i)));
         Values::Springs {
             family,
             table,
@@ -309,9 +309,9 @@ impl Surface {
     /// The surface's fields as the encoder reads them, straight from its buffers.
     pub(super) fn fields(&self) -> Fields<'_> {
         let n = self.node_count();
-        let s = &self.state;
+        let s = &self.lattice.state;
         let grid = self.grid();
-        let tables = self.springs.tables();
+        let tables = self.lattice.springs.tables();
         let rest = Family::ALL.map(|f| {
             let table = tables.map(|t| &t.rest[f as usize][..n]);
             self.spring_values(f, |(_, rest)| rest, table)
@@ -326,7 +326,7 @@ impl Surface {
                 params: self.params,
                 steps: self.steps,
                 model_time: self.time,
-                bounds: self.stability.bounds(),
+                bounds: self.lattice.stability.bounds(),
                 forces_pending: s.ext.is_pending(),
                 next_floater_id: self.bodies.next_id(),
                 buoyancy: self.buoyancy(),
