@@ -101,9 +101,11 @@ impl Surface {
             .or_else(|sum| params::finite("accumulated force", sum))
     }
 
-    /// Discards the pending external forces (for example after a step refused them).
+    /// Discards the pending external forces (for example after a step refused them),
+    /// the reactions of [`Surface::body_forces`] waiting for the next step among them.
     pub fn clear_forces(&mut self) {
         self.lattice.state.ext.clear();
+        self.bodies.drop_pending();
     }
 
     /// Adds a velocity change `dv` to a free node now (an impulse divided by its mass), in

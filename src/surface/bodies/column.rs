@@ -238,21 +238,41 @@ impl Column {
         }
         let grown = self.entries.len() > self.kept;
         if left {
-            let slot = &mut self.slot;
-            self.entries.retain(|e| {
-                let keep = e.carried.iter().any(|c| c.abs() >= TINY);
-                if !keep {
-                    if let Some(s) = slot.get_mut(e.node) {
-                        *s = NONE;
-                    }
-                }
-                keep
-            });
+            self.drop_spent();
         }
         if grown || left {
             self.sort();
         }
         self.kept = self.entries.len();
+    }
+
+    /// Forgets the pushes waiting for the next step (the caller discarded its forces):
+    /// nodes left with nothing to carry leave.
+    pub fn drop_pending(&mut self) {
+        for e in &mut self.entries {
+            e.pending = [0.0; 3];
+        }
+        if self.drop_spent() {
+            self.sort();
+        }
+        self.kept = self.entries.len();
+    }
+
+    /// Drops the entries that carry less than [`TINY`] in every component (with nothing
+    /// waiting), clearing their slots; whether any went (the others' slots are then stale
+    /// until [`Column::sort`]).
+    fn drop_spent(&mut self) -> bool {
+        let (slot, before) = (&mut self.slot, self.entries.len());
+        self.entries.retain(|e| {
+            let keep = e.carried.iter().any(|c| c.abs() >= TINY);
+            if !keep {
+                if let Some(s) = slot.get_mut(e.node) {
+                    *s = NONE;
+                }
+            }
+            keep
+        });
+        self.entries.len() < before
     }
 
     /// The step failed: this step's pushes are forgotten, the column is as it was.
@@ -353,6 +373,19 @@ mod tests {
             .hold(&[(7, [0.0; 3]), (5, [f32::MAX, 0.0, 0.0])], 16)
             .is_err());
         assert_eq!(c.entries(), &kept[..]);
+    }
+
+    #[test]
+    fn dropping_the_pending_pushes_keeps_what_is_carried() {
+        let mut c = Column::default();
+        water(&mut c, &[(4, [0.0, 1.0, 0.0])]);
+        c.commit(0.5);
+        c.hold(&[(4, [1.0; 3]), (8, [2.0; 3])], 16).unwrap();
+        c.drop_pending();
+        // Node 8 only awaited a push: it leaves; node 4 keeps its load, nothing waits.
+        assert_eq!(c.entries(), &[Entry::stored(4, [0.0, 0.5, 0.0], [0.0; 3])]);
+        let w = water(&mut c, &[(8, [1.0; 3])]);
+        assert_eq!(w, vec![(4, [0.0, -0.5, 0.0]), (8, [1.0; 3])]);
     }
 
     #[test]
