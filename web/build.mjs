@@ -3,7 +3,8 @@
 //   node build.mjs            (npm run build)
 // Needs the Rust target: rustup target add wasm32-wasip1. The builds go to ../target/web
 // (CARGO_TARGET_DIR overrides), release, one codegen unit, LTO, stripped (no custom
-// sections are left; wasm32 aborts on panic by default). Measured and not used: opt-level
+// sections are left; wasm32 aborts on panic by default), linked by wasm-ld.mjs: Rust's
+// own rust-lld with the exports cut to the functions springwater.js calls. Measured and not used: opt-level
 // "s" or 2 (modules 1.1-1.45x larger; gzipped, 3% smaller to 9% larger) and wasm-opt -O2,
 // -O3 or -Os from npm's binaryen (within 2%, up to 8 minutes a module): the size is the
 // library's kernels (docs/performance.md).
@@ -16,6 +17,7 @@
 // imports five WASI functions (random bytes, environment, stderr, exit), which
 // springwater.js provides in a few lines, in browsers too.
 import { execFileSync } from "node:child_process";
+import { join } from "node:path";
 import { copyFileSync, mkdirSync, statSync } from "node:fs";
 import { fileURLToPath } from "node:url";
 
@@ -23,8 +25,12 @@ const here = fileURLToPath(new URL(".", import.meta.url));
 const root = fileURLToPath(new URL("..", import.meta.url));
 const base = process.env.CARGO_TARGET_DIR ?? `${root}target/web`;
 mkdirSync(`${here}wasm`, { recursive: true });
+// rust-lld of the toolchain that builds (rustup's shim picks the same one for cargo).
+const rustc = (args) => execFileSync("rustc", args, { cwd: root, encoding: "utf8" });
+const host = rustc(["-vV"]).match(/^host: (.+)$/m)[1];
+const lld = join(rustc(["--print", "sysroot"]).trim(), "lib", "rustlib", host, "bin", "rust-lld");
 
-for (const [name, flags] of [["simd128", "-C target-feature=+simd128"], ["portable", ""]]) {
+for (const [name, flags] of [["simd128", "-C target-feature=+simd128 "], ["portable", ""]]) {
   const targetDir = `${base}/${name}`;
   execFileSync(
     "cargo",
@@ -35,7 +41,9 @@ for (const [name, flags] of [["simd128", "-C target-feature=+simd128"], ["portab
       env: {
         ...process.env,
         CARGO_TARGET_DIR: targetDir,
-        RUSTFLAGS: flags,
+        RUSTFLAGS: `${flags}-C linker-flavor=wasm-ld`,
+        CARGO_TARGET_WASM32_WASIP1_LINKER: `${here}wasm-ld.mjs`,
+        SPRINGWATER_LLD: lld,
         CARGO_PROFILE_RELEASE_DEBUG: "0",
         CARGO_PROFILE_RELEASE_STRIP: "true",
         CARGO_PROFILE_RELEASE_LTO: "true",
