@@ -206,11 +206,18 @@ impl Vector for F32x8 {
 /// (`docs/performance.md`).
 #[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
 #[repr(transparent)]
-#[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
+#[cfg_attr(
+    not(all(target_arch = "wasm32", not(target_feature = "simd128"))),
+    allow(dead_code)
+)]
 pub(crate) struct F32x1(f32);
 
 /// A lane mask of [`F32x1`].
 #[derive(Debug, Clone, Copy)]
+#[cfg_attr(
+    not(all(target_arch = "wasm32", not(target_feature = "simd128"))),
+    allow(dead_code)
+)]
 pub(crate) struct Mask1(bool);
 
 operators!(F32x1, |a, b| {
