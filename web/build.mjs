@@ -4,10 +4,12 @@
 // Needs the Rust target: rustup target add wasm32-wasip1. The builds go to ../target/web
 // (CARGO_TARGET_DIR overrides), release, one codegen unit, LTO, stripped (no custom
 // sections are left; wasm32 aborts on panic by default), linked by wasm-ld.mjs: Rust's
-// own rust-lld with the exports cut to the functions springwater.js calls. Measured and not used: opt-level
-// "s" or 2 (modules 1.1-1.45x larger; gzipped, 3% smaller to 9% larger) and wasm-opt -O2,
-// -O3 or -Os from npm's binaryen (within 2%, up to 8 minutes a module): the size is the
-// library's kernels (docs/performance.md).
+// own rust-lld with the exports cut to the functions springwater.js calls. The SIMD128
+// build at opt-level 3; the portable one, the fallback for engines without SIMD128, at
+// "s": 8% smaller gzipped for 0.8x its step rate ("z": 10% smaller, 0.47x). Measured and
+// not used for the SIMD128 build: opt-level "s" or 2 (modules 1.1-1.45x larger; gzipped,
+// 3% smaller to 9% larger) and, for both, wasm-opt -O2, -O3 or -Os from npm's binaryen
+// (within 2%, up to 8 minutes a module) (docs/performance.md).
 //
 // Why wasm32-wasip1 and not wasm32-unknown-unknown: the library's exponentials (drops,
 // wakes) call the C library's expf, and wasm32-unknown-unknown has none, so Rust's own
@@ -30,7 +32,10 @@ const rustc = (args) => execFileSync("rustc", args, { cwd: root, encoding: "utf8
 const host = rustc(["-vV"]).match(/^host: (.+)$/m)[1];
 const lld = join(rustc(["--print", "sysroot"]).trim(), "lib", "rustlib", host, "bin", "rust-lld");
 
-for (const [name, flags] of [["simd128", "-C target-feature=+simd128 "], ["portable", ""]]) {
+for (const [name, flags, opt] of [
+  ["simd128", "-C target-feature=+simd128 ", "3"],
+  ["portable", "", "s"],
+]) {
   const targetDir = `${base}/${name}`;
   execFileSync(
     "cargo",
@@ -44,6 +49,7 @@ for (const [name, flags] of [["simd128", "-C target-feature=+simd128 "], ["porta
         RUSTFLAGS: `${flags}-C linker-flavor=wasm-ld`,
         CARGO_TARGET_WASM32_WASIP1_LINKER: `${here}wasm-ld.mjs`,
         SPRINGWATER_LLD: lld,
+        CARGO_PROFILE_RELEASE_OPT_LEVEL: opt,
         CARGO_PROFILE_RELEASE_DEBUG: "0",
         CARGO_PROFILE_RELEASE_STRIP: "true",
         CARGO_PROFILE_RELEASE_LTO: "true",
