@@ -3,10 +3,13 @@
 //   node build.mjs            (npm run build)
 // Needs the Rust target: rustup target add wasm32-wasip1. The builds go to ../target/web
 // (CARGO_TARGET_DIR overrides), release, one codegen unit, LTO, stripped (no custom
-// sections are left; wasm32 aborts on panic by default). Measured and not used: opt-level
-// "s" or 2 (modules 1.1-1.45x larger; gzipped, 3% smaller to 9% larger) and wasm-opt -O2,
-// -O3 or -Os from npm's binaryen (within 2%, up to 8 minutes a module): the size is the
-// library's kernels (docs/performance.md).
+// sections are left; wasm32 aborts on panic by default), linked by wasm-ld.mjs: Rust's
+// own rust-lld with the exports cut to the functions springwater.js calls. The SIMD128
+// build at opt-level 3; the portable one, the fallback for engines without SIMD128, at
+// "s": 8% smaller gzipped for 0.8x its step rate ("z": 10% smaller, 0.47x). Measured and
+// not used for the SIMD128 build: opt-level "s" or 2 (modules 1.1-1.45x larger; gzipped,
+// 3% smaller to 9% larger) and, for both, wasm-opt -O2, -O3 or -Os from npm's binaryen
+// (within 2%, up to 8 minutes a module) (docs/performance.md).
 //
 // Why wasm32-wasip1 and not wasm32-unknown-unknown: the library's exponentials (drops,
 // wakes) call the C library's expf, and wasm32-unknown-unknown has none, so Rust's own
@@ -16,6 +19,7 @@
 // imports five WASI functions (random bytes, environment, stderr, exit), which
 // springwater.js provides in a few lines, in browsers too.
 import { execFileSync } from "node:child_process";
+import { join } from "node:path";
 import { copyFileSync, mkdirSync, statSync } from "node:fs";
 import { fileURLToPath } from "node:url";
 
@@ -23,8 +27,15 @@ const here = fileURLToPath(new URL(".", import.meta.url));
 const root = fileURLToPath(new URL("..", import.meta.url));
 const base = process.env.CARGO_TARGET_DIR ?? `${root}target/web`;
 mkdirSync(`${here}wasm`, { recursive: true });
+// rust-lld of the toolchain that builds (rustup's shim picks the same one for cargo).
+const rustc = (args) => execFileSync("rustc", args, { cwd: root, encoding: "utf8" });
+const host = rustc(["-vV"]).match(/^host: (.+)$/m)[1];
+const lld = join(rustc(["--print", "sysroot"]).trim(), "lib", "rustlib", host, "bin", "rust-lld");
 
-for (const [name, flags] of [["simd128", "-C target-feature=+simd128"], ["portable", ""]]) {
+for (const [name, flags, opt] of [
+  ["simd128", "-C target-feature=+simd128 ", "3"],
+  ["portable", "", "s"],
+]) {
   const targetDir = `${base}/${name}`;
   execFileSync(
     "cargo",
@@ -35,7 +46,10 @@ for (const [name, flags] of [["simd128", "-C target-feature=+simd128"], ["portab
       env: {
         ...process.env,
         CARGO_TARGET_DIR: targetDir,
-        RUSTFLAGS: flags,
+        RUSTFLAGS: `${flags}-C linker-flavor=wasm-ld`,
+        CARGO_TARGET_WASM32_WASIP1_LINKER: `${here}wasm-ld.mjs`,
+        SPRINGWATER_LLD: lld,
+        CARGO_PROFILE_RELEASE_OPT_LEVEL: opt,
         CARGO_PROFILE_RELEASE_DEBUG: "0",
         CARGO_PROFILE_RELEASE_STRIP: "true",
         CARGO_PROFILE_RELEASE_LTO: "true",

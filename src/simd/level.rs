@@ -21,13 +21,13 @@ pub enum SimdLevel {
     /// AVX-512F: 16 lanes in one 512-bit register.
     Avx512,
     /// The lane kernels on 8 lanes of plain `f32` arrays, vectorised (or not) by the
-    /// compiler: what targets without a SIMD level here run (a `wasm32` build without
-    /// `+simd128`, RISC-V, …). Runs everywhere but in a `wasm32` build with `+simd128`,
+    /// compiler: what targets without a SIMD level here run (RISC-V, …; a `wasm32` build
+    /// without `+simd128` runs them on one lane, plain scalar code). Runs everywhere but in a `wasm32` build with `+simd128`,
     /// which runs SIMD128 in its place ([`SimdLevel::is_available`]).
     Portable,
     /// NEON (Advanced SIMD), part of every AArch64 CPU: 8 lanes in two 128-bit registers.
     Neon,
-    /// WebAssembly SIMD128: 8 lanes in two `v128`. Present in a `wasm32` build made with
+    /// WebAssembly SIMD128: 4 lanes in one `v128`. Present in a `wasm32` build made with
     /// `-C target-feature=+simd128` (wasm has no run-time detection).
     Simd128,
 }
@@ -123,11 +123,14 @@ impl SimdLevel {
         }
     }
 
-    /// `f32` lanes per vector at this level (1 for scalar).
+    /// `f32` lanes per vector at this level (1 for scalar; the portable level has 1 in a
+    /// `wasm32` build, 8 elsewhere).
     pub fn lanes(self) -> usize {
         match self {
             Self::Scalar => 1,
-            Self::Sse2 | Self::Avx2 | Self::Portable | Self::Neon | Self::Simd128 => 8,
+            Self::Portable if cfg!(target_arch = "wasm32") => 1,
+            Self::Sse2 | Self::Avx2 | Self::Portable | Self::Neon => 8,
+            Self::Simd128 => 4,
             Self::Avx512 => 16,
         }
     }

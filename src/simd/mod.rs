@@ -16,10 +16,11 @@
 //!   neighbour shuffles ([`Vector::east`], [`Vector::west`]), loads, stores and
 //!   non-temporal stores. Its implementations are [`avx2::F32x8`] (one YMM register),
 //!   [`avx512::F32x16`] (one ZMM register, mask registers for masks), a `pair::Pair` of
-//!   two 128-bit halves written once for SSE2 ([`sse2::F32x8`]), NEON and SIMD128
-//!   (`neon::F32x8`, `simd128::F32x8`, on AArch64 and on wasm32 with `+simd128`), each
-//!   level's file giving its half's intrinsics, and [`portable::F32x8`] (plain arrays, for
-//!   other targets and Miri). Every operation is a single IEEE operation per lane (add, subtract, multiply,
+//!   two 128-bit halves written once for SSE2 ([`sse2::F32x8`]) and NEON (`neon::F32x8`,
+//!   on AArch64), each level's file giving its half's intrinsics, one such half alone
+//!   for SIMD128 (`simd128::F32x4`, a `single::Single`, on wasm32 with `+simd128`), and
+//!   [`portable::F32x8`] (plain arrays, for other targets and Miri; one lane,
+//!   [`portable::F32x1`], on wasm32 without `+simd128`). Every operation is a single IEEE operation per lane (add, subtract, multiply,
 //!   divide, square root, compare, select): no fused multiply-add, no approximate
 //!   reciprocal. So every level computes the same bits as the scalar reference.
 //! * [`Kernel`] is a piece of work generic over the vector type (a pass of the step, a
@@ -157,15 +158,25 @@ mod chunks;
 mod level;
 #[cfg(target_arch = "aarch64")]
 pub(crate) mod neon;
+// (On wasm32 only its `Half` is used: SIMD128 runs a `Single`.)
 #[cfg(any(
     target_arch = "x86_64",
     target_arch = "aarch64",
     all(target_arch = "wasm32", target_feature = "simd128"),
 ))]
+#[cfg_attr(target_arch = "wasm32", allow(dead_code))]
 mod pair;
 pub(crate) mod portable;
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 pub(crate) mod simd128;
+// SIMD128's vector type; elsewhere built for the lane test only.
+#[cfg(any(
+    target_arch = "x86_64",
+    target_arch = "aarch64",
+    all(target_arch = "wasm32", target_feature = "simd128"),
+))]
+#[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
+mod single;
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod sse2;
 
@@ -414,10 +425,12 @@ pub(crate) fn dispatch<K: Kernel>(level: SimdLevel, k: K) -> K::Output {
         // Every level in a `wasm32` build with `+simd128`, whose kernels are not compiled
         // for the portable lanes (`SimdLevel::is_available`).
         #[cfg(all(target_arch = "wasm32", target_feature = "simd128", not(miri)))]
-        _ => simd128::F32x8::enter(Each(k)),
+        _ => simd128::F32x4::enter(Each(k)),
         // The scalar reference, the portable level, and (never reached: `clamped` returns
         // only levels of this target) the levels of other targets.
-        #[cfg(not(all(target_arch = "wasm32", target_feature = "simd128", not(miri))))]
+        #[cfg(all(target_arch = "wasm32", not(target_feature = "simd128"), not(miri)))]
+        _ => portable::F32x1::enter(Each(k)),
+        #[cfg(not(all(target_arch = "wasm32", not(miri))))]
         _ => portable::F32x8::enter(Each(k)),
     }
 }
@@ -559,5 +572,11 @@ mod tests {
             dispatch(level, LaneOps);
         }
         portable::F32x8::enter(Each(LaneOps));
+        portable::F32x1::enter(Each(LaneOps));
+        // One half of SSE2's or NEON's pairs on its own, as SIMD128 runs its half.
+        #[cfg(all(target_arch = "x86_64", not(miri)))]
+        single::Single::<core::arch::x86_64::__m128>::enter(Each(LaneOps));
+        #[cfg(all(target_arch = "aarch64", not(miri)))]
+        single::Single::<core::arch::aarch64::float32x4_t>::enter(Each(LaneOps));
     }
 }

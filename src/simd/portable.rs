@@ -198,3 +198,177 @@ impl Vector for F32x8 {
         entry(task)
     }
 }
+
+/// One `f32` lane: the portable level's vector type in a `wasm32` build without
+/// `+simd128`. Eight lanes of plain `f32` there are eight copies of every scalar
+/// operation, a kernel eight times the code of one lane, with more values live than a
+/// JIT keeps in registers; one lane is the same operations in the same order per node
+/// (`docs/performance.md`).
+#[derive(Debug, Clone, Copy, bytemuck::Pod, bytemuck::Zeroable)]
+#[repr(transparent)]
+#[cfg_attr(
+    not(all(target_arch = "wasm32", not(target_feature = "simd128"))),
+    allow(dead_code)
+)]
+pub(crate) struct F32x1(f32);
+
+/// A lane mask of [`F32x1`].
+#[derive(Debug, Clone, Copy)]
+#[cfg_attr(
+    not(all(target_arch = "wasm32", not(target_feature = "simd128"))),
+    allow(dead_code)
+)]
+pub(crate) struct Mask1(bool);
+
+operators!(F32x1, |a, b| {
+    add: F32x1(a.0 + b.0),
+    sub: F32x1(a.0 - b.0),
+    mul: F32x1(a.0 * b.0),
+    div: F32x1(a.0 / b.0),
+    neg: F32x1(-a.0),
+});
+
+impl core::ops::BitAnd for Mask1 {
+    type Output = Self;
+    #[inline(always)]
+    fn bitand(self, o: Self) -> Self {
+        Self(self.0 & o.0)
+    }
+}
+
+impl core::ops::BitAndAssign for Mask1 {
+    #[inline(always)]
+    fn bitand_assign(&mut self, o: Self) {
+        *self = *self & o;
+    }
+}
+
+impl core::ops::Not for Mask1 {
+    type Output = Self;
+    #[inline(always)]
+    fn not(self) -> Self {
+        Self(!self.0)
+    }
+}
+
+impl Vector for F32x1 {
+    const LANES: usize = 1;
+    const READ_AHEAD: bool = false;
+    type Mask = Mask1;
+
+    #[inline(always)]
+    fn splat(x: f32) -> Self {
+        Self(x)
+    }
+
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        Self(self.0.sqrt())
+    }
+
+    #[inline(always)]
+    fn abs(self) -> Self {
+        Self(self.0.abs())
+    }
+
+    #[inline(always)]
+    fn max(self, o: Self) -> Self {
+        Self::select(self.gt(o), self, o)
+    }
+
+    #[inline(always)]
+    fn min(self, o: Self) -> Self {
+        Self::select(self.lt(o), self, o)
+    }
+
+    #[inline(always)]
+    fn gt(self, o: Self) -> Mask1 {
+        Mask1(self.0 > o.0)
+    }
+
+    #[inline(always)]
+    fn lt(self, o: Self) -> Mask1 {
+        Mask1(self.0 < o.0)
+    }
+
+    #[inline(always)]
+    fn ge(self, o: Self) -> Mask1 {
+        Mask1(self.0 >= o.0)
+    }
+
+    #[inline(always)]
+    fn select(m: Mask1, a: Self, b: Self) -> Self {
+        // As `F32x8::select`.
+        #[cfg(target_arch = "aarch64")]
+        let m = core::hint::black_box(m);
+        if m.0 {
+            a
+        } else {
+            b
+        }
+    }
+
+    #[inline(always)]
+    fn all_lanes() -> Mask1 {
+        Mask1(true)
+    }
+
+    #[inline(always)]
+    fn first_lanes(count: usize) -> Mask1 {
+        Mask1(count > 0)
+    }
+
+    #[inline(always)]
+    fn all(m: Mask1) -> bool {
+        m.0
+    }
+
+    #[inline(always)]
+    fn any_nan(self) -> bool {
+        self.0.is_nan()
+    }
+
+    #[inline(always)]
+    fn east(_: Self, hi: Self) -> Self {
+        hi
+    }
+
+    #[inline(always)]
+    fn west(lo: Self, _: Self) -> Self {
+        lo
+    }
+
+    #[inline(always)]
+    unsafe fn load(p: *const f32) -> Self {
+        // SAFETY: the caller guarantees `p` is readable for 1 float (any alignment).
+        Self(unsafe { p.read_unaligned() })
+    }
+
+    #[inline(always)]
+    unsafe fn store(p: *mut f32, v: Self) {
+        // SAFETY: the caller guarantees `p` is writable for 1 float.
+        unsafe { p.write_unaligned(v.0) }
+    }
+
+    #[inline(always)]
+    unsafe fn stream(p: *mut f32, v: Self) {
+        // SAFETY: as `store`.
+        unsafe { Self::store(p, v) }
+    }
+
+    #[inline(always)]
+    fn fence() {}
+
+    const LEVEL: SimdLevel = SimdLevel::Portable;
+
+    #[inline(always)]
+    fn enter<T: Task<Self>>(task: T) -> T::Output {
+        // A function of its own, as the other levels' entries are.
+        #[inline(never)]
+        fn entry<T: Task<F32x1>>(task: T) -> T::Output {
+            debug_assert!(F32x1::LEVEL.is_available());
+            task.run()
+        }
+        entry(task)
+    }
+}

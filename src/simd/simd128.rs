@@ -1,6 +1,8 @@
-//! WebAssembly SIMD128: eight `f32` lanes in two `v128`, as NEON and SSE2 hold them (the
-//! engine's chunks are 8 or 16 floats; two independent halves keep a JIT's register
-//! allocation and the host CPU's pipes busy); masks are all-ones lanes of a `v128`.
+//! WebAssembly SIMD128: four `f32` lanes in one `v128` ([`Single`]); masks are all-ones
+//! lanes of a `v128`. (NEON and SSE2 hold eight lanes in two registers; on wasm the pairs
+//! were slower and twice the code: a JIT allocates the registers, and the row kernel's
+//! values in pairs spilled where four lanes fit a host's sixteen vector registers,
+//! `docs/performance.md`.)
 //!
 //! Compiled only into a `wasm32` build made with `-C target-feature=+simd128`: wasm has no
 //! run-time detection (a module that uses SIMD128 fails to validate in an engine without
@@ -13,12 +15,13 @@
 //! −0 below +0, where the reference returns the second operand. Negation and `abs` only
 //! touch the sign bit, as the spec defines `fneg`/`fabs`.
 
-use super::pair::{Half, Pair};
+use super::pair::Half;
+use super::single::Single;
 use super::SimdLevel;
 use core::arch::wasm32::*;
 
-/// Eight `f32` lanes in two `v128`, low half first.
-pub(crate) type F32x8 = Pair<v128>;
+/// Four `f32` lanes in one `v128`.
+pub(crate) type F32x4 = Single<v128>;
 
 // SAFETY: `v128` is 16 bytes of plain data: no padding, every bit pattern valid.
 unsafe impl Half for v128 {
