@@ -2,7 +2,7 @@
 wasmtime's fuel meter (each operator costs one unit; load-independent, unlike a timing).
 
     pip install wasmtime
-    python3 benches/wasm_fuel.py web/wasm/springwater-simd128.wasm [size]
+    python3 scripts/package_fuel.py web/wasm/springwater-simd128.wasm [size]
 
 Makes a size x size surface (256 by default) through the C ABI, drops water at its centre
 (height 1, radius 4 cells, as web/test/rate.mjs and `springwater bench` do), steps 20
