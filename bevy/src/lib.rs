@@ -81,9 +81,9 @@
 //! `buoyancy`, `follow`, `mesh` and `query` use `water` only; `avian` (feature `avian`) uses
 //! `water` and `buoyancy`. `step` (surfaces for new
 //! waters, messages, the step itself, and the plugin's settings) uses `water`, `mesh`,
-//! `buoyancy` and `jobs`. `rollback` (feature `ggrs`) uses `water` and `buoyancy` (and `avian`'s component with
-//! feature `avian`). This
-//! file uses them all to wire the plugin, and nothing uses it.
+//! `buoyancy` and `jobs`. `rollback` (feature `ggrs`) uses `water` and `buoyancy`, and with
+//! feature `avian` the `AvianBuoyant` component. This file uses them all to wire the
+//! plugin, and nothing uses it.
 
 #![warn(missing_docs)]
 
