@@ -1,6 +1,6 @@
 //! A pool in the rain: a tiled bottom seen through the water (refracted `UV_0`), a ball
-//! floating on it (a [`Buoyant`], springwater's own rigid body), three boats under way
-//! (Avian rigid bodies with an [`AvianBuoyant`]), an orbit camera.
+//! floating on it and three boats under way (Avian rigid bodies with an
+//! [`AvianBuoyant`]), an orbit camera.
 //!
 //! `cargo run --release -p springwater-bevy --example pool --features example`
 //!
@@ -14,7 +14,8 @@
 //! `RigidBody` with the hull as its trimesh collider and its mesh; a helmsman keeps each
 //! on its own circle. The water lifts, pitches and rolls them and takes the reaction, so
 //! they leave wakes; the deck around the pool is a static collider they bump into. The
-//! ball is not an Avian body: the boats pass through it.
+//! ball is an Avian ball at half the water's density: the boats run into it and push it
+//! away, and it bumps into the deck too, until F lets it leave the pool over the deck.
 //!
 //! `SPRINGWATER_SCREENSHOT=pool.png` runs on a fixed 1/60 s clock instead, saves the
 //! window after `SPRINGWATER_SCREENSHOT_FRAME` frames (default 180), prints the boats'
@@ -64,8 +65,7 @@ fn main() {
     let mut app = App::new();
     // Avian steps in `FixedPostUpdate`; the water steps there too, after it, by the same
     // tick (60 Hz, as the screenshot clock), with Avian's gravity. That gravity is
-    // springwater's default (`BuoyancySettings`), so the ball floats as it would without
-    // Avian.
+    // springwater's default (`BuoyancySettings`), the fast water's own.
     app.add_plugins((
         DefaultPlugins,
         PhysicsPlugins::default(),
@@ -75,7 +75,7 @@ fn main() {
     .insert_resource(Gravity(Vec3::NEG_Y * BuoyancySettings::default().gravity))
     .insert_resource(ClearColor(Color::srgb(0.55, 0.7, 0.85)))
     .add_systems(Startup, setup)
-    .add_systems(FixedUpdate, steer_boats)
+    .add_systems(FixedUpdate, (steer_boats, drive_ball))
     .add_systems(
         Update,
         (
@@ -103,7 +103,7 @@ fn main() {
             let gravity = 30.0 * BuoyancySettings::default().gravity;
             app.insert_resource(Cruise)
                 .insert_resource(Gravity(Vec3::NEG_Y * gravity))
-                .add_systems(Update, cruise);
+                .add_systems(Update, cruise.after(push_ball));
         }
         if std::env::var("SPRINGWATER_BOATS").is_ok_and(|v| v == "1") {
             app.insert_resource(StartOnBoats);
@@ -169,19 +169,20 @@ struct Cruise;
 /// leaves a V-shaped wake.
 fn cruise(
     cameras: Query<&Transform, With<Camera3d>>,
-    mut balls: Query<(Entity, &mut Buoyant, Has<WaterFollow>), With<Ball>>,
+    mut balls: Query<(Entity, &mut Thrust, Has<WaterFollow>), With<Ball>>,
     mut commands: Commands,
 ) {
     let Ok(camera) = cameras.single() else {
         return;
     };
     let right = (camera.right().as_vec3() * Vec3::new(1.0, 0.0, 1.0)).normalize_or_zero();
-    for (ball, mut buoyant, following) in &mut balls {
+    for (ball, mut thrust, following) in &mut balls {
         if !following {
-            commands.entity(ball).insert(WaterFollow::default());
+            commands
+                .entity(ball)
+                .insert((WaterFollow::default(), ball_layers(true)));
         }
-        let push = right * buoyant.mass * 500.0;
-        buoyant.force += push;
+        thrust.0 += right * 500.0;
     }
 }
 
@@ -228,6 +229,25 @@ fn tiles() -> Image {
 #[derive(Component)]
 struct Ball;
 
+/// The acceleration the keys (or the cruise) give the ball, applied every physics tick
+/// until the next frame sets it again.
+#[derive(Component, Default)]
+struct Thrust(Vec3);
+
+/// The deck's collision layer: the ball leaves it out while the water follows the ball,
+/// so that it can leave the pool.
+const DECK: u32 = 1 << 1;
+
+/// The ball's collision layers: everything (the boats and the deck), or everything but
+/// the deck while the water follows it.
+fn ball_layers(following: bool) -> CollisionLayers {
+    let filters = match following {
+        true => LayerMask::ALL.0 & !DECK,
+        false => LayerMask::ALL.0,
+    };
+    CollisionLayers::new(LayerMask::DEFAULT, filters)
+}
+
 /// Orbit state of the camera: around `focus`, at `distance`, `yaw` and `pitch` radians.
 #[derive(Component, Clone, Copy)]
 struct Orbit {
@@ -258,7 +278,6 @@ fn setup(
     mut meshes: ResMut<Assets<Mesh>>,
     mut materials: ResMut<Assets<StandardMaterial>>,
     mut images: ResMut<Assets<Image>>,
-    buoyancy: Res<BuoyancySettings>,
     cruise: Option<Res<Cruise>>,
     on_boats: Option<Res<StartOnBoats>>,
 ) {
@@ -281,10 +300,15 @@ fn setup(
         })),
         Transform::from_xyz(-w / 2.0, 0.0, -d / 2.0),
     ));
-    // The ball: half as dense as the water.
+    // The ball: an Avian ball half as dense as the water, floated by it.
     commands.spawn((
         Ball,
-        Buoyant::sphere(2.5, 0.5, &buoyancy),
+        Thrust::default(),
+        RigidBody::Dynamic,
+        Collider::sphere(2.5),
+        ColliderDensity(0.5),
+        AvianBuoyant::default(),
+        ball_layers(cruising),
         Mesh3d(meshes.add(Sphere::new(2.5).mesh().uv(32, 18))),
         MeshMaterial3d(materials.add(StandardMaterial {
             base_color: Color::srgb(0.95, 0.35, 0.2),
@@ -311,9 +335,10 @@ fn setup(
         commands.spawn((
             Mesh3d(meshes.add(Cuboid::from_corners(min, max))),
             MeshMaterial3d(stone.clone()),
-            // A wall for the boats.
+            // A wall for the boats and the ball.
             RigidBody::Static,
             Collider::cuboid(max.x - min.x, max.y - min.y, max.z - min.z),
+            CollisionLayers::new(DECK, LayerMask::ALL),
             Transform::from_translation((min + max) / 2.0),
             if cruising {
                 Visibility::Hidden
@@ -408,7 +433,7 @@ fn orbit_camera(
 fn push_ball(
     keys: Res<ButtonInput<KeyCode>>,
     cameras: Query<&Transform, With<Camera3d>>,
-    mut balls: Query<(&mut Buoyant, &Transform), With<Ball>>,
+    mut balls: Query<(&mut Thrust, &Transform), With<Ball>>,
     mut drops: MessageWriter<WaterDrop>,
 ) {
     let Ok(camera) = cameras.single() else {
@@ -428,9 +453,8 @@ fn push_ball(
             dir += v;
         }
     }
-    for (mut ball, transform) in &mut balls {
-        let push = dir * ball.mass * 12.0;
-        ball.force += push;
+    for (mut thrust, transform) in &mut balls {
+        thrust.0 = dir * 12.0;
         if keys.just_pressed(KeyCode::Space) {
             drops.write(WaterDrop {
                 water: None,
@@ -455,7 +479,8 @@ fn toggle_rain(
     }
 }
 
-/// F: the water's window follows the ball (or stops following it).
+/// F: the water's window follows the ball over the deck (or stops following it, and the
+/// deck is a wall for the ball again).
 fn follow_ball(
     keys: Res<ButtonInput<KeyCode>>,
     balls: Query<(Entity, Has<WaterFollow>), With<Ball>>,
@@ -463,12 +488,20 @@ fn follow_ball(
 ) {
     if keys.just_pressed(KeyCode::KeyF) {
         for (ball, following) in &balls {
+            let mut ball = commands.entity(ball);
             if following {
-                commands.entity(ball).remove::<WaterFollow>();
+                ball.remove::<WaterFollow>().insert(ball_layers(false));
             } else {
-                commands.entity(ball).insert(WaterFollow::default());
+                ball.insert((WaterFollow::default(), ball_layers(true)));
             }
         }
+    }
+}
+
+/// Every physics tick before Avian steps: the ball's thrust.
+fn drive_ball(mut balls: Query<(&Thrust, Forces), With<Ball>>) {
+    for (thrust, mut forces) in &mut balls {
+        forces.apply_linear_acceleration(thrust.0);
     }
 }
 

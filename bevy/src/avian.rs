@@ -33,7 +33,7 @@ use bevy::math::{Quat, Vec3};
 use bevy::time::Time;
 use bevy::transform::components::GlobalTransform;
 use springwater::body::Hull;
-use springwater::{Buoyancy, Floater, Shape};
+use springwater::{Buoyancy, Floater};
 
 use crate::buoyancy::BuoyancySettings;
 use crate::water::{report, Space, Water, WaterError, WaterSurface};
@@ -120,11 +120,12 @@ impl AvianBuoyant {
 /// shape's address, and the centre of mass.
 type ShapeKey = (usize, [u32; 3]);
 
-/// Each body's hull for the water, in its centre-of-mass frame, kept while its collider
-/// (or explicit hull) and centre of mass stay the same; `None` if it has none the water
-/// can use (reported once).
+/// Each body as springwater's floater (made with the constructor for its hull, in its
+/// centre-of-mass frame; mass, pose and velocities are set every tick), kept while its
+/// collider (or explicit hull) and centre of mass stay the same; `None` if it has no hull
+/// the water can use (reported once).
 #[derive(Resource, Debug, Default)]
-pub(crate) struct AvianShapes(HashMap<Entity, (ShapeKey, Option<Shape>)>);
+pub(crate) struct AvianShapes(HashMap<Entity, (ShapeKey, Option<Floater>)>);
 
 type AvianBody = (
     Entity,
@@ -188,7 +189,7 @@ pub(crate) fn apply_water_forces(
         let Ok((_, params, mut ws, global)) = waters.get_mut(water) else {
             continue;
         };
-        let Some(shape) = body_shape(&mut shapes, body, &buoyant, collider, com.0, |e| {
+        let Some(mut floater) = body_floater(&mut shapes, body, &buoyant, collider, com.0, |e| {
             report(
                 &mut errors,
                 water,
@@ -201,8 +202,8 @@ pub(crate) fn apply_water_forces(
         let space = Space::new(global);
         let local = |v: Vec3| springwater::glam::Vec3::from_array(v.to_array());
         let turn = space.local_rotation();
-        let mut floater = Floater::sphere(1.0, mass.value(), local(space.local_point(centre)));
-        floater.shape = shape;
+        floater.mass = mass.value();
+        floater.position = local(space.local_point(centre));
         floater.inertia = Some(springwater::glam::Mat3::from_cols_array(
             &inertia.tensor().to_mat3().to_cols_array(),
         ));
@@ -236,16 +237,17 @@ pub(crate) fn apply_water_forces(
     }
 }
 
-/// `body`'s hull for the water in its centre-of-mass frame, from the cache while what it
-/// was made from stays the same; `None` (reported once through `refused`) if it has none.
-fn body_shape(
+/// `body` as a floater with its hull for the water in its centre-of-mass frame, from the
+/// cache while what it was made from stays the same; `None` (reported once through
+/// `refused`) if it has no hull.
+fn body_floater(
     shapes: &mut AvianShapes,
     body: Entity,
     buoyant: &AvianBuoyant,
     collider: Option<&Collider>,
     com: Vec3,
     refused: impl FnOnce(String),
-) -> Option<Shape> {
+) -> Option<Floater> {
     let source = match (&buoyant.hull, collider) {
         (Some(hull), _) => Arc::as_ptr(hull) as *const u8 as usize,
         (None, Some(c)) => Arc::as_ptr(&c.shape_scaled().0) as *const u8 as usize,
@@ -257,25 +259,27 @@ fn body_shape(
             return shape.clone();
         }
     }
-    let made = make_shape(buoyant, collider, com);
+    let made = make_floater(buoyant, collider, com);
     if let Err(e) = &made {
         refused(e.clone());
     }
-    let shape = made.ok();
-    shapes.0.insert(body, (key, shape.clone()));
-    shape
+    let floater = made.ok();
+    shapes.0.insert(body, (key, floater.clone()));
+    floater
 }
 
-/// The hull for the water, in the body's centre-of-mass frame.
-fn make_shape(
+/// The body as a floater of mass 1 at the origin, at rest, with its hull for the water in
+/// its centre-of-mass frame: springwater's constructor for the shape.
+fn make_floater(
     buoyant: &AvianBuoyant,
     collider: Option<&Collider>,
     com: Vec3,
-) -> Result<Shape, String> {
+) -> Result<Floater, String> {
     let centred = com.length_squared() == 0.0;
+    let origin = springwater::glam::Vec3::ZERO;
     if let Some(hull) = &buoyant.hull {
         return match centred {
-            true => Ok(Shape::Hull(Arc::clone(hull))),
+            true => Ok(Floater::with_hull(Arc::clone(hull), 1.0, origin)),
             false => moved_hull(hull.vertices(), hull.triangles(), com),
         };
     }
@@ -285,16 +289,14 @@ fn make_shape(
     let shape = collider.shape_scaled();
     if let Some(ball) = shape.as_ball() {
         return match centred {
-            true => Ok(Shape::Sphere {
-                radius: ball.radius,
-            }),
+            true => Ok(Floater::sphere(ball.radius, 1.0, origin)),
             false => Err("a ball's centre of mass must be its centre".into()),
         };
     }
     if let Some(cuboid) = shape.as_cuboid() {
         let half = springwater::glam::Vec3::from_array(cuboid.half_extents.to_array());
         if centred {
-            return Ok(Shape::Box { half_extents: half });
+            return Ok(Floater::cuboid(half, 1.0, origin));
         }
         let hull = Hull::cuboid(half).map_err(|e| e.to_string())?;
         return moved_hull(hull.vertices(), hull.triangles(), com);
@@ -315,12 +317,13 @@ fn make_shape(
     moved_hull(&vertices, &triangles, com)
 }
 
-/// A hull of `vertices` and `triangles` with `com` moved to the origin.
-fn moved_hull(vertices: &[[f32; 3]], triangles: &[[u32; 3]], com: Vec3) -> Result<Shape, String> {
+/// A floater of mass 1 at the origin whose hull is `vertices` and `triangles` with `com`
+/// moved to the origin.
+fn moved_hull(vertices: &[[f32; 3]], triangles: &[[u32; 3]], com: Vec3) -> Result<Floater, String> {
     let moved: Vec<[f32; 3]> = vertices
         .iter()
         .map(|v| (Vec3::from_array(*v) - com).to_array())
         .collect();
-    let hull = Hull::new(&moved, triangles).map_err(|e| e.to_string())?;
-    Ok(Shape::Hull(Arc::new(hull)))
+    let origin = springwater::glam::Vec3::ZERO;
+    Floater::hull(&moved, triangles, 1.0, origin).map_err(|e| e.to_string())
 }

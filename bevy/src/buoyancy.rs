@@ -5,7 +5,7 @@ use std::collections::HashMap;
 use std::sync::Arc;
 
 use bevy::ecs::prelude::*;
-use bevy::math::{Quat, Vec3};
+use bevy::math::{Mat3, Quat, Vec3};
 use bevy::transform::components::{GlobalTransform, Transform};
 use springwater::body::Hull;
 use springwater::{Buoyancy, Floater, FloaterId, Shape};
@@ -37,6 +37,14 @@ pub struct Buoyant {
     pub shape: Shape,
     /// Mass, in the units of [`BuoyancySettings::density`] × volume (> 0).
     pub mass: f32,
+    /// The inertia tensor about the centre of mass in the body's axes (mass × world
+    /// units²), or `None` (the default) for the shape's at uniform density
+    /// ([`Shape::inertia`]): springwater's [`Floater::inertia`], passed as it is. Set one
+    /// ([`Buoyant::with_inertia`]) for a body whose mass is not spread evenly (a boat
+    /// ballasted low, a hollow ball); it must be symmetric and positive definite, with
+    /// each principal moment at most the sum of the other two, or the water refuses the
+    /// body (a [`WaterError`]).
+    pub inertia: Option<Mat3>,
     /// Drag rate per second at full immersion (≥ 0; default 6,
     /// [`Floater::DEFAULT_DRAG`]): the drag is this rate times the displaced water's mass
     /// times the velocity relative to the water.
@@ -83,6 +91,7 @@ impl Buoyant {
         Self {
             shape,
             mass,
+            inertia: None,
             drag: Floater::DEFAULT_DRAG,
             velocity: Vec3::ZERO,
             angular_velocity: Vec3::ZERO,
@@ -93,12 +102,28 @@ impl Buoyant {
         }
     }
 
+    /// The body with `inertia` (body axes, about the centre of mass) instead of its
+    /// shape's at uniform density.
+    pub fn with_inertia(mut self, inertia: Mat3) -> Self {
+        self.inertia = Some(inertia);
+        self
+    }
+
+    /// The inertia tensor in use: [`Buoyant::inertia`] if set, else the shape's at
+    /// uniform density for [`Buoyant::mass`] (springwater's [`Shape::inertia`]).
+    pub fn inertia_tensor(&self) -> Mat3 {
+        self.inertia
+            .unwrap_or_else(|| to_bevy(self.shape.inertia(self.mass)))
+    }
+
     /// The body in the water's local space, its centre at `centre` and turned by
     /// `rotation` (world).
     fn floater(&self, centre: Vec3, rotation: Quat, space: &Space) -> Floater {
         let local = |v: Vec3| springwater::glam::Vec3::from_array(v.to_array());
-        let mut body = Floater::sphere(1.0, self.mass, local(space.local_point(centre)));
-        body.shape = self.shape.clone();
+        let mut body = floater_of(&self.shape, self.mass, local(space.local_point(centre)));
+        body.inertia = self
+            .inertia
+            .map(|m| springwater::glam::Mat3::from_cols_array(&m.to_cols_array()));
         body.drag = self.drag;
         body.velocity = local(space.local_vector(self.velocity));
         body.angular_velocity = local(space.local_rotation() * self.angular_velocity);
@@ -106,6 +131,17 @@ impl Buoyant {
         body.orientation = springwater::glam::Quat::from_array(q.to_array());
         body
     }
+}
+
+/// A springwater matrix as Bevy's.
+fn to_bevy(m: springwater::glam::Mat3) -> Mat3 {
+    Mat3::from_cols_array(&m.to_cols_array())
+}
+
+/// A floater of `shape` and `mass` at `position`, at rest: springwater's constructor
+/// for any shape.
+fn floater_of(shape: &Shape, mass: f32, position: springwater::glam::Vec3) -> Floater {
+    Floater::with_shape(shape.clone(), mass, position)
 }
 
 /// Gravity and the water's density for every [`Buoyant`] body.

@@ -81,8 +81,9 @@
 //! `buoyancy`, `follow`, `mesh` and `query` use `water` only; `avian` (feature `avian`) uses
 //! `water` and `buoyancy`. `step` (surfaces for new
 //! waters, messages, the step itself, and the plugin's settings) uses `water`, `mesh`,
-//! `buoyancy` and `jobs`. `rollback` (feature `ggrs`) uses `water` and `buoyancy`. This
-//! file uses them all to wire the plugin, and nothing uses it.
+//! `buoyancy` and `jobs`. `rollback` (feature `ggrs`) uses `water` and `buoyancy`, and with
+//! feature `avian` the `AvianBuoyant` component. This file uses them all to wire the
+//! plugin, and nothing uses it.
 
 #![warn(missing_docs)]
 
@@ -209,10 +210,18 @@ impl SpringwaterPlugin {
     /// Avian's gravity. Keep Avian in `FixedPostUpdate`. `Time<Physics>` at a relative
     /// speed other than 1 scales the bodies' tick (their forces are taken over it) but not
     /// the water's, whose waves keep the fixed timestep's pace. See the [`avian`] module.
+    ///
+    /// With [`with_rollback`](Self::with_rollback) too (in either order), everything runs
+    /// in bevy_ggrs's `GgrsSchedule` instead, and so must Avian
+    /// (`PhysicsPlugins::new(GgrsSchedule)`); the game registers Avian's own components
+    /// for rollback (see the [`rollback`] module).
     #[cfg(feature = "avian")]
     pub fn with_avian(mut self) -> Self {
         self.avian = true;
-        self.in_fixed_schedule()
+        match self.rollback {
+            true => self,
+            false => self.in_fixed_schedule(),
+        }
     }
 
     /// Whether surfaces step on Bevy's `ComputeTaskPool` ([`TaskPoolJobs`], the default)
@@ -287,13 +296,17 @@ impl Plugin for SpringwaterPlugin {
         if self.rollback {
             rollback::build(app);
         }
+        #[cfg(all(feature = "ggrs", feature = "avian"))]
+        if self.rollback && self.avian {
+            rollback::build_avian(app);
+        }
         #[cfg(feature = "avian")]
         if self.avian {
             use avian3d::schedule::PhysicsSystems;
             app.init_resource::<avian::AvianShapes>()
                 .configure_sets(
                     schedule,
-                    WaterSystems::SyncInputs.after(PhysicsSystems::StepSimulation),
+                    WaterSystems::SyncInputs.after(PhysicsSystems::Writeback),
                 )
                 .add_systems(
                     schedule,

@@ -21,7 +21,7 @@ pub struct WaterSample {
     /// Unit normal of the surface there.
     pub normal: Vec3,
     /// Velocity of the surface there, in world units per second (springwater's
-    /// `velocity_at`, turned into world space).
+    /// [`Surface::sample_at`](springwater::Surface::sample_at), turned into world space).
     pub velocity: Vec3,
 }
 
@@ -59,15 +59,12 @@ fn sample_one(
     world: Vec3,
 ) -> Option<WaterSample> {
     let p = space.local_point(world);
-    let s = &ws.surface;
-    let height = s.height_at(p.x, p.z).ok()?;
-    let normal = Vec3::from_array(s.normal_at(p.x, p.z).ok()?.to_array());
-    let velocity = Vec3::from_array(s.velocity_at(p.x, p.z).ok()?.to_array());
+    let s = ws.surface.sample_at(p.x, p.z).ok()?;
     Some(WaterSample {
         water: entity,
-        point: space.world_point(Vec3::new(p.x, height, p.z)),
-        normal: space.world_normal(normal),
-        velocity: space.world_vector(velocity),
+        point: space.world_point(Vec3::new(p.x, s.height, p.z)),
+        normal: space.world_normal(Vec3::from_array(s.normal.to_array())),
+        velocity: space.world_vector(Vec3::from_array(s.velocity.to_array())),
     })
 }
 

@@ -63,6 +63,30 @@
 //! would land on whichever frame runs next, and differently when it runs again); give
 //! every peer the same crate version, water parameters and bevy_ggrs frame rate.
 //!
+//! Avian's bodies (feature `avian`, [`with_avian`](crate::SpringwaterPlugin::with_avian)
+//! with `with_rollback`): everything runs in `GgrsSchedule`, Avian too
+//! (`PhysicsPlugins::new(GgrsSchedule)`). The plugin saves and loads the waters (with
+//! the reactions of the bodies on them) and each body's [`AvianBuoyant`](crate::AvianBuoyant),
+//! which requires [`Rollback`]; Avian's own state is the game's to register, as for any
+//! Avian body under bevy_ggrs: at least `Position`, `Rotation`, `LinearVelocity`,
+//! `AngularVelocity` and `Transform`, and what else its bodies use (Avian's sleeping
+//! components; its contacts, for warm starting, if bodies touch). A body whose motion is
+//! not rolled back starts the frames simulated again from where the session left it, not
+//! from the frame loaded, and the peers' checksums differ.
+//!
+//! ```ignore
+//! app.add_plugins((
+//!     GgrsPlugin::<Config>::default(),
+//!     PhysicsPlugins::new(GgrsSchedule),
+//!     SpringwaterPlugin::default().with_rollback().with_avian(),
+//! ))
+//! .rollback_component_with_copy::<Position>()
+//! .rollback_component_with_copy::<Rotation>()
+//! .rollback_component_with_copy::<LinearVelocity>()
+//! .rollback_component_with_copy::<AngularVelocity>()
+//! .rollback_component_with_copy::<Transform>();
+//! ```
+//!
 //! Not covered: a [`WaterFollow`](crate::WaterFollow) (it reads its entity's
 //! `GlobalTransform`, which Bevy propagates once per rendered frame, not per
 //! resimulated frame); a [`WaterDisturbance`](crate::WaterDisturbance) with state of its
@@ -152,6 +176,16 @@ pub(crate) fn build(app: &mut App) {
     // (An app that already made them require it keeps its own registration.)
     let _ = app.try_register_required_components::<Water, Rollback>();
     let _ = app.try_register_required_components::<Buoyant, Rollback>();
+}
+
+/// Registers [`AvianBuoyant`](crate::AvianBuoyant) for rollback (with Avian, feature
+/// `avian`; called by the plugin's `build`): it requires [`Rollback`], and bevy_ggrs
+/// saves and loads it (its read-only `water_force` and `water_torque` are part of the
+/// frame the game sees).
+#[cfg(feature = "avian")]
+pub(crate) fn build_avian(app: &mut App) {
+    app.rollback_component_with_clone::<crate::AvianBuoyant>();
+    let _ = app.try_register_required_components::<crate::AvianBuoyant, Rollback>();
 }
 
 /// Saves every water and body for this frame, after bevy_ggrs took the checksum.
