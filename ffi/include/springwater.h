@@ -476,6 +476,62 @@ SwStatus sw_surface_set_step_cap(struct SwSurface *surface, uint32_t max_steps, 
 // `out` is NULL or a valid pointer.
 SwStatus sw_surface_interpolation(const struct SwSurface *surface, float *out);
 
+// Writes the cap on steps per `sw_surface_advance` call to `max_steps` and what happens
+// past it to `carry` (0 drops the owed steps, 1 carries them), as
+// `sw_surface_set_step_cap` takes them. Either may be NULL.
+//
+// # Safety
+//
+// `max_steps` and `carry` are NULL or valid pointers.
+SwStatus sw_surface_step_cap(const struct SwSurface *surface, uint32_t *max_steps, int32_t *carry);
+
+// Writes the steps taken so far to `out`.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_steps(const struct SwSurface *surface, uint64_t *out);
+
+// Writes the seconds of the caller's clock simulated so far to `out`: the model time
+// (`sw_surface_model_time`) divided by `time_scale`.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_time(const struct SwSurface *surface, double *out);
+
+// Writes the model time simulated so far to `out`, in the lattice's own unit: the sum of
+// the steps' `dt`.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_model_time(const struct SwSurface *surface, double *out);
+
+// Writes to `out` the seconds of the caller's clock that `sw_surface_advance` owes and
+// has not stepped yet: under one step normally, more while a carried cap catches up.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_owed_seconds(const struct SwSurface *surface, double *out);
+
+// Writes to `out` the seconds of the caller's clock the step cap has dropped so far: how
+// far the water is behind the seconds passed to `sw_surface_advance`.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_dropped_seconds(const struct SwSurface *surface, double *out);
+
+// Writes to `out` the largest safe timestep for the surface's current tables (and the
+// bodies floating on it): the bound `dt` must stay under.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_critical_dt(const struct SwSurface *surface, float *out);
+
 // Advances `steps` steps of the model's timestep, several per pass over memory (bitwise
 // the same as one at a time). Stops at a failing step; the steps before it stay applied.
 SwStatus sw_surface_step(struct SwSurface *surface, uint32_t steps);

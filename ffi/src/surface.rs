@@ -127,6 +127,112 @@ pub unsafe extern "C" fn sw_surface_interpolation(
     read_into(surface, out, |w| Ok(w.surface.interpolation()))
 }
 
+/// Writes the cap on steps per `sw_surface_advance` call to `max_steps` and what happens
+/// past it to `carry` (0 drops the owed steps, 1 carries them), as
+/// `sw_surface_set_step_cap` takes them. Either may be NULL.
+///
+/// # Safety
+///
+/// `max_steps` and `carry` are NULL or valid pointers.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_step_cap(
+    surface: *const SwSurface,
+    max_steps: *mut u32,
+    carry: *mut i32,
+) -> SwStatus {
+    guard(|| {
+        let (max_out, carry_out) = (optional(max_steps, "max_steps")?, optional(carry, "carry")?);
+        let (max, overflow) = handle::with(surface, |w| Ok(w.surface.step_cap()))?;
+        if let Some(out) = max_out {
+            *out = max;
+        }
+        if let Some(out) = carry_out {
+            *out = match overflow {
+                Overflow::Carry => 1,
+                _ => 0,
+            };
+        }
+        Ok(())
+    })
+}
+
+/// Writes the steps taken so far to `out`.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_steps(surface: *const SwSurface, out: *mut u64) -> SwStatus {
+    read_into(surface, out, |w| Ok(w.surface.steps()))
+}
+
+/// Writes the seconds of the caller's clock simulated so far to `out`: the model time
+/// (`sw_surface_model_time`) divided by `time_scale`.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_time(surface: *const SwSurface, out: *mut f64) -> SwStatus {
+    read_into(surface, out, |w| Ok(w.surface.time()))
+}
+
+/// Writes the model time simulated so far to `out`, in the lattice's own unit: the sum of
+/// the steps' `dt`.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_model_time(
+    surface: *const SwSurface,
+    out: *mut f64,
+) -> SwStatus {
+    read_into(surface, out, |w| Ok(w.surface.model_time()))
+}
+
+/// Writes to `out` the seconds of the caller's clock that `sw_surface_advance` owes and
+/// has not stepped yet: under one step normally, more while a carried cap catches up.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_owed_seconds(
+    surface: *const SwSurface,
+    out: *mut f64,
+) -> SwStatus {
+    read_into(surface, out, |w| Ok(w.surface.owed_seconds()))
+}
+
+/// Writes to `out` the seconds of the caller's clock the step cap has dropped so far: how
+/// far the water is behind the seconds passed to `sw_surface_advance`.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_dropped_seconds(
+    surface: *const SwSurface,
+    out: *mut f64,
+) -> SwStatus {
+    read_into(surface, out, |w| Ok(w.surface.dropped_seconds()))
+}
+
+/// Writes to `out` the largest safe timestep for the surface's current tables (and the
+/// bodies floating on it): the bound `dt` must stay under.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_critical_dt(
+    surface: *const SwSurface,
+    out: *mut f32,
+) -> SwStatus {
+    read_into(surface, out, |w| Ok(w.surface.critical_dt()))
+}
+
 /// Advances `steps` steps of the model's timestep, several per pass over memory (bitwise
 /// the same as one at a time). Stops at a failing step; the steps before it stay applied.
 #[no_mangle]

@@ -164,6 +164,36 @@ namespace Springwater
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int sw_surface_interpolation(IntPtr surface, float* @out);
 
+        /// <summary>Writes the cap on steps per `sw_surface_advance` call to `max_steps` and what
+        /// happens past it to `carry` (0 drops, 1 carries), as `sw_surface_set_step_cap` takes them.
+        /// Either may be NULL.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_step_cap(IntPtr surface, uint* max_steps, int* carry);
+
+        /// <summary>Writes the steps taken so far to `out`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_steps(IntPtr surface, ulong* @out);
+
+        /// <summary>Writes the seconds of the caller's clock simulated so far to `out`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_time(IntPtr surface, double* @out);
+
+        /// <summary>Writes the model time simulated so far to `out` (the sum of the steps' dt).</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_model_time(IntPtr surface, double* @out);
+
+        /// <summary>Writes the seconds `sw_surface_advance` owes and has not stepped yet to `out`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_owed_seconds(IntPtr surface, double* @out);
+
+        /// <summary>Writes the seconds the step cap has dropped so far to `out`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_dropped_seconds(IntPtr surface, double* @out);
+
+        /// <summary>Writes the largest safe timestep for the current tables and bodies to `out`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_critical_dt(IntPtr surface, float* @out);
+
         /// <summary>Advances `steps` steps of the model's timestep, several per pass over memory
         /// (bitwise the same as one at a time). Stops at a failing step; the steps before it stay
         /// applied.</summary>

@@ -162,6 +162,89 @@ namespace Springwater
             }
         }
 
+        /// <summary>The cap on steps per Advance call and whether owed steps carry past it, as SetStepCap takes them.</summary>
+        public void GetStepCap(out uint maxSteps, out bool carry)
+        {
+            uint max;
+            int c;
+            using (var s = Enter())
+                SpringwaterException.Check(Native.sw_surface_step_cap(s.Ptr, &max, &c));
+            maxSteps = max;
+            carry = c == 1;
+        }
+
+        /// <summary>Steps taken so far.</summary>
+        public ulong Steps
+        {
+            get
+            {
+                ulong n;
+                using (var s = Enter())
+                    SpringwaterException.Check(Native.sw_surface_steps(s.Ptr, &n));
+                return n;
+            }
+        }
+
+        /// <summary>Seconds of the caller's clock simulated so far (ModelTime / time_scale).</summary>
+        public double Time
+        {
+            get
+            {
+                double v;
+                using (var s = Enter())
+                    SpringwaterException.Check(Native.sw_surface_time(s.Ptr, &v));
+                return v;
+            }
+        }
+
+        /// <summary>Model time simulated so far, the sum of the steps' dt.</summary>
+        public double ModelTime
+        {
+            get
+            {
+                double v;
+                using (var s = Enter())
+                    SpringwaterException.Check(Native.sw_surface_model_time(s.Ptr, &v));
+                return v;
+            }
+        }
+
+        /// <summary>Seconds Advance owes and has not stepped yet.</summary>
+        public double OwedSeconds
+        {
+            get
+            {
+                double v;
+                using (var s = Enter())
+                    SpringwaterException.Check(Native.sw_surface_owed_seconds(s.Ptr, &v));
+                return v;
+            }
+        }
+
+        /// <summary>Seconds the step cap has dropped so far.</summary>
+        public double DroppedSeconds
+        {
+            get
+            {
+                double v;
+                using (var s = Enter())
+                    SpringwaterException.Check(Native.sw_surface_dropped_seconds(s.Ptr, &v));
+                return v;
+            }
+        }
+
+        /// <summary>The largest safe timestep for the current tables and bodies.</summary>
+        public float CriticalDt
+        {
+            get
+            {
+                float dt;
+                using (var s = Enter())
+                    SpringwaterException.Check(Native.sw_surface_critical_dt(s.Ptr, &dt));
+                return dt;
+            }
+        }
+
         /// <summary>Adds height · exp(−d²/radius²) to every free node, d its rest distance from (x, z).</summary>
         public void DropAt(float x, float z, float height, float radius)
         {

@@ -96,6 +96,19 @@ static unsafe partial class Runner
             while (steps < 90)
                 steps += frame.Run(1f / 60f);
             Assert(steps == 90, "90 steps, one frame at a time (took " + steps + ")");
+            // The clock, read back: 90 steps of dt 0.4 at the default time scale of 24 are
+            // 36 units of model time, 1.5 s; less than a step owed, nothing dropped.
+            Assert(water.Steps == 90, "Steps reads 90");
+            Assert(Math.Abs(water.ModelTime - 36) < 1e-5 && Math.Abs(water.Time - 1.5) < 1e-6,
+                "ModelTime " + water.ModelTime + " and Time " + water.Time);
+            Assert(water.OwedSeconds >= 0 && water.OwedSeconds < 1.0 / 60 && water.DroppedSeconds == 0,
+                "owed " + water.OwedSeconds + ", dropped " + water.DroppedSeconds);
+            Assert(water.CriticalDt > 0.4f && water.CriticalDt < 1, "CriticalDt " + water.CriticalDt);
+            uint capSteps;
+            bool carry;
+            water.SetStepCap(7, true);
+            water.GetStepCap(out capSteps, out carry);
+            Assert(capSteps == 7 && carry, "GetStepCap reads what SetStepCap set");
             var xyz = new float[3 * water.NodeCount];
             water.WritePositions(xyz);
             var lines = new StringBuilder();
