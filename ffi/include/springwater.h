@@ -577,6 +577,23 @@ SwStatus sw_surface_follow(struct SwSurface *surface, float x, float z, int32_t 
 // `out` is NULL or points to 2 writable floats.
 SwStatus sw_surface_origin(const struct SwSurface *surface, float *out);
 
+// The whole cells the window has travelled since the surface was made, `[cols, rows]`,
+// written to `out[0..2]`: the sum of every shift (`sw_surface_origin` is this times
+// `spacing`).
+//
+// # Safety
+//
+// `out` is NULL or points to 2 writable `int64_t`.
+SwStatus sw_surface_origin_cells(const struct SwSurface *surface, int64_t *out);
+
+// Writes to `out` half the side of `sw_surface_follow`'s dead zone, in cells: an eighth
+// of the window's shorter side, at least 1.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_follow_dead_zone(const struct SwSurface *surface, uint32_t *out);
+
 // A floating origin: moves the frame the surface speaks `dcols` cells along +x and `drows`
 // along +z, for a host that moved its own world's origin (round the host's offset to whole
 // cells and put the remainder into the water's transform). Every node position, floater

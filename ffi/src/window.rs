@@ -3,7 +3,7 @@
 //! floating origin (rebase).
 
 use crate::handle::{self, SwSurface};
-use crate::ptr::out_array;
+use crate::ptr::{out_array, read_into};
 use crate::status::{guard, SwStatus};
 
 /// Moves the window `dcols` cells along +x and `drows` along +z (negative values go the
@@ -56,6 +56,39 @@ pub unsafe extern "C" fn sw_surface_origin(surface: *const SwSurface, out: *mut 
         *out = handle::with(surface, |w| Ok(w.surface.origin()))?;
         Ok(())
     })
+}
+
+/// The whole cells the window has travelled since the surface was made, `[cols, rows]`,
+/// written to `out[0..2]`: the sum of every shift (`sw_surface_origin` is this times
+/// `spacing`).
+///
+/// # Safety
+///
+/// `out` is NULL or points to 2 writable `int64_t`.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_origin_cells(
+    surface: *const SwSurface,
+    out: *mut i64,
+) -> SwStatus {
+    guard(|| {
+        let out = out_array(out, "out")?;
+        *out = handle::with(surface, |w| Ok(w.surface.origin_cells()))?;
+        Ok(())
+    })
+}
+
+/// Writes to `out` half the side of `sw_surface_follow`'s dead zone, in cells: an eighth
+/// of the window's shorter side, at least 1.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_follow_dead_zone(
+    surface: *const SwSurface,
+    out: *mut u32,
+) -> SwStatus {
+    read_into(surface, out, |w| Ok(w.surface.follow_dead_zone() as u32))
 }
 
 /// A floating origin: moves the frame the surface speaks `dcols` cells along +x and `drows`

@@ -244,6 +244,15 @@ namespace Springwater
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern int sw_surface_origin(IntPtr surface, float* @out);
 
+        /// <summary>Writes the whole cells the window has travelled, `[cols, rows]`, to `out[0..2]`
+        /// (`sw_surface_origin` is this times `spacing`).</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_origin_cells(IntPtr surface, long* @out);
+
+        /// <summary>Writes half the side of `sw_surface_follow`'s dead zone, in cells, to `out`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_follow_dead_zone(IntPtr surface, uint* @out);
+
         /// <summary>A floating origin: moves the frame the surface speaks `dcols` cells along +x and
         /// `drows` along +z, for a host that moved its own world's origin (round the host's offset to
         /// whole cells and put the remainder into the water's transform). Every node position, floater

@@ -195,6 +195,28 @@ namespace Springwater
             z = origin[1];
         }
 
+        /// <summary>The whole cells the window has travelled since the surface was made.</summary>
+        public void OriginCells(out long cols, out long rows)
+        {
+            long* cells = stackalloc long[2];
+            using (var s = Enter())
+                SpringwaterException.Check(Native.sw_surface_origin_cells(s.Ptr, cells));
+            cols = cells[0];
+            rows = cells[1];
+        }
+
+        /// <summary>Half the side of Follow's dead zone, in cells.</summary>
+        public uint FollowDeadZone
+        {
+            get
+            {
+                uint cells;
+                using (var s = Enter())
+                    SpringwaterException.Check(Native.sw_surface_follow_dead_zone(s.Ptr, &cells));
+                return cells;
+            }
+        }
+
         /// <summary>A floating origin: moves the frame the surface speaks by whole cells.</summary>
         public void Rebase(long dcols, long drows)
         {

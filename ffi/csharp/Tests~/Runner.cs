@@ -486,6 +486,11 @@ static unsafe partial class Runner
             float ox, oz;
             w.Origin(out ox, out oz);
             Assert(ox == 5 && oz == -3, "the origin moved by the shift");
+            long oc, orow;
+            w.OriginCells(out oc, out orow);
+            Assert(oc == 5 && orow == -3, "OriginCells counts the shift's cells");
+            Assert(w.FollowDeadZone >= 1 && w.FollowDeadZone == (uint)Math.Max(1, Math.Min(cols, rows) / 8),
+                "FollowDeadZone " + w.FollowDeadZone);
             int dc, dr;
             Assert(!w.Follow(ox + 20, oz + 16, out dc, out dr) && dc == 0 && dr == 0, "the centre is in the dead zone");
             Assert(w.Follow(ox + 33, oz + 5, out dc, out dr), "a point near the edge moves the window");
