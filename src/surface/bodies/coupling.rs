@@ -55,7 +55,7 @@ struct Slot {
     /// The nodes under the body, a window of rows, while the shares are summed.
     window: Vec<Sum>,
     /// What the step changes of the body, or why its step failed (`None` until it steps).
-    moved: Option<Result<Motion>>,
+    motion: Option<Result<Motion>>,
 }
 
 /// What every body's step reads: the water and the world.
@@ -260,7 +260,6 @@ impl Context<'_> {
         let nodes = width * (hi[1] - lo[1] + 1);
         window.clear();
         window.resize(nodes, NO_SUM);
-        let sums = &mut window[..];
         // The lattice's forces are per unit of model time²: a body's force in seconds goes
         // in divided by `time_scale²`.
         let scale = factor / ((self.scale as f64) * (self.scale as f64));
@@ -279,7 +278,7 @@ impl Context<'_> {
                 .zip(weights)
             {
                 let add = reaction.map(|f| f * w);
-                let (sum, seen) = &mut sums[k];
+                let (sum, seen) = &mut window[k];
                 // A node's first share is taken as it is (its sign of zero kept).
                 *sum = if *seen {
                     [sum[0] + add[0], sum[1] + add[1], sum[2] + add[2]]
@@ -290,7 +289,7 @@ impl Context<'_> {
             }
         }
         let cols = self.waters.cols();
-        for (r, row) in (lo[1]..).zip(sums.chunks_exact(width)) {
+        for (r, row) in (lo[1]..).zip(window.chunks_exact(width)) {
             for (c, &(f, seen)) in (lo[0]..).zip(row) {
                 if seen {
                     shares.push((r * cols + c, f));
@@ -331,7 +330,7 @@ impl Surface {
     /// of what the water got.
     pub(crate) fn commit_bodies(&mut self, dt: f32, c: &mut Coupling) {
         for ((_, body), slot) in self.bodies.bodies.iter_mut().zip(&mut c.slots) {
-            if let Some(Ok(motion)) = slot.moved.take() {
+            if let Some(Ok(motion)) = slot.motion.take() {
                 body.take_motion(&motion);
             }
         }
@@ -379,7 +378,7 @@ impl Surface {
                 for (k, slot) in range.zip(slots) {
                     let (id, body) = &bodies[k];
                     let step = cx.step(body, meshes[k].as_deref(), slot);
-                    slot.moved = Some(step.and_then(|m| {
+                    slot.motion = Some(step.and_then(|m| {
                         let motion = motion(&m);
                         // Shape, mass, inertia and drag are the valid body's: what the
                         // step changed must be finite and in range.
@@ -399,7 +398,7 @@ impl Surface {
         match c
             .slots
             .iter()
-            .find_map(|slot| slot.moved.as_ref()?.as_ref().err())
+            .find_map(|slot| slot.motion.as_ref()?.as_ref().err())
         {
             Some(e) => Err(e.clone()),
             None => Ok(()),
