@@ -417,6 +417,28 @@ struct SwRefraction sw_refraction_default(void);
 // `sw_surface_set_simd_level` chooses another (the library never reads the environment).
 SwSimdLevel sw_simd_level_detect(void);
 
+// 1 if this CPU (and this build) can run SIMD `level`, else 0 (an unknown level too):
+// what `sw_surface_set_simd_level` runs without clamping.
+int32_t sw_simd_level_available(SwSimdLevel level);
+
+// Writes to `out` the guaranteed (large-wave) stability limit of `params`: `sqrt(m / 3c)`
+// without viscosity, a little less with it. `params` is checked like `sw_surface_create`
+// checks it, except that its `dt` may be above the limit.
+//
+// # Safety
+//
+// `params` and `out` are NULL or valid pointers.
+SwStatus sw_params_critical_dt(const struct SwParams *params, float *out);
+
+// Writes to `out` the linear stability limit at rest of `params`,
+// `sqrt(m / (c (3 − rest_ratio)))`: the largest `dt` for which small waves on still water
+// stay bounded. `params` is checked as for `sw_params_critical_dt`.
+//
+// # Safety
+//
+// `params` and `out` are NULL or valid pointers.
+SwStatus sw_params_linear_dt_limit(const struct SwParams *params, float *out);
+
 // A static NUL-terminated name for a SIMD level (`"scalar"`, `"sse2"`, `"avx2"`,
 // `"avx512"`, `"portable"`, `"neon"`, `"simd128"`), or `"unknown"`.
 const char *sw_simd_level_name(SwSimdLevel level);

@@ -3,8 +3,8 @@
 //! the conversions to and from the library's types. Also what a caller may ask before it
 //! has a surface: the library's version and the CPU's SIMD level.
 
-use crate::ptr::Input;
-use crate::status::{Failure, Outcome};
+use crate::ptr::{input, out_ref, Input};
+use crate::status::{guard, Failure, Outcome, SwStatus};
 use springwater::mesh::LodParams;
 use springwater::refraction::RefractionParams;
 use springwater::{Boundary, Params, SimdLevel};
@@ -173,6 +173,52 @@ pub extern "C" fn sw_refraction_default() -> SwRefraction {
 #[no_mangle]
 pub extern "C" fn sw_simd_level_detect() -> SwSimdLevel {
     simd_code(SimdLevel::detect())
+}
+
+/// 1 if this CPU (and this build) can run SIMD `level`, else 0 (an unknown level too):
+/// what `sw_surface_set_simd_level` runs without clamping.
+#[no_mangle]
+pub extern "C" fn sw_simd_level_available(level: SwSimdLevel) -> i32 {
+    simd_level(level).is_ok_and(SimdLevel::is_available) as i32
+}
+
+/// Writes to `out` the guaranteed (large-wave) stability limit of `params`: `sqrt(m / 3c)`
+/// without viscosity, a little less with it. `params` is checked like `sw_surface_create`
+/// checks it, except that its `dt` may be above the limit.
+///
+/// # Safety
+///
+/// `params` and `out` are NULL or valid pointers.
+#[no_mangle]
+pub unsafe extern "C" fn sw_params_critical_dt(params: *const SwParams, out: *mut f32) -> SwStatus {
+    params_limit(params, out, Params::critical_dt)
+}
+
+/// Writes to `out` the linear stability limit at rest of `params`,
+/// `sqrt(m / (c (3 − rest_ratio)))`: the largest `dt` for which small waves on still water
+/// stay bounded. `params` is checked as for `sw_params_critical_dt`.
+///
+/// # Safety
+///
+/// `params` and `out` are NULL or valid pointers.
+#[no_mangle]
+pub unsafe extern "C" fn sw_params_linear_dt_limit(
+    params: *const SwParams,
+    out: *mut f32,
+) -> SwStatus {
+    params_limit(params, out, Params::linear_dt_limit)
+}
+
+/// `limit` of the parameters at `params`, written to `out`.
+fn params_limit(params: *const SwParams, out: *mut f32, limit: fn(&Params) -> f32) -> SwStatus {
+    guard(|| {
+        let params = input(params, "params")?;
+        let out = out_ref(out, "out")?;
+        let params = rust_params(&params)?;
+        params.validate_except_dt()?;
+        *out = limit(&params);
+        Ok(())
+    })
 }
 
 /// A static NUL-terminated name for a SIMD level (`"scalar"`, `"sse2"`, `"avx2"`,

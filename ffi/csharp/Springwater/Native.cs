@@ -119,6 +119,20 @@ namespace Springwater
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
         public static extern IntPtr sw_simd_level_name(int level);
 
+        /// <summary>1 if this CPU (and this build) can run SIMD `level`, else 0 (an unknown level
+        /// too): what `sw_surface_set_simd_level` runs without clamping.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_simd_level_available(int level);
+
+        /// <summary>Writes the guaranteed (large-wave) stability limit of `params` to `out`;
+        /// `params` is checked like `sw_surface_create` checks it, except its `dt`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_params_critical_dt(SwParams* @params, float* @out);
+
+        /// <summary>Writes the linear stability limit at rest of `params` to `out`.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_params_linear_dt_limit(SwParams* @params, float* @out);
+
         /// <summary>Creates a flat surface at rest from `params` (validated: the message names the
         /// field that is wrong) and writes its handle to `out`.</summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]

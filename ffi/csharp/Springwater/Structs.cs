@@ -146,6 +146,24 @@ namespace Springwater
         {
             return Native.sw_params_default();
         }
+
+        /// <summary>The guaranteed (large-wave) stability limit of these parameters: dt must stay under it.</summary>
+        public unsafe float CriticalDt()
+        {
+            float dt;
+            SwParams p = this;
+            SpringwaterException.Check(Native.sw_params_critical_dt(&p, &dt));
+            return dt;
+        }
+
+        /// <summary>The linear stability limit at rest of these parameters.</summary>
+        public unsafe float LinearDtLimit()
+        {
+            float dt;
+            SwParams p = this;
+            SpringwaterException.Check(Native.sw_params_linear_dt_limit(&p, &dt));
+            return dt;
+        }
     }
 
     /// <summary>The LOD index buffer's parameters (<see cref="Default"/>).</summary>

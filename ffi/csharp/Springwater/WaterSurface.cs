@@ -508,5 +508,17 @@ namespace Springwater
         {
             return Marshal.PtrToStringAnsi(Native.sw_simd_level_name(level));
         }
+
+        /// <summary>The widest SIMD level this CPU has (Native.SW_SIMD_*): what a new surface runs.</summary>
+        public static int DetectSimdLevel()
+        {
+            return Native.sw_simd_level_detect();
+        }
+
+        /// <summary>Whether this CPU (and this build) can run a SIMD level without clamping it.</summary>
+        public static bool SimdLevelAvailable(int level)
+        {
+            return Native.sw_simd_level_available(level) == 1;
+        }
     }
 }

@@ -597,6 +597,17 @@ static unsafe partial class Runner
             Assert(n.y > 0.5f && Math.Abs(n.x * n.x + n.y * n.y + n.z * n.z - 1) < 1e-4, "a unit normal, up");
             Assert(w.SetSimdLevel(Native.SW_SIMD_SCALAR) == Native.SW_SIMD_SCALAR, "every CPU runs scalar");
             Assert(WaterSurface.SimdLevelName(w.SimdLevel) == "scalar", "forced to scalar");
+            int widest = WaterSurface.DetectSimdLevel();
+            Assert(WaterSurface.SimdLevelAvailable(widest) && WaterSurface.SimdLevelAvailable(Native.SW_SIMD_SCALAR),
+                "the detected level and scalar are available");
+            Assert(!WaterSurface.SimdLevelAvailable(99), "an unknown level is not");
+            Assert(w.SetSimdLevel(widest) == widest, "the detected level runs unclamped");
+            var limits = SwParams.Default();
+            float critical = limits.CriticalDt(), linear = limits.LinearDtLimit();
+            Assert(critical > limits.dt && critical < 1 && linear >= critical,
+                "the limits of the defaults: " + critical + ", " + linear);
+            limits.mass = 0;
+            Refused("params_critical_dt_mass", Native.SW_ERROR_INVALID_ARGUMENT, "mass", () => limits.CriticalDt());
             Assert(WaterSurface.Version.Length > 0 && w.Energy.total > 0, "version and energy");
         }
     }
