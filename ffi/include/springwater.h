@@ -108,6 +108,9 @@ typedef int32_t SwSimdLevel;
 // `sw_last_error` gives this thread's message.
 typedef int32_t SwStatus;
 
+// A boolean: 0 false, 1 true.
+typedef int32_t SwBool;
+
 // The water at one point: height, unit normal, velocity.
 typedef struct SwSample {
   // Height (y).
@@ -117,9 +120,6 @@ typedef struct SwSample {
   // Velocity, x y z, world units per second.
   float velocity[3];
 } SwSample;
-
-// A boolean: 0 false, 1 true.
-typedef int32_t SwBool;
 
 // A family of springs, by the direction from a spring's origin node to its other end
 // (`SW_FAMILY_*`). Every grid edge and both diagonals of every cell carry one spring, kept
@@ -638,6 +638,15 @@ SwStatus sw_surface_add_force_at(struct SwSurface *surface,
                                  float fy,
                                  float fz);
 
+// Writes 1 to `out` if world `(x, z)` is finite and inside the rest footprint
+// `[0, (cols−1)·spacing] × [0, (rows−1)·spacing]` (moved with the window), where the
+// queries answer, else 0.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_surface_contains(const struct SwSurface *surface, float x, float z, SwBool *out);
+
 // The water's height at world `(x, z)` (inside the rest footprint
 // `[0, (cols−1)·spacing] × [0, (rows−1)·spacing]`), interpolated between nodes.
 //
@@ -780,6 +789,26 @@ SwStatus sw_surface_set_spring(struct SwSurface *surface,
                                size_t node,
                                float rest,
                                float stiffness);
+
+// Adds the force `(fx, fy, fz)` to node `node` for the next step only, in the lattice's
+// force units (`sw_surface_add_force_at` spreads one at a world point instead).
+// Refused, with nothing changed, for a node out of range or a force or sum that is not
+// finite.
+SwStatus sw_surface_add_force(struct SwSurface *surface, size_t node, float fx, float fy, float fz);
+
+// Discards every force waiting for the next step: those added node by node or at a
+// point, and the water's share of `sw_surface_body_forces` (what the water column under
+// the bodies carries stays).
+SwStatus sw_surface_clear_forces(struct SwSurface *surface);
+
+// Adds the velocity change `(dvx, dvy, dvz)` to free node `node` now (an impulse divided
+// by its mass), in world units per unit of model time. Refused, with nothing changed, for
+// a node out of range or pinned, or a change or sum that is not finite.
+SwStatus sw_surface_add_velocity(struct SwSurface *surface,
+                                 size_t node,
+                                 float dvx,
+                                 float dvy,
+                                 float dvz);
 
 // Writes every node's position, interleaved `x, y, z`, row-major (node `(col, row)` at
 // `3·(row·cols + col)`). `len` is in floats and must be at least `3 · nodes`.

@@ -1,5 +1,6 @@
 //! The lattice node by node and spring by spring: pins, per-node masses and viscosities,
-//! and single springs' rest lengths and coefficients (the library's `Surface::set_pinned`,
+//! forces and velocity changes on one node, and single springs' rest lengths and
+//! coefficients (the library's `Surface::set_pinned`,
 //! `set_mass`, `set_masses`, `set_viscosity`, `set_viscosities`, `set_spring` and their
 //! readers). Nodes are row-major indices, `row * cols + col`; per-node buffers hold one
 //! value per node (`sw_surface_node_count`). Masses and viscosities are the lattice's
@@ -253,5 +254,47 @@ fn spring_id(family: SwFamily, node: usize) -> Outcome<SpringId> {
     Ok(SpringId {
         family,
         origin: node,
+    })
+}
+
+/// Adds the force `(fx, fy, fz)` to node `node` for the next step only, in the lattice's
+/// force units (`sw_surface_add_force_at` spreads one at a world point instead).
+/// Refused, with nothing changed, for a node out of range or a force or sum that is not
+/// finite.
+#[no_mangle]
+pub extern "C" fn sw_surface_add_force(
+    surface: *mut SwSurface,
+    node: usize,
+    fx: f32,
+    fy: f32,
+    fz: f32,
+) -> SwStatus {
+    handle::call(surface, |w| Ok(w.surface.add_force(node, [fx, fy, fz])?))
+}
+
+/// Discards every force waiting for the next step: those added node by node or at a
+/// point, and the water's share of `sw_surface_body_forces` (what the water column under
+/// the bodies carries stays).
+#[no_mangle]
+pub extern "C" fn sw_surface_clear_forces(surface: *mut SwSurface) -> SwStatus {
+    handle::call(surface, |w| {
+        w.surface.clear_forces();
+        Ok(())
+    })
+}
+
+/// Adds the velocity change `(dvx, dvy, dvz)` to free node `node` now (an impulse divided
+/// by its mass), in world units per unit of model time. Refused, with nothing changed, for
+/// a node out of range or pinned, or a change or sum that is not finite.
+#[no_mangle]
+pub extern "C" fn sw_surface_add_velocity(
+    surface: *mut SwSurface,
+    node: usize,
+    dvx: f32,
+    dvy: f32,
+    dvz: f32,
+) -> SwStatus {
+    handle::call(surface, |w| {
+        Ok(w.surface.add_velocity(node, [dvx, dvy, dvz])?)
     })
 }

@@ -3,6 +3,7 @@
 //! the queries read with).
 
 use crate::handle::{self, Queries, SwSurface};
+use crate::params::SwBool;
 use crate::ptr::{in_slice, need, out_array, out_buffer, out_slice, read_into};
 use crate::status::{guard, Failure, Outcome, SwStatus};
 use glam::Vec3;
@@ -37,6 +38,23 @@ pub extern "C" fn sw_surface_add_force_at(
     handle::call(surface, |w| {
         Ok(w.surface.add_force_at(x, z, [fx, fy, fz])?)
     })
+}
+
+/// Writes 1 to `out` if world `(x, z)` is finite and inside the rest footprint
+/// `[0, (cols−1)·spacing] × [0, (rows−1)·spacing]` (moved with the window), where the
+/// queries answer, else 0.
+///
+/// # Safety
+///
+/// `out` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_contains(
+    surface: *const SwSurface,
+    x: f32,
+    z: f32,
+    out: *mut SwBool,
+) -> SwStatus {
+    read_into(surface, out, |w| Ok(w.surface.contains(x, z) as SwBool))
 }
 
 /// The water's height at world `(x, z)` (inside the rest footprint

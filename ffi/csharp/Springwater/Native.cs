@@ -404,6 +404,25 @@ namespace Springwater
             float rest,
             float stiffness);
 
+        /// <summary>Adds the force `(fx, fy, fz)` to node `node` for the next step only, in the
+        /// lattice's force units.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_add_force(IntPtr surface, UIntPtr node, float fx, float fy, float fz);
+
+        /// <summary>Discards every force waiting for the next step, the water's share of
+        /// `sw_surface_body_forces` among them.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_clear_forces(IntPtr surface);
+
+        /// <summary>Adds the velocity change `(dvx, dvy, dvz)` to free node `node` now.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_add_velocity(IntPtr surface, UIntPtr node, float dvx, float dvy, float dvz);
+
+        /// <summary>Writes 1 to `out` if world `(x, z)` is finite and inside the rest footprint,
+        /// where the queries answer, else 0.</summary>
+        [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]
+        public static extern int sw_surface_contains(IntPtr surface, float x, float z, int* @out);
+
         /// <summary>Writes every node's position, interleaved `x, y, z`, row-major (node `(col, row)`
         /// at `3·(row·cols + col)`). `len` is in floats and must be at least `3 · nodes`.</summary>
         [DllImport(Library, CallingConvention = CallingConvention.Cdecl, ExactSpelling = true)]

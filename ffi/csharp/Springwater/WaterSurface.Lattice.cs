@@ -108,6 +108,27 @@ namespace Springwater
                     Native.sw_surface_set_spring(s.Ptr, family, Node(node), rest, stiffness));
         }
 
+        /// <summary>Adds a force to one node for the next step only, in the lattice's force units.</summary>
+        public void AddForce(int node, float fx, float fy, float fz)
+        {
+            using (var s = Enter())
+                SpringwaterException.Check(Native.sw_surface_add_force(s.Ptr, Node(node), fx, fy, fz));
+        }
+
+        /// <summary>Discards every force waiting for the next step (BodyForces' share among them).</summary>
+        public void ClearForces()
+        {
+            using (var s = Enter())
+                SpringwaterException.Check(Native.sw_surface_clear_forces(s.Ptr));
+        }
+
+        /// <summary>Adds a velocity change to one free node now (an impulse divided by its mass).</summary>
+        public void AddVelocity(int node, float dvx, float dvy, float dvz)
+        {
+            using (var s = Enter())
+                SpringwaterException.Check(Native.sw_surface_add_velocity(s.Ptr, Node(node), dvx, dvy, dvz));
+        }
+
         /// A node index for the C ABI; a negative one is refused here, where the C ABI's
         /// unsigned index cannot say it.
         static UIntPtr Node(int node)

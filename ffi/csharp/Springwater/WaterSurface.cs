@@ -264,6 +264,15 @@ namespace Springwater
 
         // ---- Point queries ----
 
+        /// <summary>Whether world (x, z) is finite and inside the rest footprint, where the queries answer.</summary>
+        public bool Contains(float x, float z)
+        {
+            int inside;
+            using (var s = Enter())
+                SpringwaterException.Check(Native.sw_surface_contains(s.Ptr, x, z, &inside));
+            return inside != 0;
+        }
+
         /// <summary>The height at world (x, z), inside the rest footprint.</summary>
         public float HeightAt(float x, float z)
         {

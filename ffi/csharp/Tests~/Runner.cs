@@ -608,6 +608,16 @@ static unsafe partial class Runner
                 "the limits of the defaults: " + critical + ", " + linear);
             limits.mass = 0;
             Refused("params_critical_dt_mass", Native.SW_ERROR_INVALID_ARGUMENT, "mass", () => limits.CriticalDt());
+            Assert(w.Contains(7, 9) && w.Contains(23, 23), "points on the water");
+            Assert(!w.Contains(-0.5f, 3) && !w.Contains(3, float.NaN), "points off it");
+            ulong calm = w.StateHash();
+            w.AddForce(node, 0, 1, 0);
+            Assert(w.StateHash() != calm, "a node's force is state until the step");
+            w.ClearForces();
+            Assert(w.StateHash() == calm, "ClearForces takes it back");
+            w.AddVelocity(node, 0, 0.5f, 0);
+            Assert(w.VelocityAt(7, 9).y > v.y, "AddVelocity moves the node up");
+            Refused("add_force_nan", Native.SW_ERROR_INVALID_ARGUMENT, "NaN", () => w.AddForce(node, float.NaN, 0, 0));
             Assert(WaterSurface.Version.Length > 0 && w.Energy.total > 0, "version and energy");
         }
     }
