@@ -1,8 +1,8 @@
 //! The lattice node by node and spring by spring: pins, per-node masses and viscosities,
 //! forces and velocity changes on one node, and single springs' rest lengths and
-//! coefficients (the library's `Surface::set_pinned`,
-//! `set_mass`, `set_masses`, `set_viscosity`, `set_viscosities`, `set_spring` and their
-//! readers). Nodes are row-major indices, `row * cols + col`; per-node buffers hold one
+//! coefficients (the library's `Surface::set_pinned`, `set_mass`, `set_masses`,
+//! `set_viscosity`, `set_viscosities`, `set_spring`, `add_force`, `add_velocity`,
+//! `clear_forces` and their readers). Nodes are row-major indices, `row * cols + col`; per-node buffers hold one
 //! value per node (`sw_surface_node_count`). Masses and viscosities are the lattice's
 //! (`SwParams::mass`, `SwParams::viscosity`), in model time like them.
 
