@@ -9,42 +9,10 @@ use bevy::camera::primitives::Aabb;
 use bevy::mesh::{Indices, Mesh, Mesh3d, VertexAttributeValues};
 use bevy::prelude::*;
 use bevy::tasks::{ComputeTaskPool, TaskPoolBuilder};
-use common::bare_app;
+use common::{app, bare_app, mesh_of, positions, run};
 use springwater::{Params, Surface};
 use springwater_bevy::prelude::*;
 use springwater_bevy::TaskPoolJobs;
-
-fn app(plugin: SpringwaterPlugin) -> App {
-    let mut app = bare_app();
-    app.add_plugins(plugin);
-    app
-}
-
-fn run(app: &mut App, frames: usize) {
-    for _ in 0..frames {
-        app.update();
-    }
-}
-
-fn mesh_of(app: &App, water: Entity) -> Mesh {
-    let handle = &app
-        .world()
-        .get::<Mesh3d>(water)
-        .expect("water has a mesh")
-        .0;
-    app.world()
-        .resource::<Assets<Mesh>>()
-        .get(handle)
-        .expect("mesh asset exists")
-        .clone()
-}
-
-fn positions(mesh: &Mesh) -> &Vec<[f32; 3]> {
-    match mesh.attribute(Mesh::ATTRIBUTE_POSITION) {
-        Some(VertexAttributeValues::Float32x3(v)) => v,
-        other => panic!("positions: {other:?}"),
-    }
-}
 
 fn position_ptr(app: &App, water: Entity) -> *const [f32; 3] {
     let handle = &app.world().get::<Mesh3d>(water).unwrap().0;

@@ -5,42 +5,9 @@
 mod common;
 
 use bevy::camera::primitives::Aabb;
-use bevy::mesh::{Mesh, Mesh3d, VertexAttributeValues};
 use bevy::prelude::*;
-use common::bare_app;
+use common::{app, mesh_of, positions, run};
 use springwater_bevy::prelude::*;
-
-fn app(plugin: SpringwaterPlugin) -> App {
-    let mut app = bare_app();
-    app.add_plugins(plugin);
-    app
-}
-
-fn run(app: &mut App, frames: usize) {
-    for _ in 0..frames {
-        app.update();
-    }
-}
-
-fn mesh_of(app: &App, water: Entity) -> Mesh {
-    let handle = &app
-        .world()
-        .get::<Mesh3d>(water)
-        .expect("water has a mesh")
-        .0;
-    app.world()
-        .resource::<Assets<Mesh>>()
-        .get(handle)
-        .expect("mesh asset exists")
-        .clone()
-}
-
-fn positions(mesh: &Mesh) -> &Vec<[f32; 3]> {
-    match mesh.attribute(Mesh::ATTRIBUTE_POSITION) {
-        Some(VertexAttributeValues::Float32x3(v)) => v,
-        other => panic!("positions: {other:?}"),
-    }
-}
 
 /// Where the sea of the window tests sits in the world (not at the origin, so that every
 /// conversion between the world and the water's local space is exercised).
