@@ -7,12 +7,14 @@
 //! | `clock.rs` | the game's clock: frames of seconds into whole steps (`advance`) |
 //! | `edit.rs` | drops, forces, pins, per-node values and springs between steps |
 //! | `query.rs` | heights, normals and velocities at a point; forces at a point |
-//! | `bodies/` | the bodies' subsystem: floating bodies, the coupled step, the water column under them |
+//! | `bodies/` | the bodies' subsystem: floating bodies, the coupled step, the water column under them, their section of a snapshot |
 //! | `window.rs` | the moving window and the floating origin |
 //! | `snapshot/` | snapshots: the whole state as bytes and back, `save_into`, `state_hash` |
+//! | `bytes.rs` | little-endian fields the snapshot's sections share (a sink, a reader) |
 //! | `tuning.rs` | the engine's schedule knobs for tests and benchmarks (`internals`) |
 
 pub(crate) mod bodies;
+mod bytes;
 mod clock;
 mod disturbance;
 mod edit;

@@ -10,7 +10,7 @@
 //! back: bodies step in parallel but their reactions go into the water one body after
 //! another in the order the bodies were added, so the bits do not depend on the threads.
 
-use super::column;
+use super::{column, Record};
 use crate::body::rigid::{self, Piece, World};
 use crate::body::small::{self, Plane};
 use crate::body::{Hull, HullScratch};
@@ -329,7 +329,7 @@ impl Surface {
     /// the bodies take their new poses and velocities, and the column takes up its share
     /// of what the water got.
     pub(crate) fn commit_bodies(&mut self, dt: f32, c: &mut Coupling) {
-        for ((_, body), slot) in self.bodies.bodies.iter_mut().zip(&mut c.slots) {
+        for (Record { body, .. }, slot) in self.bodies.records.iter_mut().zip(&mut c.slots) {
             if let Some(Ok(motion)) = slot.motion.take() {
                 body.take_motion(&motion);
             }
@@ -364,10 +364,9 @@ impl Surface {
     /// `dt` is model time; the bodies step `dt / time_scale` seconds. Changes nothing of
     /// the surface.
     pub(crate) fn prepare_bodies(&self, dt: f32, c: &mut Coupling) -> Result<()> {
-        let bodies = &self.bodies.bodies;
+        let bodies = &self.bodies.records;
         c.slots.resize_with(bodies.len(), Slot::default);
         let cx = self.context(dt / self.params.time_scale);
-        let meshes = &self.bodies.meshes;
         jobs::for_each_part(
             Runner::of(self.host.as_ref()),
             bodies.len(),
@@ -376,8 +375,8 @@ impl Surface {
             &mut c.slots[..],
             &|range, slots: &mut [Slot]| {
                 for (k, slot) in range.zip(slots) {
-                    let (id, body) = &bodies[k];
-                    let step = cx.step(body, meshes[k].as_deref(), slot);
+                    let Record { id, body, mesh } = &bodies[k];
+                    let step = cx.step(body, mesh.as_deref(), slot);
                     slot.motion = Some(step.and_then(|m| {
                         let motion = motion(&m);
                         // Shape, mass, inertia and drag are the valid body's: what the

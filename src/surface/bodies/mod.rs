@@ -3,12 +3,14 @@
 //!
 //! | file | owns |
 //! |---|---|
-//! | `mod.rs` | the bodies' data ([`BodySet`]: each body with the mesh the water presses on) and the public calls that add, read and push them |
+//! | `mod.rs` | the bodies' data ([`BodySet`]: each body's [`Record`] with the mesh the water presses on) and the public calls that add, read and push them |
 //! | `coupling.rs` | the coupled step: the water under each body, the bodies' steps, their reactions; [`Surface::body_forces`] |
 //! | `column.rs` | the water column: what of the bodies' push the lattice gets, and what it carries to the bottom |
+//! | `section.rs` | the bodies' section of a snapshot: their records, hull meshes and column entries as bytes and back |
 
 mod column;
 mod coupling;
+pub(crate) mod section;
 
 pub(crate) use column::{Column, Entry};
 
@@ -21,17 +23,25 @@ pub(crate) use coupling::Coupling;
 use glam::Vec3;
 use std::sync::Arc;
 
+/// One floating body of a surface: its id, its state, and the mesh the water presses on
+/// (what [`floater::wet_mesh`] gives for its shape, made when the body comes or its shape
+/// changes, and kept through a restore that leaves the shape as it was).
+#[derive(Debug, Clone)]
+pub(crate) struct Record {
+    id: FloaterId,
+    body: Floater,
+    mesh: Option<Arc<Hull>>,
+}
+
 /// The bodies of one surface, their world, the water column under them, and the scratch
 /// of the coupled step.
 #[derive(Debug, Clone, Default)]
 pub(crate) struct BodySet {
     /// Bodies in the order they were added (ids increase along it).
-    bodies: Vec<(FloaterId, Floater)>,
-    /// Each body's mesh, the water presses on (parallel to `bodies`): what
-    /// [`floater::wet_mesh`] gives for its shape, made when the body comes or its shape
-    /// changes, and kept through a restore that leaves the shape as it was.
-    meshes: Vec<Option<Arc<Hull>>>,
-    /// A restore's meshes, made before it is kept (parallel to the restored bodies).
+    records: Vec<Record>,
+    /// The bodies a restore decoded, before it keeps them.
+    restored: Vec<(FloaterId, Floater)>,
+    /// Their meshes (parallel to `restored`).
     restored_meshes: Vec<Option<Arc<Hull>>>,
     /// The id the next added body gets.
     next_id: u64,
@@ -46,12 +56,12 @@ impl BodySet {
     /// Whether a step has nothing of the bodies to do: no body, and no load carried or
     /// waiting in the column.
     pub fn is_idle(&self) -> bool {
-        self.bodies.is_empty() && self.column.is_empty()
+        self.records.is_empty() && self.column.is_empty()
     }
 
-    /// The bodies with their ids, in the order they were added.
-    pub fn records(&self) -> &[(FloaterId, Floater)] {
-        &self.bodies
+    /// The bodies, in the order they were added.
+    pub fn records(&self) -> &[Record] {
+        &self.records
     }
 
     /// The id the next added body gets.
@@ -85,12 +95,14 @@ impl BodySet {
         column: Vec<Entry>,
         spacing: f32,
     ) -> Result<()> {
-        let meshes = bodies
-            .iter()
-            .map(|(_, body)| floater::wet_mesh(&body.shape, spacing))
+        let records = bodies
+            .into_iter()
+            .map(|(id, body)| {
+                let mesh = floater::wet_mesh(&body.shape, spacing)?;
+                Ok(Record { id, body, mesh })
+            })
             .collect::<Result<_>>()?;
-        self.bodies = bodies;
-        self.meshes = meshes;
+        self.records = records;
         self.set_world(next_id, buoyancy);
         self.column.set_entries(column);
         Ok(())
@@ -102,22 +114,23 @@ impl BodySet {
         self.buoyancy = buoyancy;
     }
 
-    /// A restore in place, begun: the bodies' list, to decode the restored bodies after the
-    /// first `len()` current ones, and the column's spare list to decode its entries into.
-    /// [`BodySet::finish_restore`] keeps them or drops them.
-    pub fn restoring(&mut self) -> (&mut Vec<(FloaterId, Floater)>, &mut Vec<Entry>) {
-        (&mut self.bodies, self.column.spare())
+    /// A restore in place, begun: the current bodies, which lend their hull meshes to the
+    /// restored ones; the list to decode the restored bodies into; the column's spare list
+    /// to decode its entries into. [`BodySet::finish_restore`] keeps them or drops them.
+    pub fn restoring(&mut self) -> (&[Record], &mut Vec<(FloaterId, Floater)>, &mut Vec<Entry>) {
+        self.restored.clear();
+        (&self.records, &mut self.restored, self.column.spare())
     }
 
-    /// The meshes of the bodies a restore decoded after the first `old` (checked bodies),
-    /// on a grid of `spacing`: body `k` keeps the mesh of the current body `k` if its shape
-    /// is the same (a rollback makes none), else gets its own. Refused, with the current
-    /// bodies unchanged, if one cannot be made.
-    pub fn mesh_restored(&mut self, old: usize, spacing: f32) -> Result<()> {
+    /// The meshes of the bodies a restore decoded (checked bodies), on a grid of
+    /// `spacing`: body `k` keeps the mesh of the current body `k` if its shape is the same
+    /// (a rollback makes none), else gets its own. Refused, with the current bodies
+    /// unchanged, if one cannot be made.
+    pub fn mesh_restored(&mut self, spacing: f32) -> Result<()> {
         self.restored_meshes.clear();
-        for (k, (_, body)) in self.bodies[old..].iter().enumerate() {
-            let kept = match (self.bodies[..old].get(k), self.meshes.get(k)) {
-                (Some((_, was)), Some(mesh)) if same(&was.shape, &body.shape) => mesh.clone(),
+        for (k, (_, body)) in self.restored.iter().enumerate() {
+            let kept = match self.records.get(k) {
+                Some(was) if same(&was.body.shape, &body.shape) => was.mesh.clone(),
                 _ => floater::wet_mesh(&body.shape, spacing)?,
             };
             self.restored_meshes.push(kept);
@@ -125,17 +138,19 @@ impl BodySet {
         Ok(())
     }
 
-    /// Ends a restore begun with [`BodySet::restoring`] when the list held `old` bodies:
-    /// the restored ones (meshed by [`BodySet::mesh_restored`]) replace them if `keep`,
-    /// else they are dropped.
-    pub fn finish_restore(&mut self, old: usize, keep: bool) {
+    /// Ends a restore begun with [`BodySet::restoring`]: the restored bodies (meshed by
+    /// [`BodySet::mesh_restored`]) replace the current ones if `keep`, else they are
+    /// dropped. Keeping reuses the list's capacity.
+    pub fn finish_restore(&mut self, keep: bool) {
         if keep {
-            self.bodies.drain(..old);
-            std::mem::swap(&mut self.meshes, &mut self.restored_meshes);
+            let meshes = self.restored_meshes.drain(..);
+            let restored = self.restored.drain(..).zip(meshes);
+            self.records.clear();
+            self.records
+                .extend(restored.map(|((id, body), mesh)| Record { id, body, mesh }));
             self.column.take_spare();
-        } else {
-            self.bodies.truncate(old);
         }
+        self.restored.clear();
         self.restored_meshes.clear();
     }
 
@@ -153,15 +168,15 @@ impl BodySet {
     /// The water's frame moved by `(dx, dz)` world units (a rebase): every body moves
     /// back by it.
     pub fn rebase(&mut self, dx: f64, dz: f64) {
-        for (_, body) in &mut self.bodies {
+        for Record { body, .. } in &mut self.records {
             body.position.x = (body.position.x as f64 - dx) as f32;
             body.position.z = (body.position.z as f64 - dz) as f32;
         }
     }
 
     fn index(&self, id: FloaterId) -> Result<usize> {
-        self.bodies
-            .binary_search_by_key(&id, |&(id, _)| id)
+        self.records
+            .binary_search_by_key(&id, |r| r.id)
             .map_err(|_| Error::NoSuchFloater(id.0))
     }
 }
@@ -188,8 +203,7 @@ impl Surface {
             value: id.0 as f64,
             expected: "fewer than 2^64 − 1 floaters ever added to one surface",
         })?;
-        self.bodies.bodies.push((id, body));
-        self.bodies.meshes.push(mesh);
+        self.bodies.records.push(Record { id, body, mesh });
         Ok(id)
     }
 
@@ -210,14 +224,13 @@ impl Surface {
     /// Removes a body and returns it.
     pub fn remove_floater(&mut self, id: FloaterId) -> Result<Floater> {
         let k = self.bodies.index(id)?;
-        self.bodies.meshes.remove(k);
-        Ok(self.bodies.bodies.remove(k).1)
+        Ok(self.bodies.records.remove(k).body)
     }
 
     /// A body's current state.
     pub fn floater(&self, id: FloaterId) -> Result<&Floater> {
         let k = self.bodies.index(id)?;
-        Ok(&self.bodies.bodies[k].1)
+        Ok(&self.bodies.records[k].body)
     }
 
     /// Replaces a body's state (teleport it, turn it, change its mass or shape); its
@@ -225,18 +238,19 @@ impl Surface {
     /// Validated like [`Surface::add_floater`]; on error nothing changes.
     pub fn set_floater(&mut self, id: FloaterId, body: Floater) -> Result<()> {
         let k = self.bodies.index(id)?;
-        let old = &self.bodies.bodies[k].1;
+        let old = &self.bodies.records[k].body;
         let body = self.admit(body, old.water_force, old.water_torque)?;
-        if !same(&body.shape, &self.bodies.bodies[k].1.shape) {
-            self.bodies.meshes[k] = floater::wet_mesh(&body.shape, self.params.spacing)?;
+        let record = &mut self.bodies.records[k];
+        if !same(&body.shape, &record.body.shape) {
+            record.mesh = floater::wet_mesh(&body.shape, self.params.spacing)?;
         }
-        self.bodies.bodies[k].1 = body;
+        record.body = body;
         Ok(())
     }
 
     /// Every body with its id, in the order they were added.
     pub fn floaters(&self) -> impl ExactSizeIterator<Item = (FloaterId, &Floater)> {
-        self.bodies.bodies.iter().map(|(id, f)| (*id, f))
+        self.bodies.records.iter().map(|r| (r.id, &r.body))
     }
 
     /// Adds `force` through a body's centre of mass (mass units × world units per second²,
@@ -260,7 +274,7 @@ impl Surface {
             params::finite("push point", c)?;
         }
         let k = self.bodies.index(id)?;
-        let offset = at - self.bodies.bodies[k].1.position;
+        let offset = at - self.bodies.records[k].body.position;
         self.push_wrench(id, force, offset.cross(force))
     }
 
@@ -272,7 +286,7 @@ impl Surface {
 
     fn push_wrench(&mut self, id: FloaterId, force: Vec3, torque: Vec3) -> Result<()> {
         let k = self.bodies.index(id)?;
-        let body = &self.bodies.bodies[k].1;
+        let body = &self.bodies.records[k].body;
         let push = body.push + force;
         let push_torque = body.push_torque + torque;
         for c in force.to_array().into_iter().chain(push.to_array()) {
@@ -281,7 +295,7 @@ impl Surface {
         for c in torque.to_array().into_iter().chain(push_torque.to_array()) {
             params::finite("floater push torque", c)?;
         }
-        let body = &mut self.bodies.bodies[k].1;
+        let body = &mut self.bodies.records[k].body;
         body.push = push;
         body.push_torque = push_torque;
         Ok(())
@@ -297,7 +311,7 @@ impl Surface {
     /// smaller timestep than `params().dt`.
     pub fn set_buoyancy(&mut self, buoyancy: Buoyancy) -> Result<()> {
         buoyancy.validate()?;
-        if !self.bodies.bodies.is_empty() {
+        if !self.bodies.records.is_empty() {
             self.admit_with(buoyancy)?;
         }
         self.bodies.buoyancy = buoyancy;
@@ -312,7 +326,7 @@ impl Surface {
 
     /// The waterline stiffness the bodies add to a node (0 without bodies).
     pub(crate) fn floater_stiffness(&self) -> f32 {
-        if self.bodies.bodies.is_empty() {
+        if self.bodies.records.is_empty() {
             0.0
         } else {
             self.bodies
@@ -339,11 +353,10 @@ mod tests {
     /// Every body's mesh is its shape's, after each way the list changes.
     fn meshes_fit(s: &Surface) {
         let set = &s.bodies;
-        assert_eq!(set.meshes.len(), set.bodies.len());
-        assert!(set.restored_meshes.is_empty());
-        for ((_, body), mesh) in set.bodies.iter().zip(&set.meshes) {
-            let want = floater::wet_mesh(&body.shape, s.params.spacing).unwrap();
-            assert_eq!(mesh.as_deref(), want.as_deref(), "{:?}", body.shape);
+        assert!(set.restored.is_empty() && set.restored_meshes.is_empty());
+        for r in &set.records {
+            let want = floater::wet_mesh(&r.body.shape, s.params.spacing).unwrap();
+            assert_eq!(r.mesh.as_deref(), want.as_deref(), "{:?}", r.body.shape);
         }
     }
 
@@ -359,7 +372,7 @@ mod tests {
             .unwrap();
         meshes_fit(&s);
         // A small ball is a cap under the plane: no mesh.
-        assert!(s.bodies.meshes[0].is_none() && s.bodies.meshes[2].is_some());
+        assert!(s.bodies.records[0].mesh.is_none() && s.bodies.records[2].mesh.is_some());
         let saved = s.to_bytes();
         s.remove_floater(ball).unwrap();
         let mut wide = s.floater(boxy).unwrap().clone();

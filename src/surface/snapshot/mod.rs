@@ -6,10 +6,11 @@
 //! How it is built: the encoder is written once (`stream.rs`), a sequence of fields sent
 //! to a sink that is a byte buffer for saving and a hasher for `state_hash`; the reader
 //! (`read.rs`) checks the framing every version shares and reads the sections the
-//! versions are built from, borrowing the bytes; `bodies.rs` decodes the bodies and the
-//! hull meshes they share, and tells the encoder which meshes to store; each format
-//! version has one decoder that upgrades what it read to the next version
-//! (`versions.rs`); validation
+//! versions are built from, borrowing the bytes; the bodies' section (the bodies, the hull
+//! meshes they share and the water column) is the bodies' subsystem's to write, read and
+//! check (`surface/bodies/section.rs`), in the field vocabulary both share
+//! (`surface/bytes.rs`); each format version has one decoder that upgrades what it read to
+//! the next version (`versions.rs`); validation
 //! (`validate.rs`) checks a snapshot's contents wherever they are, in vectors or in the
 //! bytes; `restore.rs` copies a current-version snapshot back into a surface of the same
 //! shape without allocating.
@@ -21,9 +22,7 @@
 //! out and why. XXH3-64 over a checksum such as CRC-32: 64 bits (a desync missed with
 //! odds 2⁻⁶⁴ a comparison, not 2⁻³²), and several bytes a cycle.
 
-mod bodies;
 mod read;
-mod reader;
 mod restore;
 mod stream;
 mod validate;
@@ -39,6 +38,7 @@ use crate::springs::Springs;
 use crate::stability::Stability;
 use crate::state::State;
 use crate::surface::bodies::Entry;
+use crate::surface::bytes::bad;
 use std::io::{Read, Write};
 use stream::{slices, Bytes, StateHash};
 use validate::Contents;
@@ -271,10 +271,6 @@ fn model(p: &Params) -> [f32; 6] {
         p.dt,
         p.rest_ratio,
     ]
-}
-
-fn bad(msg: impl Into<String>) -> Error {
-    Error::Snapshot(msg.into())
 }
 
 /// Every field of a snapshot but the arrays and the bodies.

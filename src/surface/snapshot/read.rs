@@ -8,13 +8,14 @@
 //! nothing: arrays are views of the bytes ([`Le`]), so a surface can be restored from them
 //! in place.
 
-use super::bodies::{Bodies, Hulls, PER_BODY, PER_TRANSLATING};
-use super::reader::Reader;
 use super::{bad, Scalars, Snapshot, CRC, HEADER, HEADER_V2, HEADER_V5, HEADER_V6, MAGIC, VERSION};
 use crate::error::Result;
 use crate::floater::Buoyancy;
 use crate::params::{Boundary, Params, MAX_NODES};
-use crate::surface::bodies::Entry;
+use crate::surface::bodies::section::{
+    Bodies, ColumnBytes, Hulls, PER_BODY, PER_COLUMN_ENTRY, PER_TRANSLATING,
+};
+use crate::surface::bytes::Reader;
 use crate::surface::{Overflow, Surface};
 
 /// Bytes per node: 11 `f32` arrays, 1 `u8`, 8 `f32` spring arrays.
@@ -34,10 +35,6 @@ pub(super) fn header_len(version: u32) -> usize {
         _ => HEADER,
     }
 }
-
-/// Bytes of one entry of the water column, from version 7: its node (`u64`), the load it
-/// carries and the load waiting (three `f32` each).
-pub(super) const PER_COLUMN_ENTRY: usize = 8 + 24;
 
 /// Snapshot size in bytes for `nodes` nodes, `floaters` bodies, a hull section of
 /// `hull_bytes` (0 before version 6) and `column` entries of the water column (0 before
@@ -320,30 +317,8 @@ pub(super) fn bodies<'a>(r: &mut Reader<'a>, world: &World, version: u32) -> Bod
     Bodies::Rigid { records, hulls }
 }
 
-/// The water column's entries, from version 7 (after the bodies), borrowed; their count
-/// was checked against the total length (`check_header`).
-#[derive(Clone, Copy)]
-pub(crate) struct ColumnBytes<'a>(&'a [u8]);
-
-impl ColumnBytes<'_> {
-    /// No entries (versions before 7).
-    pub const NONE: ColumnBytes<'static> = ColumnBytes(&[]);
-
-    /// Decodes the entries into `out` (cleared first, its capacity reused).
-    pub fn decode_into(self, out: &mut Vec<Entry>) {
-        out.clear();
-        out.extend(self.0.chunks_exact(PER_COLUMN_ENTRY).map(|e| {
-            let mut r = Reader::at(e, 0);
-            let node = r.u64() as usize;
-            let carried = [(); 3].map(|_| r.f32());
-            let pending = [(); 3].map(|_| r.f32());
-            Entry::stored(node, carried, pending)
-        }));
-    }
-}
-
 pub(super) fn column<'a>(r: &mut Reader<'a>, world: &World) -> ColumnBytes<'a> {
-    ColumnBytes(r.take(world.column as usize * PER_COLUMN_ENTRY))
+    ColumnBytes::read(r, world.column as usize)
 }
 
 /// The 40 bytes before the checksum, from version 4: the window's origin and the clock.
@@ -464,7 +439,7 @@ impl<'a> Layout<'a> {
     pub fn to_snapshot(&self) -> Result<Snapshot> {
         let s = self.scalars()?;
         let mut floaters = Vec::new();
-        self.bodies.decode_into(&mut floaters)?;
+        self.bodies.decode_into(&mut floaters, &[])?;
         let mut column = Vec::new();
         self.column.decode_into(&mut column);
         let n = &self.nodes;

@@ -4,11 +4,11 @@
 //! surface's current state is written beyond the positions, velocities and forces, so a
 //! rollback between states with the same tables copies three arrays and a few fields.
 //!
-//! The bodies are decoded after the surface's own, in the same list (whose capacity a
-//! rollback reuses), borrowing their hull meshes where the stored mesh has the bits of one
-//! the surface holds; each gets the mesh the water presses on (the current body's at its
-//! place when the shape is the same, so a rollback makes none); they replace the old
-//! bodies once everything is checked, and are dropped if anything is refused.
+//! The bodies are decoded into a list the bodies' subsystem keeps for restores (whose
+//! capacity a rollback reuses), borrowing their hull meshes where the stored mesh has the
+//! bits of one the surface holds; each gets the mesh the water presses on (the current
+//! body's at its place when the shape is the same, so a rollback makes none); they replace
+//! the old bodies once everything is checked, and are dropped if anything is refused.
 
 use super::read::{self, Layout, Le};
 use super::validate::{blocks, first_bad, spring_columns, Contents, NodeFloats, NodePins, BLOCK};
@@ -34,18 +34,17 @@ impl Surface {
         let saved = Layout::read(&mut r, version)?;
         let scalars = saved.scalars()?;
         let nodes = &saved.nodes;
-        let (bodies, column) = self.bodies.restoring();
-        let old = bodies.len();
-        let checked = saved.bodies.decode_into(bodies);
+        let (current, bodies, column) = self.bodies.restoring();
+        let checked = saved.bodies.decode_into(bodies, current);
         saved.column.decode_into(column);
-        let checked = checked.and_then(|()| Self::check(&saved, &scalars, &bodies[old..], column));
+        let checked = checked.and_then(|()| Self::check(&saved, &scalars, bodies, column));
         let same = same_model(&self.params, &scalars.params);
         let checked = checked.and_then(|()| match same {
-            true => self.bodies.mesh_restored(old, scalars.params.spacing),
+            true => self.bodies.mesh_restored(scalars.params.spacing),
             false => Ok(()),
         });
         if checked.is_err() || !same {
-            self.bodies.finish_restore(old, false);
+            self.bodies.finish_restore(false);
             return checked.map(|()| false);
         }
         // Checked: from here on nothing can fail.
@@ -82,7 +81,7 @@ impl Surface {
                 std::array::from_fn(|f| coef[f].as_slice()),
             );
         }
-        self.bodies.finish_restore(old, true);
+        self.bodies.finish_restore(true);
         self.take_scalars(&scalars);
         Ok(true)
     }

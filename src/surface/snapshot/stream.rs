@@ -6,30 +6,19 @@
 //!
 //! The fields come from a [`Fields`] view, which a [`Surface`] gives straight from its
 //! buffers (a table kept as rows of defaults or a family's shared spring is written out
-//! node by node, as the format has it) and a [`Snapshot`] from its vectors. Hull meshes
-//! are written once each, after the bodies ([`HullTable`]).
+//! node by node, as the format has it) and a [`Snapshot`] from its vectors. The bodies'
+//! section (the bodies, their hull meshes and the water column) is the bodies'
+//! subsystem's to write ([`Section`]).
 
-use super::bodies::{hull_of, HullTable};
 use super::read::{encoded_len, FLAG_FORCES_PENDING};
 use super::validate::spring_columns;
 use super::{Scalars, Snapshot, MAGIC, VERSION};
-use crate::body::Hull;
-use crate::floater::{FloaterId, Shape};
 use crate::grid::{Family, Grid};
 use crate::params::Boundary;
 use crate::state::NodeTable;
-use crate::surface::bodies::Entry;
+use crate::surface::bodies::section::{BodyList, Section};
+use crate::surface::bytes::{floats, Sink};
 use crate::surface::{Overflow, Surface};
-use crate::Floater;
-
-/// Where the encoder's fields go.
-pub(crate) trait Sink {
-    /// Bytes of a field that decides the surface's future.
-    fn state(&mut self, bytes: &[u8]);
-    /// Bytes that frame the data or only keep count (magic, version, length, steps taken,
-    /// model time, seconds dropped): saved, not hashed.
-    fn record(&mut self, bytes: &[u8]);
-}
 
 /// Appends every field to a buffer, the binary format, and checksums what it appends
 /// while it is still in the cache (a piece at a time), for the CRC-32 at the end.
@@ -94,19 +83,16 @@ pub(super) struct Fields<'a> {
     pub pinned: &'a [bool],
     pub rest: [Values<'a>; 4],
     pub stiffness: [Values<'a>; 4],
-    pub bodies: &'a [(FloaterId, Floater)],
-    /// The bodies' distinct hull meshes.
-    pub hulls: HullTable<'a>,
-    /// The water column under the bodies, sorted by node.
-    pub column: &'a [Entry],
+    /// The bodies' section: the bodies, their hull meshes, the water column.
+    pub bodies: Section<'a>,
 }
 
 impl Fields<'_> {
     /// The length of the encoding, checksum included.
     pub fn encoded_len(&self) -> usize {
-        let (nodes, bodies) = (self.grid.node_count(), self.bodies.len());
-        let column = self.column.len() as u64;
-        encoded_len(VERSION, nodes, bodies, self.hulls.bytes, column)
+        let (nodes, bodies) = (self.grid.node_count(), self.bodies.bodies());
+        let (_, hull_bytes) = self.bodies.hulls();
+        encoded_len(VERSION, nodes, bodies, hull_bytes, self.bodies.column())
             .expect("a snapshot of an allocated surface fits in memory")
     }
 
@@ -138,15 +124,16 @@ impl Fields<'_> {
         floats(sink, &[p.time_scale]);
         let width = super::frame_width(p.boundary).expect("checked by to_bytes or validation");
         sink.state(&width.to_le_bytes());
-        sink.state(&(self.bodies.len() as u32).to_le_bytes());
+        sink.state(&(self.bodies.bodies() as u32).to_le_bytes());
         sink.state(&s.next_floater_id.to_le_bytes());
         floats(sink, &[s.buoyancy.gravity, s.buoyancy.density]);
         // Framing, like the total length: both follow from the meshes, which are state
         // (and water without bodies hashes as it did before hulls were stored).
-        sink.record(&self.hulls.count.to_le_bytes());
-        sink.record(&self.hulls.bytes.to_le_bytes());
+        let (hulls, hull_bytes) = self.bodies.hulls();
+        sink.record(&hulls.to_le_bytes());
+        sink.record(&hull_bytes.to_le_bytes());
         // Framing too: the entries are state, and water without bodies has none.
-        sink.record(&(self.column.len() as u64).to_le_bytes());
+        sink.record(&self.bodies.column().to_le_bytes());
         for a in self
             .positions
             .iter()
@@ -168,12 +155,7 @@ impl Fields<'_> {
             self.values(sink, self.rest[f]);
             self.values(sink, self.stiffness[f]);
         }
-        self.bodies(sink);
-        for e in self.column {
-            sink.state(&(e.node as u64).to_le_bytes());
-            floats(sink, &e.carried);
-            floats(sink, &e.pending);
-        }
+        self.bodies.write(sink);
         for c in s.origin_cells {
             sink.state(&c.to_le_bytes());
         }
@@ -185,52 +167,6 @@ impl Fields<'_> {
         };
         sink.state(&overflow.to_le_bytes());
         sink.record(&s.dropped_seconds.to_le_bytes());
-    }
-
-    /// Each body's record, then each distinct hull mesh: its vertex and triangle counts
-    /// (`u32`), its vertices and its triangles.
-    fn bodies(&self, sink: &mut impl Sink) {
-        // Bodies that share a mesh usually come in runs: the last one found is tried first.
-        let mut last: Option<(&Hull, u32)> = None;
-        for (id, body) in self.bodies {
-            sink.state(&id.0.to_le_bytes());
-            let (shape, size): (u32, [f32; 3]) = match &body.shape {
-                Shape::Sphere { radius } => (0, [*radius, 0.0, 0.0]),
-                Shape::Box { half_extents } => (1, half_extents.to_array()),
-                Shape::Hull(_) => (2, [0.0; 3]),
-            };
-            sink.state(&shape.to_le_bytes());
-            floats(sink, &size);
-            floats(sink, &[body.mass, body.drag]);
-            for v in [body.position, body.velocity, body.push, body.water_force] {
-                floats(sink, &v.to_array());
-            }
-            floats(sink, &body.orientation.to_array());
-            for v in [body.angular_velocity, body.push_torque, body.water_torque] {
-                floats(sink, &v.to_array());
-            }
-            let hull = hull_of(body).map_or(0, |hull| match last {
-                Some((h, index)) if std::ptr::eq(h, &**hull) => index,
-                _ => {
-                    let index = self.hulls.index(hull);
-                    last = Some((hull, index));
-                    index
-                }
-            });
-            sink.state(&hull.to_le_bytes());
-            let (flag, inertia) = match body.inertia {
-                Some(i) => (1u32, i.to_cols_array()),
-                None => (0, [0.0; 9]),
-            };
-            sink.state(&flag.to_le_bytes());
-            floats(sink, &inertia);
-        }
-        for hull in self.hulls.distinct() {
-            let (vertices, triangles) = (hull.vertices(), hull.triangles());
-            words(sink, &[vertices.len() as u32, triangles.len() as u32]);
-            floats(sink, bytemuck::cast_slice(vertices));
-            words(sink, bytemuck::cast_slice(triangles));
-        }
     }
 
     /// One value per node of `values`, row by row.
@@ -254,26 +190,6 @@ impl Fields<'_> {
                     repeat(sink, 0.0, cols - inside.end.max(inside.start));
                 }
             }
-        }
-    }
-}
-
-/// `values` little-endian.
-fn floats(sink: &mut impl Sink, values: &[f32]) {
-    words(sink, bytemuck::cast_slice(values));
-}
-
-/// `values` little-endian.
-fn words(sink: &mut impl Sink, values: &[u32]) {
-    if cfg!(target_endian = "little") {
-        sink.state(bytemuck::cast_slice(values));
-    } else {
-        for chunk in values.chunks(256) {
-            let mut bytes = [0u8; 1024];
-            for (b, v) in bytes.chunks_exact_mut(4).zip(chunk) {
-                b.copy_from_slice(&v.to_le_bytes());
-            }
-            sink.state(&bytes[..4 * chunk.len()]);
         }
     }
 }
@@ -343,9 +259,10 @@ impl Surface {
             pinned: &s.pinned,
             rest,
             stiffness,
-            bodies: self.bodies.records(),
-            hulls: HullTable::of(self.bodies.records()),
-            column: self.bodies.column().entries(),
+            bodies: Section::of(
+                BodyList::Records(self.bodies.records()),
+                self.bodies.column().entries(),
+            ),
         }
     }
 }
@@ -365,9 +282,7 @@ impl Snapshot {
             pinned: &self.pinned,
             rest: std::array::from_fn(|f| Values::Nodes(&self.rest[f])),
             stiffness: std::array::from_fn(|f| Values::Nodes(&self.stiffness[f])),
-            bodies: &self.floaters,
-            hulls: HullTable::of(&self.floaters),
-            column: &self.column,
+            bodies: Section::of(BodyList::Pairs(&self.floaters), &self.column),
         }
     }
 }

@@ -16,7 +16,7 @@ use crate::floater::{Floater, FloaterId};
 use crate::grid::{Family, Grid};
 use crate::params;
 use crate::stability::Stability;
-use crate::surface::bodies::Entry;
+use crate::surface::bodies::{section, Entry};
 use crate::surface::{Surface, MAX_ORIGIN_CELLS};
 use std::ops::Range;
 
@@ -189,31 +189,11 @@ where
         self.derived()?;
         self.nodes(grid.node_count())?;
         self.springs(grid)?;
-        self.bodies()?;
-        self.column(grid.node_count())?;
+        let s = self.scalars;
+        section::check_bodies(self.bodies, s.next_floater_id, s.buoyancy, p.spacing)?;
+        section::check_column(self.column, grid.node_count())?;
         self.clock_and_window()?;
         self.timestep()
-    }
-
-    /// The column's nodes are on the grid and increase; its loads are finite.
-    fn column(&self, n: usize) -> Result<()> {
-        let mut last = None;
-        for e in self.column {
-            if e.node >= n || last.is_some_and(|l| l >= e.node) {
-                return Err(bad(format!(
-                    "the water column's node {} is off the grid of {n} nodes or out of order",
-                    e.node
-                )));
-            }
-            if !e.carried.iter().chain(&e.pending).all(|v| v.is_finite()) {
-                return Err(bad(format!(
-                    "the water column's load at node {} is not finite",
-                    e.node
-                )));
-            }
-            last = Some(e.node);
-        }
-        Ok(())
     }
 
     /// Every array holds one finite value per node.
@@ -367,29 +347,6 @@ where
                     });
                 }
             }
-        }
-        Ok(())
-    }
-
-    /// Each body is valid and fits the lattice; ids increase below the next id.
-    fn bodies(&self) -> Result<()> {
-        let s = self.scalars;
-        s.buoyancy
-            .validate()
-            .map_err(|e| bad(format!("buoyancy: {e}")))?;
-        let mut previous = None;
-        for (id, body) in self.bodies {
-            body.validate()
-                .and_then(|()| crate::floater::check_footprint(&body.shape, s.params.spacing))
-                .map_err(|e| bad(format!("floater {}: {e}", id.0)))?;
-            if previous.is_some_and(|p| p >= id.0) || id.0 >= s.next_floater_id {
-                // (So the next id is above 0 and every stored id below `u64::MAX`.)
-                return Err(bad(format!(
-                    "floater {}: ids must increase and stay below the next id {}",
-                    id.0, s.next_floater_id
-                )));
-            }
-            previous = Some(id.0);
         }
         Ok(())
     }

@@ -14,13 +14,13 @@
 //! Each step is written once, so a snapshot of version 1 passes every upgrade in turn and
 //! a new version adds one decoder and one upgrade.
 
-use super::bodies::Bodies;
-use super::read::{self, ColumnBytes, Head, Layout, Nodes, Tail, World};
-use super::reader::Reader;
+use super::read::{self, Head, Layout, Nodes, Tail, World};
 use super::{bad, Snapshot};
 use crate::error::Result;
 use crate::floater::{Buoyancy, Floater, FloaterId};
 use crate::params::Params;
+use crate::surface::bodies::section::{Bodies, ColumnBytes};
+use crate::surface::bytes::Reader;
 use glam::{Quat, Vec3};
 
 /// Decodes the bytes after the version field (`r`) of a snapshot of `version`, whose

@@ -1,7 +1,11 @@
-//! The floating bodies in the binary format: the records of versions 3 to 5 (spheres and
-//! boxes that only translate, 80 bytes each), the records of version 6 (rigid bodies, 176
-//! bytes each) and the hull meshes they refer to, decoded from the bytes; and, for the
-//! encoder, which meshes a body list holds and in which order they are stored.
+//! The bodies' section of a snapshot: what the bodies' subsystem stores of itself, written
+//! and read here, framed by the snapshot (`surface/snapshot/`), which counts it in its
+//! header. In a snapshot of the current version the section is the bodies' records (176
+//! bytes each), the hull meshes they refer to, and the water column's entries; versions 3
+//! to 5 stored records of 80 bytes (spheres and boxes that only translate) and no meshes.
+//! The encoder's half is [`Section::write`]; the reader's, [`Bodies::decode_into`] and
+//! [`ColumnBytes::decode_into`]; [`check_bodies`] and [`check_column`] are what validation
+//! asks of the decoded bodies and entries.
 //!
 //! # Shared hulls
 //!
@@ -10,9 +14,9 @@
 //! mesh when they share the `Arc` or when their meshes have the same bits (vertices and
 //! triangles, as given); a mesh stored twice is refused, so an accepted snapshot saves
 //! back to its own bytes. Reading gives the bodies that name one stored mesh one `Arc`.
-//! Decoding into a list that already holds bodies (a restore in place) reuses the `Arc` of
-//! a body of that list whose mesh has the stored bits, that at the same place first, so a
-//! rollback neither validates nor allocates a mesh again.
+//! Decoding beside a surface's bodies (a restore in place) reuses the `Arc` of one of them
+//! whose mesh has the stored bits, that at the same place first, so a rollback neither
+//! validates nor allocates a mesh again.
 //!
 //! # Bounds
 //!
@@ -22,29 +26,33 @@
 //! that is not reused goes through [`Hull::new`]. A damaged count or index is an error,
 //! never a large allocation.
 
-use super::bad;
-use super::reader::Reader;
+use super::{Entry, Record};
 use crate::body::Hull;
 use crate::error::Result;
-use crate::floater::{Floater, FloaterId, Shape};
+use crate::floater::{self, Buoyancy, Floater, FloaterId, Shape};
+use crate::surface::bytes::{bad, floats, words, Reader, Sink};
 use glam::{Mat3, Quat, Vec3};
 use std::sync::Arc;
 
 /// Bytes per body in versions 3 to 5.
-pub(super) const PER_TRANSLATING: usize = 80;
+pub(crate) const PER_TRANSLATING: usize = 80;
 /// Where a version 6 record has its hull index: after the fields of versions 3 to 5, the
 /// orientation (16 bytes), the angular velocity, push torque and water torque (12 each).
 const HULL_INDEX_AT: usize = PER_TRANSLATING + 16 + 3 * 12;
 /// Bytes per body from version 6: the hull index, then the inertia override (a flag and
 /// nine entries).
-pub(super) const PER_BODY: usize = HULL_INDEX_AT + 4 + 40;
+pub(crate) const PER_BODY: usize = HULL_INDEX_AT + 4 + 40;
 /// Each stored mesh starts with its vertex and triangle counts (`u32`).
 const MESH_HEAD: usize = 8;
 /// The shape code of a hull.
 const HULL: u32 = 2;
 
+/// Bytes of one entry of the water column, from version 7: its node (`u64`), the load it
+/// carries and the load waiting (three `f32` each).
+pub(crate) const PER_COLUMN_ENTRY: usize = 8 + 24;
+
 /// A body's hull mesh, if it has one.
-pub(super) fn hull_of(body: &Floater) -> Option<&Arc<Hull>> {
+fn hull_of(body: &Floater) -> Option<&Arc<Hull>> {
     match &body.shape {
         Shape::Hull(hull) => Some(hull),
         _ => None,
@@ -53,7 +61,7 @@ pub(super) fn hull_of(body: &Floater) -> Option<&Arc<Hull>> {
 
 /// The bodies as stored, borrowed from the bytes.
 #[derive(Clone, Copy)]
-pub(super) enum Bodies<'a> {
+pub(crate) enum Bodies<'a> {
     /// Versions 3 to 5: [`PER_TRANSLATING`] bytes per body.
     Translating(&'a [u8]),
     /// Version 6: [`PER_BODY`] bytes per body, and the hull section.
@@ -62,7 +70,7 @@ pub(super) enum Bodies<'a> {
 
 /// The hull section of version 6: `count` meshes, each its counts, vertices and triangles.
 #[derive(Clone, Copy)]
-pub(super) struct Hulls<'a> {
+pub(crate) struct Hulls<'a> {
     pub count: u64,
     pub bytes: &'a [u8],
 }
@@ -71,9 +79,13 @@ impl Bodies<'_> {
     pub const NONE: Bodies<'static> = Bodies::Translating(&[]);
 
     /// Appends each body with its id to `out`, or returns the error its record gives (then
-    /// `out` may hold some of them after its own: the caller drops them). The bodies
-    /// `out` held already lend their hull meshes (see the module docs).
-    pub fn decode_into(self, out: &mut Vec<(FloaterId, Floater)>) -> Result<()> {
+    /// `out` may hold some of them after its own: the caller drops them). The `lenders`,
+    /// a surface's current bodies, lend their hull meshes (see the module docs).
+    pub fn decode_into(
+        self,
+        out: &mut Vec<(FloaterId, Floater)>,
+        lenders: &[Record],
+    ) -> Result<()> {
         match self {
             Bodies::Translating(records) => {
                 for record in records.chunks_exact(PER_TRANSLATING) {
@@ -84,7 +96,7 @@ impl Bodies<'_> {
                 }
                 Ok(())
             }
-            Bodies::Rigid { records, hulls } => rigid(records, hulls, out),
+            Bodies::Rigid { records, hulls } => rigid(records, hulls, out, lenders),
         }
     }
 }
@@ -176,7 +188,12 @@ fn rigid_record(record: &[u8]) -> Result<(FloaterId, Floater, Option<Shape>, u32
 }
 
 /// Decodes version 6 records and their meshes into `out` (see [`Bodies::decode_into`]).
-fn rigid(records: &[u8], hulls: Hulls<'_>, out: &mut Vec<(FloaterId, Floater)>) -> Result<()> {
+fn rigid(
+    records: &[u8],
+    hulls: Hulls<'_>,
+    out: &mut Vec<(FloaterId, Floater)>,
+    lenders: &[Record],
+) -> Result<()> {
     let pool = out.len();
     let mut meshes = Meshes::new(hulls.bytes);
     // The last mesh looked up and its first body: bodies sharing one often come in runs.
@@ -204,7 +221,7 @@ fn rigid(records: &[u8], hulls: Hulls<'_>, out: &mut Vec<(FloaterId, Floater)>) 
                         "hull {index} repeats hull {j}: each mesh is stored once"
                     )));
                 }
-                Shape::Hull(match mesh.held_by(&out[..pool], k) {
+                Shape::Hull(match mesh.held_by(lenders, k) {
                     Some(hull) => Arc::clone(hull),
                     None => Arc::new(
                         mesh.to_hull()
@@ -324,8 +341,8 @@ impl Mesh<'_> {
 
     /// The hull of a body of `bodies` that is this mesh: body `k`'s if it is, else the
     /// first one's.
-    fn held_by<'b>(&self, bodies: &'b [(FloaterId, Floater)], k: usize) -> Option<&'b Arc<Hull>> {
-        let this = |(_, body): &'b (FloaterId, Floater)| hull_of(body).filter(|h| self.is(h));
+    fn held_by<'b>(&self, bodies: &'b [Record], k: usize) -> Option<&'b Arc<Hull>> {
+        let this = |r: &'b Record| hull_of(&r.body).filter(|h| self.is(h));
         let known = bodies.get(k).and_then(this);
         known.or_else(|| bodies.iter().find_map(this))
     }
@@ -372,7 +389,7 @@ fn vertex_bits(hull: &Hull) -> &[u32] {
 }
 
 /// Bytes a mesh takes in the hull section.
-pub(super) fn stored_len(hull: &Hull) -> u64 {
+fn stored_len(hull: &Hull) -> u64 {
     (MESH_HEAD + 12 * (hull.vertices().len() + hull.triangles().len())) as u64
 }
 
@@ -381,8 +398,8 @@ pub(super) fn stored_len(hull: &Hull) -> u64 {
 /// body's mesh is compared with those of the bodies before it, by pointer first, so bodies
 /// sharing an `Arc` cost next to nothing.
 #[derive(Clone, Copy)]
-pub(super) struct HullTable<'a> {
-    bodies: &'a [(FloaterId, Floater)],
+pub(crate) struct HullTable<'a> {
+    bodies: BodyList<'a>,
     /// The first body with a hull: scans start there.
     start: usize,
     /// Distinct meshes.
@@ -392,8 +409,8 @@ pub(super) struct HullTable<'a> {
 }
 
 impl<'a> HullTable<'a> {
-    pub fn of(bodies: &'a [(FloaterId, Floater)]) -> Self {
-        let start = bodies.iter().position(|(_, b)| hull_of(b).is_some());
+    fn of(bodies: BodyList<'a>) -> Self {
+        let start = (0..bodies.len()).position(|k| hull_of(bodies.body(k)).is_some());
         let mut table = HullTable {
             bodies,
             start: start.unwrap_or(bodies.len()),
@@ -408,15 +425,15 @@ impl<'a> HullTable<'a> {
     }
 
     /// The distinct meshes in the order they are stored.
-    pub fn distinct(self) -> impl Iterator<Item = &'a Hull> {
+    fn distinct(self) -> impl Iterator<Item = &'a Hull> {
         (self.start..self.bodies.len()).filter_map(move |i| {
-            let hull = hull_of(&self.bodies[i].1)?;
+            let hull = hull_of(self.bodies.body(i))?;
             (self.first_use(hull, i) == i).then_some(&**hull)
         })
     }
 
     /// The index in the hull section of `hull`, the mesh of a body of the list.
-    pub fn index(self, hull: &Hull) -> u32 {
+    fn index(self, hull: &Hull) -> u32 {
         let earlier = self.distinct().take_while(|&h| !same_hull(h, hull));
         earlier.count() as u32
     }
@@ -424,7 +441,202 @@ impl<'a> HullTable<'a> {
     /// The first body, at most `k`, whose mesh is `hull` (`k` if none before it).
     fn first_use(self, hull: &Hull, k: usize) -> usize {
         (self.start..k)
-            .find(|&i| hull_of(&self.bodies[i].1).is_some_and(|h| same_hull(h, hull)))
+            .find(|&i| hull_of(self.bodies.body(i)).is_some_and(|h| same_hull(h, hull)))
             .unwrap_or(k)
     }
+}
+
+/// The bodies the section writes: a surface's records or a snapshot's list.
+#[derive(Clone, Copy)]
+pub(crate) enum BodyList<'a> {
+    Records(&'a [Record]),
+    Pairs(&'a [(FloaterId, Floater)]),
+}
+
+impl<'a> BodyList<'a> {
+    fn len(self) -> usize {
+        match self {
+            BodyList::Records(r) => r.len(),
+            BodyList::Pairs(p) => p.len(),
+        }
+    }
+
+    fn id(self, k: usize) -> FloaterId {
+        match self {
+            BodyList::Records(r) => r[k].id,
+            BodyList::Pairs(p) => p[k].0,
+        }
+    }
+
+    fn body(self, k: usize) -> &'a Floater {
+        match self {
+            BodyList::Records(r) => &r[k].body,
+            BodyList::Pairs(p) => &p[k].1,
+        }
+    }
+}
+
+/// The bodies' section as the encoder writes it, borrowed: the bodies, the distinct hull
+/// meshes they hold, and the water column's entries (sorted by node).
+#[derive(Clone, Copy)]
+pub(crate) struct Section<'a> {
+    bodies: BodyList<'a>,
+    hulls: HullTable<'a>,
+    column: &'a [Entry],
+}
+
+impl<'a> Section<'a> {
+    /// The section of `bodies` and the water column's `column`.
+    pub fn of(bodies: BodyList<'a>, column: &'a [Entry]) -> Self {
+        Section {
+            bodies,
+            hulls: HullTable::of(bodies),
+            column,
+        }
+    }
+
+    /// How many bodies the section holds.
+    pub fn bodies(&self) -> usize {
+        self.bodies.len()
+    }
+
+    /// How many distinct hull meshes it stores, and in how many bytes.
+    pub fn hulls(&self) -> (u64, u64) {
+        (self.hulls.count, self.hulls.bytes)
+    }
+
+    /// How many entries of the water column it stores.
+    pub fn column(&self) -> u64 {
+        self.column.len() as u64
+    }
+
+    /// Sends the section to `sink`: each body's record, each distinct hull mesh (its vertex
+    /// and triangle counts as `u32`, its vertices, its triangles), each entry of the
+    /// column (its node as `u64`, the load it carries, the load waiting).
+    pub fn write(&self, sink: &mut impl Sink) {
+        // Bodies that share a mesh usually come in runs: the last one found is tried first.
+        let mut last: Option<(&Hull, u32)> = None;
+        for k in 0..self.bodies.len() {
+            let body = self.bodies.body(k);
+            sink.state(&self.bodies.id(k).0.to_le_bytes());
+            let (shape, size): (u32, [f32; 3]) = match &body.shape {
+                Shape::Sphere { radius } => (0, [*radius, 0.0, 0.0]),
+                Shape::Box { half_extents } => (1, half_extents.to_array()),
+                Shape::Hull(_) => (HULL, [0.0; 3]),
+            };
+            sink.state(&shape.to_le_bytes());
+            floats(sink, &size);
+            floats(sink, &[body.mass, body.drag]);
+            for v in [body.position, body.velocity, body.push, body.water_force] {
+                floats(sink, &v.to_array());
+            }
+            floats(sink, &body.orientation.to_array());
+            for v in [body.angular_velocity, body.push_torque, body.water_torque] {
+                floats(sink, &v.to_array());
+            }
+            let hull = hull_of(body).map_or(0, |hull| match last {
+                Some((h, index)) if std::ptr::eq(h, &**hull) => index,
+                _ => {
+                    let index = self.hulls.index(hull);
+                    last = Some((hull, index));
+                    index
+                }
+            });
+            sink.state(&hull.to_le_bytes());
+            let (flag, inertia) = match body.inertia {
+                Some(i) => (1u32, i.to_cols_array()),
+                None => (0, [0.0; 9]),
+            };
+            sink.state(&flag.to_le_bytes());
+            floats(sink, &inertia);
+        }
+        for hull in self.hulls.distinct() {
+            let (vertices, triangles) = (hull.vertices(), hull.triangles());
+            words(sink, &[vertices.len() as u32, triangles.len() as u32]);
+            floats(sink, bytemuck::cast_slice(vertices));
+            words(sink, bytemuck::cast_slice(triangles));
+        }
+        for e in self.column {
+            sink.state(&(e.node as u64).to_le_bytes());
+            floats(sink, &e.carried);
+            floats(sink, &e.pending);
+        }
+    }
+}
+
+/// The water column's entries, from version 7 (after the bodies), borrowed; their count
+/// was checked against the total length.
+#[derive(Clone, Copy)]
+pub(crate) struct ColumnBytes<'a>(&'a [u8]);
+
+impl<'a> ColumnBytes<'a> {
+    /// No entries (versions before 7).
+    pub const NONE: ColumnBytes<'static> = ColumnBytes(&[]);
+
+    /// The next `entries` entries of `r`.
+    pub fn read(r: &mut Reader<'a>, entries: usize) -> Self {
+        ColumnBytes(r.take(entries * PER_COLUMN_ENTRY))
+    }
+
+    /// Decodes the entries into `out` (cleared first, its capacity reused).
+    pub fn decode_into(self, out: &mut Vec<Entry>) {
+        out.clear();
+        out.extend(self.0.chunks_exact(PER_COLUMN_ENTRY).map(|e| {
+            let mut r = Reader::new(e);
+            let node = r.u64() as usize;
+            let carried = [(); 3].map(|_| r.f32());
+            let pending = [(); 3].map(|_| r.f32());
+            Entry::stored(node, carried, pending)
+        }));
+    }
+}
+
+/// Decoded bodies a surface can take: the world is valid; each body is valid and fits a
+/// lattice of `spacing`; ids increase and stay below `next_id`.
+pub(crate) fn check_bodies(
+    bodies: &[(FloaterId, Floater)],
+    next_id: u64,
+    buoyancy: Buoyancy,
+    spacing: f32,
+) -> Result<()> {
+    buoyancy
+        .validate()
+        .map_err(|e| bad(format!("buoyancy: {e}")))?;
+    let mut previous = None;
+    for (id, body) in bodies {
+        body.validate()
+            .and_then(|()| floater::check_footprint(&body.shape, spacing))
+            .map_err(|e| bad(format!("floater {}: {e}", id.0)))?;
+        if previous.is_some_and(|p| p >= id.0) || id.0 >= next_id {
+            // (So the next id is above 0 and every stored id below `u64::MAX`.)
+            return Err(bad(format!(
+                "floater {}: ids must increase and stay below the next id {next_id}",
+                id.0
+            )));
+        }
+        previous = Some(id.0);
+    }
+    Ok(())
+}
+
+/// Decoded column entries a surface of `n` nodes can take: their nodes are on the grid
+/// and increase; their loads are finite.
+pub(crate) fn check_column(column: &[Entry], n: usize) -> Result<()> {
+    let mut last = None;
+    for e in column {
+        if e.node >= n || last.is_some_and(|l| l >= e.node) {
+            return Err(bad(format!(
+                "the water column's node {} is off the grid of {n} nodes or out of order",
+                e.node
+            )));
+        }
+        if !e.carried.iter().chain(&e.pending).all(|v| v.is_finite()) {
+            return Err(bad(format!(
+                "the water column's load at node {} is not finite",
+                e.node
+            )));
+        }
+        last = Some(e.node);
+    }
+    Ok(())
 }
