@@ -123,6 +123,7 @@ pub(crate) fn step(
             0.0
         }
     };
+    let ext = state.ext.pending();
     let mut first_bad = None;
     for i in 0..n {
         let (c, r) = grid.coords(i);
@@ -144,7 +145,7 @@ pub(crate) fn step(
                 None => [0.0; 3],
             };
             let mut force = node_force(own, north, west);
-            if let Some(ext) = state.ext.pending() {
+            if let Some(ext) = ext {
                 force += ext[k][i];
             }
             let accel = if free { cfg.accel[k] } else { 0.0 };
