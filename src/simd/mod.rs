@@ -15,10 +15,10 @@
 //! * [`Vector`] is what a kernel is written against: lane arithmetic, masks, the
 //!   neighbour shuffles ([`Vector::east`], [`Vector::west`]), loads, stores and
 //!   non-temporal stores. Its implementations are [`avx2::F32x8`] (one YMM register),
-//!   [`avx512::F32x16`] (one ZMM register, mask registers for masks), a `pair::Pair` of
+//!   [`avx512::F32x16`] (one ZMM register, mask registers for masks), a `halves::Pair` of
 //!   two 128-bit halves written once for SSE2 ([`sse2::F32x8`]) and NEON (`neon::F32x8`,
 //!   on AArch64), each level's file giving its half's intrinsics, one such half alone
-//!   for SIMD128 (`simd128::F32x4`, a `single::Single`, on wasm32 with `+simd128`), and
+//!   for SIMD128 (`simd128::F32x4`, a `halves::Single`, on wasm32 with `+simd128`), and
 //!   [`portable::F32x8`] (plain arrays, for other targets and Miri; one lane,
 //!   [`portable::F32x1`], on wasm32 without `+simd128`). Every operation is a single IEEE operation per lane (add, subtract, multiply,
 //!   divide, square root, compare, select): no fused multiply-add, no approximate
@@ -155,28 +155,18 @@ pub(crate) mod avx2;
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod avx512;
 mod chunks;
+#[cfg(any(
+    target_arch = "x86_64",
+    target_arch = "aarch64",
+    all(target_arch = "wasm32", target_feature = "simd128"),
+))]
+mod halves;
 mod level;
 #[cfg(target_arch = "aarch64")]
 pub(crate) mod neon;
-// (On wasm32 only its `Half` is used: SIMD128 runs a `Single`.)
-#[cfg(any(
-    target_arch = "x86_64",
-    target_arch = "aarch64",
-    all(target_arch = "wasm32", target_feature = "simd128"),
-))]
-#[cfg_attr(target_arch = "wasm32", allow(dead_code))]
-mod pair;
 pub(crate) mod portable;
 #[cfg(all(target_arch = "wasm32", target_feature = "simd128"))]
 pub(crate) mod simd128;
-// SIMD128's vector type; elsewhere built for the lane test only.
-#[cfg(any(
-    target_arch = "x86_64",
-    target_arch = "aarch64",
-    all(target_arch = "wasm32", target_feature = "simd128"),
-))]
-#[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
-mod single;
 #[cfg(target_arch = "x86_64")]
 pub(crate) mod sse2;
 
@@ -263,11 +253,19 @@ pub(crate) trait Vector:
     fn abs(self) -> Self;
 
     /// Per lane `if self > other { self } else { other }`: `maxps` semantics, the second
-    /// operand where either is NaN.
-    fn max(self, other: Self) -> Self;
+    /// operand where either is NaN. A compare and a select unless the level has `maxps`
+    /// itself (ARM's and wasm's own maxima return NaN for a NaN operand and order −0
+    /// below +0).
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        Self::select(self.gt(other), self, other)
+    }
 
     /// Per lane `if self < other { self } else { other }` (`minps` semantics).
-    fn min(self, other: Self) -> Self;
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        Self::select(self.lt(other), self, other)
+    }
 
     /// `self > other` per lane (false where either is NaN).
     fn gt(self, other: Self) -> Self::Mask;
@@ -329,10 +327,16 @@ pub(crate) trait Vector:
     /// # Safety
     ///
     /// `p` is valid for writing `LANES` floats and aligned to `size_of::<Self>()`.
-    unsafe fn stream(p: *mut f32, v: Self);
+    #[inline(always)]
+    unsafe fn stream(p: *mut f32, v: Self) {
+        // SAFETY: the caller's guarantee covers a plain store's.
+        unsafe { Self::store(p, v) }
+    }
 
-    /// Makes this thread's [`Vector::stream`] stores visible before its later stores.
-    fn fence();
+    /// Makes this thread's [`Vector::stream`] stores visible before its later stores
+    /// (nothing to do where they are plain stores).
+    #[inline(always)]
+    fn fence() {}
 
     /// The level whose instruction set this vector type needs.
     const LEVEL: SimdLevel;
@@ -373,6 +377,17 @@ pub(crate) fn align_frame() {
     }
     // Mutable, so that it is a local of the frame rather than a promoted constant.
     std::hint::black_box(&mut Line { _bytes: [0; 64] });
+}
+
+/// The [`Vector::enter`] of a vector type with nothing to enable, whose instruction set
+/// is part of its target's baseline (the portable lanes; pairs and singles of SSE2, NEON
+/// or SIMD128 halves): a function of its own, as every level's entry is, with its frame
+/// aligned.
+#[inline(never)]
+pub(crate) fn baseline_entry<V: Vector, T: Task<V>>(task: T) -> T::Output {
+    debug_assert!(V::LEVEL.is_available());
+    align_frame();
+    task.run()
 }
 
 /// Work done with one vector type `V`, compiled for its instruction set by
@@ -575,8 +590,8 @@ mod tests {
         portable::F32x1::enter(Each(LaneOps));
         // One half of SSE2's or NEON's pairs on its own, as SIMD128 runs its half.
         #[cfg(all(target_arch = "x86_64", not(miri)))]
-        single::Single::<core::arch::x86_64::__m128>::enter(Each(LaneOps));
+        halves::Single::<core::arch::x86_64::__m128>::enter(Each(LaneOps));
         #[cfg(all(target_arch = "aarch64", not(miri)))]
-        single::Single::<core::arch::aarch64::float32x4_t>::enter(Each(LaneOps));
+        halves::Single::<core::arch::aarch64::float32x4_t>::enter(Each(LaneOps));
     }
 }

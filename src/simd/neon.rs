@@ -16,7 +16,7 @@
 //! the second operand. Negation and `abs` only touch the sign bit (`fneg`, `fabs`), as the
 //! x86 levels' `xor`/`andnot` do.
 
-use super::pair::{Half, Pair};
+use super::halves::{Half, Pair};
 use super::SimdLevel;
 use core::arch::aarch64::*;
 

@@ -85,16 +85,6 @@ impl Vector for F32x8 {
     }
 
     #[inline(always)]
-    fn max(self, o: Self) -> Self {
-        Self::select(self.gt(o), self, o)
-    }
-
-    #[inline(always)]
-    fn min(self, o: Self) -> Self {
-        Self::select(self.lt(o), self, o)
-    }
-
-    #[inline(always)]
     fn gt(self, o: Self) -> Mask8 {
         self.test(o, |x, y| x > y)
     }
@@ -175,27 +165,11 @@ impl Vector for F32x8 {
         unsafe { p.cast::<[f32; 8]>().write_unaligned(v.0) }
     }
 
-    #[inline(always)]
-    unsafe fn stream(p: *mut f32, v: Self) {
-        // SAFETY: as `store`.
-        unsafe { Self::store(p, v) }
-    }
-
-    #[inline(always)]
-    fn fence() {}
-
     const LEVEL: SimdLevel = SimdLevel::Portable;
 
     #[inline(always)]
     fn enter<T: Task<Self>>(task: T) -> T::Output {
-        // A function of its own, as the other levels' entries are.
-        #[inline(never)]
-        fn entry<T: Task<F32x8>>(task: T) -> T::Output {
-            debug_assert!(F32x8::LEVEL.is_available());
-            super::align_frame();
-            task.run()
-        }
-        entry(task)
+        super::baseline_entry(task)
     }
 }
 
@@ -272,16 +246,6 @@ impl Vector for F32x1 {
     }
 
     #[inline(always)]
-    fn max(self, o: Self) -> Self {
-        Self::select(self.gt(o), self, o)
-    }
-
-    #[inline(always)]
-    fn min(self, o: Self) -> Self {
-        Self::select(self.lt(o), self, o)
-    }
-
-    #[inline(always)]
     fn gt(self, o: Self) -> Mask1 {
         Mask1(self.0 > o.0)
     }
@@ -350,25 +314,10 @@ impl Vector for F32x1 {
         unsafe { p.write_unaligned(v.0) }
     }
 
-    #[inline(always)]
-    unsafe fn stream(p: *mut f32, v: Self) {
-        // SAFETY: as `store`.
-        unsafe { Self::store(p, v) }
-    }
-
-    #[inline(always)]
-    fn fence() {}
-
     const LEVEL: SimdLevel = SimdLevel::Portable;
 
     #[inline(always)]
     fn enter<T: Task<Self>>(task: T) -> T::Output {
-        // A function of its own, as the other levels' entries are.
-        #[inline(never)]
-        fn entry<T: Task<F32x1>>(task: T) -> T::Output {
-            debug_assert!(F32x1::LEVEL.is_available());
-            task.run()
-        }
-        entry(task)
+        super::baseline_entry(task)
     }
 }

@@ -15,8 +15,7 @@
 //! −0 below +0, where the reference returns the second operand. Negation and `abs` only
 //! touch the sign bit, as the spec defines `fneg`/`fabs`.
 
-use super::pair::Half;
-use super::single::Single;
+use super::halves::{Half, Single};
 use super::SimdLevel;
 use core::arch::wasm32::*;
 

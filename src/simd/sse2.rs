@@ -2,7 +2,7 @@
 //! [`Pair`] of `__m128` halves, which keeps the out-of-order core busy); masks are
 //! all-ones lanes. SSE2 has no blend, so a select is and, and-not, or.
 
-use super::pair::{Half, Pair};
+use super::halves::{Half, Pair};
 use super::SimdLevel;
 use core::arch::x86_64::*;
 

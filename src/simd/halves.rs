@@ -1,21 +1,25 @@
-//! Eight lanes as two four-lane halves: the vector type of the levels built from 128-bit
-//! registers (SSE2, NEON, SIMD128), written once over a [`Half`] that each level's file
-//! implements with its intrinsics.
+//! Lanes as 128-bit halves: the vector types of the levels built from 128-bit registers
+//! (SSE2, NEON, SIMD128), written once over a [`Half`] that each level's file implements
+//! with its intrinsics. SSE2 and NEON run a [`Pair`], eight lanes in two halves: two
+//! independent halves per operation keep an out-of-order core busy (the second half's
+//! operation issues while the first waits on its latency). SIMD128 runs a [`Single`], four
+//! lanes in one half: under a JIT that allocates the registers, the row kernel's values in
+//! four lanes stay in a host CPU's sixteen vector registers where eight lanes in pairs of
+//! them spill, and each kernel is half the code (`docs/performance.md`).
 //!
-//! Every operation of [`Pair`] is its half's operation on the low half, then on the high
-//! half: the same IEEE operation per lane as a level with one wide register, so the same
-//! bits. Two independent halves per operation also keep the core busy: the second half's
-//! operation issues while the first waits on its latency.
+//! Every operation of [`Halves`] is its half's operation on each half in turn, low half
+//! first: the same IEEE operation per lane as a level with one wide register, so the same
+//! bits.
 
-use super::{align_frame, SimdLevel, Task, Vector};
+use super::{baseline_entry, SimdLevel, Task, Vector};
 
-/// Four `f32` lanes in one register, with what [`Pair`] needs of them. Every method is
+/// Four `f32` lanes in one register, with what [`Halves`] needs of them. Every method is
 /// `#[inline(always)]` in every implementation, as [`Vector`]'s are.
 ///
 /// # Safety
 ///
 /// `Self` is 16 bytes of plain data: no padding, every bit pattern valid (so that a
-/// [`Pair`] of them is [`bytemuck::Pod`]).
+/// [`Halves`] of them is [`bytemuck::Pod`]).
 pub(crate) unsafe trait Half: Copy + Send + Sync + std::fmt::Debug + 'static {
     /// A lane mask of four lanes.
     type Mask: Copy + std::fmt::Debug;
@@ -55,7 +59,7 @@ pub(crate) unsafe trait Half: Copy + Send + Sync + std::fmt::Debug + 'static {
     /// Every bit of `m` flipped.
     fn mask_not(m: Self::Mask) -> Self::Mask;
     fn all_lanes() -> Self::Mask;
-    /// Lane `i` on where `first + i < count` (`count ≤ 8`).
+    /// Lane `i` on where `first + i < count`.
     fn lanes_below(first: u32, count: u32) -> Self::Mask;
     /// Whether every lane of `m` is on.
     fn all(m: Self::Mask) -> bool;
@@ -92,37 +96,52 @@ pub(crate) unsafe trait Half: Copy + Send + Sync + std::fmt::Debug + 'static {
     fn fence();
 }
 
-/// Eight `f32` lanes in two [`Half`]s, low half first.
+/// `4 N` `f32` lanes in `N` [`Half`]s, low half first.
 #[derive(Debug, Clone, Copy)]
 #[repr(C)]
-pub(crate) struct Pair<H>([H; 2]);
+pub(crate) struct Halves<H, const N: usize>([H; N]);
 
-// SAFETY: two halves of plain data (`Half`'s contract) in a `repr(C)` array: no padding,
-// every bit pattern valid.
-unsafe impl<H: Half> bytemuck::Zeroable for Pair<H> {}
+/// Eight lanes in two halves: SSE2's and NEON's vector type.
+#[cfg_attr(target_arch = "wasm32", allow(dead_code))]
+pub(crate) type Pair<H> = Halves<H, 2>;
+
+/// Four lanes in one half: SIMD128's vector type (elsewhere built for the lane test
+/// only).
+#[cfg_attr(not(target_arch = "wasm32"), allow(dead_code))]
+pub(crate) type Single<H> = Halves<H, 1>;
+
+// SAFETY: halves of plain data (`Half`'s contract) in a `repr(C)` array: no padding, every
+// bit pattern valid.
+unsafe impl<H: Half, const N: usize> bytemuck::Zeroable for Halves<H, N> {}
 // SAFETY: as above.
-unsafe impl<H: Half> bytemuck::Pod for Pair<H> {}
+unsafe impl<H: Half, const N: usize> bytemuck::Pod for Halves<H, N> {}
 
-/// A lane mask of [`Pair`]: one mask per half.
+/// A lane mask of [`Halves`]: one mask per half.
 #[derive(Debug, Clone, Copy)]
-pub(crate) struct PairMask<H: Half>([H::Mask; 2]);
+pub(crate) struct HalvesMask<H: Half, const N: usize>([H::Mask; N]);
 
-impl<H: Half> Pair<H> {
+impl<H: Half, const N: usize> Halves<H, N> {
+    /// `f` on each half.
+    #[inline(always)]
+    fn map(self, f: impl Fn(H) -> H) -> Self {
+        Self(std::array::from_fn(|i| f(self.0[i])))
+    }
+
     /// `f` on each pair of halves (a half's method: the halves' instruction sets are
     /// part of their targets' baselines, so nothing is lost where it is compiled).
     #[inline(always)]
     fn zip(self, o: Self, f: impl Fn(H, H) -> H) -> Self {
-        Self([f(self.0[0], o.0[0]), f(self.0[1], o.0[1])])
+        Self(std::array::from_fn(|i| f(self.0[i], o.0[i])))
     }
 
     /// The comparison `f` on each pair of halves.
     #[inline(always)]
-    fn test(self, o: Self, f: impl Fn(H, H) -> H::Mask) -> PairMask<H> {
-        PairMask([f(self.0[0], o.0[0]), f(self.0[1], o.0[1])])
+    fn test(self, o: Self, f: impl Fn(H, H) -> H::Mask) -> HalvesMask<H, N> {
+        HalvesMask(std::array::from_fn(|i| f(self.0[i], o.0[i])))
     }
 }
 
-impl<H: Half> core::ops::Add for Pair<H> {
+impl<H: Half, const N: usize> core::ops::Add for Halves<H, N> {
     type Output = Self;
     #[inline(always)]
     fn add(self, o: Self) -> Self {
@@ -130,7 +149,7 @@ impl<H: Half> core::ops::Add for Pair<H> {
     }
 }
 
-impl<H: Half> core::ops::Sub for Pair<H> {
+impl<H: Half, const N: usize> core::ops::Sub for Halves<H, N> {
     type Output = Self;
     #[inline(always)]
     fn sub(self, o: Self) -> Self {
@@ -138,7 +157,7 @@ impl<H: Half> core::ops::Sub for Pair<H> {
     }
 }
 
-impl<H: Half> core::ops::Mul for Pair<H> {
+impl<H: Half, const N: usize> core::ops::Mul for Halves<H, N> {
     type Output = Self;
     #[inline(always)]
     fn mul(self, o: Self) -> Self {
@@ -146,7 +165,7 @@ impl<H: Half> core::ops::Mul for Pair<H> {
     }
 }
 
-impl<H: Half> core::ops::Div for Pair<H> {
+impl<H: Half, const N: usize> core::ops::Div for Halves<H, N> {
     type Output = Self;
     #[inline(always)]
     fn div(self, o: Self) -> Self {
@@ -154,65 +173,61 @@ impl<H: Half> core::ops::Div for Pair<H> {
     }
 }
 
-impl<H: Half> core::ops::Neg for Pair<H> {
+impl<H: Half, const N: usize> core::ops::Neg for Halves<H, N> {
     type Output = Self;
     #[inline(always)]
     fn neg(self) -> Self {
-        Self([self.0[0].neg(), self.0[1].neg()])
+        self.map(H::neg)
     }
 }
 
-impl<H: Half> core::ops::AddAssign for Pair<H> {
+impl<H: Half, const N: usize> core::ops::AddAssign for Halves<H, N> {
     #[inline(always)]
     fn add_assign(&mut self, o: Self) {
         *self = *self + o;
     }
 }
 
-impl<H: Half> core::ops::BitAnd for PairMask<H> {
+impl<H: Half, const N: usize> core::ops::BitAnd for HalvesMask<H, N> {
     type Output = Self;
     #[inline(always)]
     fn bitand(self, o: Self) -> Self {
-        Self([
-            H::mask_and(self.0[0], o.0[0]),
-            H::mask_and(self.0[1], o.0[1]),
-        ])
+        Self(std::array::from_fn(|i| H::mask_and(self.0[i], o.0[i])))
     }
 }
 
-impl<H: Half> core::ops::BitAndAssign for PairMask<H> {
+impl<H: Half, const N: usize> core::ops::BitAndAssign for HalvesMask<H, N> {
     #[inline(always)]
     fn bitand_assign(&mut self, o: Self) {
         *self = *self & o;
     }
 }
 
-impl<H: Half> core::ops::Not for PairMask<H> {
+impl<H: Half, const N: usize> core::ops::Not for HalvesMask<H, N> {
     type Output = Self;
     #[inline(always)]
     fn not(self) -> Self {
-        Self([H::mask_not(self.0[0]), H::mask_not(self.0[1])])
+        Self(self.0.map(H::mask_not))
     }
 }
 
-impl<H: Half> Vector for Pair<H> {
-    const LANES: usize = 8;
-    type Mask = PairMask<H>;
+impl<H: Half, const N: usize> Vector for Halves<H, N> {
+    const LANES: usize = 4 * N;
+    type Mask = HalvesMask<H, N>;
 
     #[inline(always)]
     fn splat(x: f32) -> Self {
-        let h = H::splat(x);
-        Self([h, h])
+        Self([H::splat(x); N])
     }
 
     #[inline(always)]
     fn sqrt(self) -> Self {
-        Self([self.0[0].sqrt(), self.0[1].sqrt()])
+        self.map(H::sqrt)
     }
 
     #[inline(always)]
     fn abs(self) -> Self {
-        Self([self.0[0].abs(), self.0[1].abs()])
+        self.map(H::abs)
     }
 
     #[inline(always)]
@@ -242,68 +257,67 @@ impl<H: Half> Vector for Pair<H> {
 
     #[inline(always)]
     fn select(m: Self::Mask, a: Self, b: Self) -> Self {
-        Self([
-            H::select(m.0[0], a.0[0], b.0[0]),
-            H::select(m.0[1], a.0[1], b.0[1]),
-        ])
+        Self(std::array::from_fn(|i| H::select(m.0[i], a.0[i], b.0[i])))
     }
 
     #[inline(always)]
     fn all_lanes() -> Self::Mask {
-        let h = H::all_lanes();
-        PairMask([h, h])
+        HalvesMask([H::all_lanes(); N])
     }
 
     #[inline(always)]
     fn first_lanes(count: usize) -> Self::Mask {
-        let n = count.min(8) as u32;
-        PairMask([H::lanes_below(0, n), H::lanes_below(4, n)])
+        let n = count.min(Self::LANES) as u32;
+        HalvesMask(std::array::from_fn(|i| H::lanes_below(4 * i as u32, n)))
     }
 
     #[inline(always)]
     fn all(m: Self::Mask) -> bool {
-        H::all(H::mask_and(m.0[0], m.0[1]))
+        let both = m.0.into_iter().reduce(H::mask_and);
+        H::all(both.expect("at least one half"))
     }
 
     #[inline(always)]
     fn any_nan(self) -> bool {
-        self.0[0].any_nan() | self.0[1].any_nan()
+        self.0.iter().fold(false, |any, h| any | h.any_nan())
     }
 
     #[inline(always)]
     fn east(lo: Self, hi: Self) -> Self {
-        let ([a, b], [c, _]) = (lo.0, hi.0);
-        Self([H::east(a, b), H::east(b, c)])
+        // Half `i` with the first lane of the half after it.
+        Self(std::array::from_fn(|i| {
+            H::east(lo.0[i], if i + 1 < N { lo.0[i + 1] } else { hi.0[0] })
+        }))
     }
 
     #[inline(always)]
     fn west(lo: Self, hi: Self) -> Self {
-        let ([_, b], [c, d]) = (lo.0, hi.0);
-        Self([H::west(b, c), H::west(c, d)])
+        // Half `i` of `hi` with the last lane of the half before it.
+        Self(std::array::from_fn(|i| {
+            H::west(if i == 0 { lo.0[N - 1] } else { hi.0[i - 1] }, hi.0[i])
+        }))
     }
 
     #[inline(always)]
     unsafe fn load(p: *const f32) -> Self {
-        // SAFETY: the caller guarantees `p` is readable for 8 floats.
-        unsafe { Self([H::load(p), H::load(p.add(4))]) }
+        // SAFETY: the caller guarantees `p` is readable for `4 N` floats.
+        Self(std::array::from_fn(|i| unsafe { H::load(p.add(4 * i)) }))
     }
 
     #[inline(always)]
     unsafe fn store(p: *mut f32, v: Self) {
-        // SAFETY: the caller guarantees `p` is writable for 8 floats.
-        unsafe {
-            H::store(p, v.0[0]);
-            H::store(p.add(4), v.0[1]);
+        for (i, h) in v.0.into_iter().enumerate() {
+            // SAFETY: the caller guarantees `p` is writable for `4 N` floats.
+            unsafe { H::store(p.add(4 * i), h) }
         }
     }
 
     #[inline(always)]
     unsafe fn stream(p: *mut f32, v: Self) {
-        // SAFETY: the caller guarantees `p` is writable for 8 floats and 32-byte aligned,
-        // so each half is 16-byte aligned.
-        unsafe {
-            H::stream(p, v.0[0]);
-            H::stream(p.add(4), v.0[1]);
+        for (i, h) in v.0.into_iter().enumerate() {
+            // SAFETY: the caller guarantees `p` is writable for `4 N` floats and aligned
+            // to `16 N` bytes, so each half is 16-byte aligned.
+            unsafe { H::stream(p.add(4 * i), h) }
         }
     }
 
@@ -316,14 +330,6 @@ impl<H: Half> Vector for Pair<H> {
 
     #[inline(always)]
     fn enter<T: Task<Self>>(task: T) -> T::Output {
-        // A function of its own, as every level's entry is. (The halves' instruction sets
-        // are part of their targets' baselines: nothing to enable.)
-        #[inline(never)]
-        fn entry<H: Half, T: Task<Pair<H>>>(task: T) -> T::Output {
-            debug_assert!(H::LEVEL.is_available());
-            align_frame();
-            task.run()
-        }
-        entry::<H, T>(task)
+        baseline_entry(task)
     }
 }
