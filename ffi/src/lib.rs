@@ -75,11 +75,17 @@ mod floaters;
 // owns.
 mod bodies;
 
+// Hulls the library makes (a box, the boat, a hull on its centroid) and reads.
+mod hulls;
+
+// Rain and wakes as handles, applied before every substep of a frame.
+mod disturb;
+
 // The host's job system.
 mod jobs;
 
-// For WebAssembly hosts only (the npm package in web/): buffers and disturbances. Not in
-// the header.
+// For WebAssembly hosts only (the npm package in web/): buffers, and rain and wakes by
+// number. Not in the header.
 #[cfg(target_family = "wasm")]
 mod wasm;
 
@@ -95,10 +101,12 @@ mod status;
 
 pub use bodies::*;
 pub use buffers::*;
+pub use disturb::*;
 pub use engine::*;
 pub use errors::*;
 pub use floaters::*;
 pub use handle::SwSurface;
+pub use hulls::*;
 pub use jobs::*;
 pub use lattice::*;
 pub use params::*;
