@@ -5,6 +5,7 @@
 //! several, one after the other.
 
 use crate::handle::{self, Registry, SwSurface};
+use crate::params::finite_positive;
 use crate::ptr::{in_slice, optional, out_array, out_ref};
 use crate::status::{
     guard, Failure, Outcome, SwStatus, SW_ERROR_BUSY, SW_ERROR_INTERNAL, SW_ERROR_INVALID_HANDLE,
@@ -70,16 +71,6 @@ pub(crate) fn rain_rate(rate: f32) -> Outcome {
     } else {
         Err(Failure::invalid(format!(
             "rain rate is {rate}, expected a finite number of drops per second, at least 0"
-        )))
-    }
-}
-
-pub(crate) fn finite_positive(what: &str, value: f32) -> Outcome {
-    if value.is_finite() && value > 0.0 {
-        Ok(())
-    } else {
-        Err(Failure::invalid(format!(
-            "{what} is {value}, expected a finite number > 0"
         )))
     }
 }

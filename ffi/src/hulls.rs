@@ -4,6 +4,7 @@
 //! `SwHull *`, freed with `sw_hull_destroy` like one from `sw_hull_create`.
 
 use crate::bodies::{hull_of, SwHull, HULLS};
+use crate::params::finite_positive;
 use crate::ptr::{input, out_array, out_buffer, out_ref, Input};
 use crate::status::{guard, Outcome, SwStatus};
 use springwater::body::{BoatShape, Hull};
@@ -80,8 +81,8 @@ pub unsafe extern "C" fn sw_hull_boat(
 }
 
 /// A box hull of half extents `(half_x, half_y, half_z)` centred on the origin (8
-/// vertices, 12 triangles), written to `out` as a new handle. Sizes that make no valid
-/// hull (not finite, not positive, past 1e9) are `SW_ERROR_INVALID_ARGUMENT`.
+/// vertices, 12 triangles), written to `out` as a new handle. Each half extent must be
+/// finite and above 0, and at most 1e9, or the call is `SW_ERROR_INVALID_ARGUMENT`.
 ///
 /// # Safety
 ///
@@ -95,6 +96,9 @@ pub unsafe extern "C" fn sw_hull_cuboid(
 ) -> SwStatus {
     guard(|| {
         let out = out_ref(out, "out")?;
+        for (what, v) in [("half_x", half_x), ("half_y", half_y), ("half_z", half_z)] {
+            finite_positive(what, v)?;
+        }
         keep(Hull::cuboid([half_x, half_y, half_z]), out)
     })
 }

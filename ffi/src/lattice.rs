@@ -303,9 +303,9 @@ pub extern "C" fn sw_surface_add_velocity(
 
 /// Replaces every node's force for the next step with `xyz[0..3·nodes]`, interleaved
 /// `x, y, z`, row-major (`len`, in floats, at least `3 · nodes`), in the lattice's force
-/// units like `sw_surface_add_force`: what was added before is replaced, what the water
-/// column under floating bodies carries stays. Every value must be finite; a refused call
-/// changes nothing.
+/// units like `sw_surface_add_force`: what was added before is replaced (the water's share
+/// of `sw_surface_body_forces`, kept apart, stays). Every value must be finite; a refused
+/// call changes nothing.
 ///
 /// # Safety
 ///
@@ -329,7 +329,8 @@ pub unsafe extern "C" fn sw_surface_set_forces(
 
 /// Writes every node's force waiting for the next step, interleaved `x, y, z`, row-major,
 /// in the lattice's force units: what `sw_surface_add_force`, `sw_surface_add_force_at`
-/// and `sw_surface_set_forces` put there. `len` is in floats and must be at least
+/// and `sw_surface_set_forces` put there (not the water's share of
+/// `sw_surface_body_forces`, which is kept apart). `len` is in floats and must be at least
 /// `3 · nodes`.
 ///
 /// # Safety

@@ -421,6 +421,17 @@ pub(crate) fn simd_level(code: SwSimdLevel) -> Outcome<SimdLevel> {
     }
 }
 
+/// Fails unless `value` is finite and above 0, naming it `what`.
+pub(crate) fn finite_positive(what: &str, value: f32) -> Outcome {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(Failure::invalid(format!(
+            "{what} is {value}, expected a finite number > 0"
+        )))
+    }
+}
+
 pub(crate) fn finite_eye(x: f32, y: f32, z: f32) -> Outcome<glam::Vec3> {
     let eye = glam::Vec3::new(x, y, z);
     if eye.is_finite() {

@@ -7,8 +7,9 @@
 //! hand out (or freeing twice) is a no-op instead of undefined behaviour, and no `unsafe`
 //! code is needed here.
 
-use crate::disturb::{finite_positive, rain, rain_rate, Disturb};
+use crate::disturb::{rain, rain_rate, Disturb};
 use crate::handle::{self, SwSurface};
+use crate::params::finite_positive;
 use crate::ptr::{in_slice, out_ref};
 use crate::status::{guard, Failure, SwStatus};
 use springwater::disturb::Wake;
