@@ -907,9 +907,9 @@ SwStatus sw_surface_add_velocity(struct SwSurface *surface,
 
 // Replaces every node's force for the next step with `xyz[0..3·nodes]`, interleaved
 // `x, y, z`, row-major (`len`, in floats, at least `3 · nodes`), in the lattice's force
-// units like `sw_surface_add_force`: what was added before is replaced, what the water
-// column under floating bodies carries stays. Every value must be finite; a refused call
-// changes nothing.
+// units like `sw_surface_add_force`: what was added before is replaced (the water's share
+// of `sw_surface_body_forces`, kept apart, stays). Every value must be finite; a refused
+// call changes nothing.
 //
 // # Safety
 //
@@ -918,7 +918,8 @@ SwStatus sw_surface_set_forces(struct SwSurface *surface, const float *xyz, size
 
 // Writes every node's force waiting for the next step, interleaved `x, y, z`, row-major,
 // in the lattice's force units: what `sw_surface_add_force`, `sw_surface_add_force_at`
-// and `sw_surface_set_forces` put there. `len` is in floats and must be at least
+// and `sw_surface_set_forces` put there (not the water's share of
+// `sw_surface_body_forces`, which is kept apart). `len` is in floats and must be at least
 // `3 · nodes`.
 //
 // # Safety
@@ -1439,8 +1440,8 @@ struct SwBoatShape sw_boat_shape_default(void);
 SwStatus sw_hull_boat(const struct SwBoatShape *shape, struct SwHull **out);
 
 // A box hull of half extents `(half_x, half_y, half_z)` centred on the origin (8
-// vertices, 12 triangles), written to `out` as a new handle. Sizes that make no valid
-// hull (not finite, not positive, past 1e9) are `SW_ERROR_INVALID_ARGUMENT`.
+// vertices, 12 triangles), written to `out` as a new handle. Each half extent must be
+// finite and above 0, and at most 1e9, or the call is `SW_ERROR_INVALID_ARGUMENT`.
 //
 // # Safety
 //

@@ -12,8 +12,9 @@
 //!
 //! ## Conventions
 //!
-//! * **Handles.** A `SwSurface *` (and a hull's `SwHull *`) is opaque and never
-//!   dereferenced by the library: it is a key into a table of live surfaces (hulls).
+//! * **Handles.** A `SwSurface *` (and a hull's `SwHull *`, a rain's or a wake's
+//!   `SwDisturbance *`) is opaque and never dereferenced by the library: it is a key into a
+//!   table of live surfaces (hulls, disturbances).
 //!   NULL, destroyed and made-up handles give `SW_ERROR_INVALID_HANDLE` (or
 //!   `SW_ERROR_NULL_POINTER`), never a crash. Different
 //!   surfaces may be used from different threads at once; calls on one surface must not
