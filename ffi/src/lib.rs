@@ -35,8 +35,10 @@
 //!   times, velocities (per second), the uniform acceleration and the buoyancy's gravity
 //!   (per second²), floating bodies' state and forces. `SwParams`' lattice constants
 //!   (`mass`, `stiffness`, `viscosity`, `dt`) are in model time, and `time_scale` converts;
-//!   forces pushed into the water (`sw_surface_add_force_at`) are in the lattice's force
-//!   units. The same as the Rust API (docs/units.md).
+//!   so is the lattice's state node by node: forces pushed into the water
+//!   (`sw_surface_add_force_at`, `sw_surface_set_forces`) are in the lattice's force units,
+//!   every node's velocity (`sw_surface_write_velocities`) per unit of model time. The same
+//!   as the Rust API (docs/units.md).
 
 #![deny(unsafe_op_in_unsafe_fn)]
 
