@@ -10,6 +10,10 @@
 // still take: see `SwFloater`.
 #define SW_FLOATER_SIZE_V1 80
 
+// Rain or a wake (opaque). Make one with `sw_rain_create`, `sw_wake_create` or
+// `sw_wake_circle`, free it with `sw_disturbance_destroy`.
+typedef struct SwDisturbance SwDisturbance;
+
 // A closed triangle mesh for floating bodies (opaque). Create it with `sw_hull_create`,
 // free it with `sw_hull_destroy`.
 typedef struct SwHull SwHull;
@@ -254,6 +258,29 @@ typedef struct SwBodyForces {
   float torque[3];
 } SwBodyForces;
 
+// The dimensions and resolution of the procedural boat (`sw_hull_boat`);
+// `sw_boat_shape_default()` gives the defaults. Body frame: the bow points to +x, y is
+// up, starboard is +z, the origin on the keel amidships (`sw_hull_centred` moves it onto
+// the centroid); a displacement hull with a flat transom, a sharp stem, round bilges
+// amidships that sharpen forward and a sheer that rises to the bow.
+// `4 · stations · segments + 2 · stations + 2 · segments` triangles.
+typedef struct SwBoatShape {
+  // `sizeof(SwBoatShape)`, set by `sw_boat_shape_default()`: calls that read the struct
+  // refuse any other value (a struct not started from it, or built with a header of
+  // another version than the library's).
+  uint32_t struct_size;
+  // Length overall, transom to stem, world units (> 0; default 6).
+  float length;
+  // Greatest beam, world units (> 0; default 2).
+  float beam;
+  // Depth from the keel to the deck amidships, world units (> 0; default 1).
+  float depth;
+  // Cross-sections from the transom to the stem (2 to 1024; default 40).
+  uint32_t stations;
+  // Edges per side of each cross-section (2 to 1024; default 12).
+  uint32_t segments;
+} SwBoatShape;
+
 // Runs items `start` to `end − 1` of a task. `task_context` is the pointer the library
 // passed to `enqueue_task`; pass it back unchanged.
 typedef void (*SwTaskFn)(uint32_t start, uint32_t end, void *task_context);
@@ -439,6 +466,44 @@ SwStatus sw_params_critical_dt(const struct SwParams *params, float *out);
 // `params` and `out` are NULL or valid pointers.
 SwStatus sw_params_linear_dt_limit(const struct SwParams *params, float *out);
 
+// Writes to `out` how fast ripples travel on a surface of `params`, world units per
+// second: `time_scale · spacing · sqrt(3c (1 − rest_ratio) / m)`. `params` is checked as
+// for `sw_params_critical_dt`.
+//
+// # Safety
+//
+// `params` and `out` are NULL or valid pointers.
+SwStatus sw_params_ripple_speed(const struct SwParams *params, float *out);
+
+// Sets `params->time_scale` so that ripples travel `speed` world units per second (finite
+// and above 0), leaving every other field as it is. `params` is checked as for
+// `sw_params_critical_dt`; refused (`SW_ERROR_INVALID_ARGUMENT`, the struct unchanged) when
+// the speed is not finite and positive, when the other fields give ripples no speed to
+// scale (`rest_ratio` 1), or when the time scale it needs is out of range.
+//
+// # Safety
+//
+// `params` is NULL or a valid pointer.
+SwStatus sw_params_set_ripple_speed(struct SwParams *params, float speed);
+
+// Writes to `out` the most levels `params->patch_cells` allows, `log2(patch_cells) + 1`:
+// the largest `levels` `sw_surface_set_lod_params` takes with it. The other fields but
+// `levels` are checked as `sw_surface_set_lod_params` checks them.
+//
+// # Safety
+//
+// `params` and `out` are NULL or valid pointers.
+SwStatus sw_lod_params_max_levels(const struct SwLodParams *params, uint32_t *out);
+
+// Writes to `out` Schlick's reflectance at normal incidence of the water in `refraction`,
+// `((ior − 1) / (ior + 1))²`: the `R0` of a shader's Fresnel term. `refraction` is checked
+// as `sw_surface_write_refraction_uvs` checks it.
+//
+// # Safety
+//
+// `refraction` and `out` are NULL or valid pointers.
+SwStatus sw_refraction_r0(const struct SwRefraction *refraction, float *out);
+
 // A static NUL-terminated name for a SIMD level (`"scalar"`, `"sse2"`, `"avx2"`,
 // `"avx512"`, `"portable"`, `"neon"`, `"simd128"`), or `"unknown"`.
 const char *sw_simd_level_name(SwSimdLevel level);
@@ -484,6 +549,36 @@ SwStatus sw_surface_node_count(const struct SwSurface *surface, size_t *out);
 //
 // `substeps` is NULL or a valid pointer.
 SwStatus sw_surface_advance(struct SwSurface *surface, float frame_time, uint32_t *substeps);
+
+// Advances the water by one frame of `frame_time` seconds (finite, at least 0) in equal
+// substeps of *variable* length, never longer than `dt` (`sw_surface_split_frame` says how
+// many and how long): every frame ends exactly on the caller's clock, at the price of
+// results that depend on how the time is cut into frames. It leaves
+// `sw_surface_advance`'s accumulator as it is. A frame of more than 10000 steps is
+// `SW_ERROR_INVALID_ARGUMENT` and changes nothing. Writes the number of substeps to
+// `substeps` (optional, may be NULL). A failing step stops the frame there, earlier
+// steps stay applied.
+//
+// # Safety
+//
+// `substeps` is NULL or a valid pointer.
+SwStatus sw_surface_advance_variable(struct SwSurface *surface,
+                                     float frame_time,
+                                     uint32_t *substeps);
+
+// How `sw_surface_advance_variable` would cut a frame of `frame_time` seconds, without
+// taking it: the number of equal substeps to `substeps` and the length of each, in
+// seconds of the caller's clock, to `substep_seconds` (never longer than one step of
+// `dt`). Either may be NULL. A frame of more than 10000 steps, or a `frame_time` not
+// finite and at least 0, is `SW_ERROR_INVALID_ARGUMENT`, and nothing is written.
+//
+// # Safety
+//
+// `substeps` and `substep_seconds` are NULL or valid pointers.
+SwStatus sw_surface_split_frame(const struct SwSurface *surface,
+                                float frame_time,
+                                uint32_t *substeps,
+                                float *substep_seconds);
 
 // Sets the most steps one `sw_surface_advance` call takes (1 to 10000; 16 by default)
 // and what happens to the steps a longer frame owes: `carry` 0 drops them (the water falls
@@ -810,6 +905,34 @@ SwStatus sw_surface_add_velocity(struct SwSurface *surface,
                                  float dvy,
                                  float dvz);
 
+// Replaces every node's force for the next step with `xyz[0..3·nodes]`, interleaved
+// `x, y, z`, row-major (`len`, in floats, at least `3 · nodes`), in the lattice's force
+// units like `sw_surface_add_force`: what was added before is replaced (the water's share
+// of `sw_surface_body_forces`, kept apart, stays). Every value must be finite; a refused
+// call changes nothing.
+//
+// # Safety
+//
+// `xyz` is NULL or points to `len` floats.
+SwStatus sw_surface_set_forces(struct SwSurface *surface, const float *xyz, size_t len);
+
+// Writes every node's force waiting for the next step, interleaved `x, y, z`, row-major,
+// in the lattice's force units: what `sw_surface_add_force`, `sw_surface_add_force_at`
+// and `sw_surface_set_forces` put there (not the water's share of
+// `sw_surface_body_forces`, which is kept apart). `len` is in floats and must be at least
+// `3 · nodes`.
+//
+// # Safety
+//
+// `xyz` is NULL or points to `len` writable floats.
+SwStatus sw_surface_write_forces(const struct SwSurface *surface, float *xyz, size_t len);
+
+// Sets the uniform acceleration on every free node (gravity, wind), world units per
+// second², as `SwParams::acceleration_*` sets it at creation (`sw_surface_params` reads it
+// back). A component that is not finite is `SW_ERROR_INVALID_ARGUMENT` and changes
+// nothing.
+SwStatus sw_surface_set_acceleration(struct SwSurface *surface, float ax, float ay, float az);
+
 // Writes every node's position, interleaved `x, y, z`, row-major (node `(col, row)` at
 // `3·(row·cols + col)`). `len` is in floats and must be at least `3 · nodes`.
 //
@@ -817,6 +940,16 @@ SwStatus sw_surface_add_velocity(struct SwSurface *surface,
 //
 // `xyz` is NULL or points to `len` writable floats.
 SwStatus sw_surface_write_positions(const struct SwSurface *surface, float *xyz, size_t len);
+
+// Writes every node's velocity, interleaved `x, y, z`, row-major, as the lattice holds it:
+// world units per unit of *model time* (like `sw_surface_add_velocity`; multiply by
+// `time_scale` for per second, as `sw_surface_velocity_at` gives it). `len` is in floats
+// and must be at least `3 · nodes`.
+//
+// # Safety
+//
+// `xyz` is NULL or points to `len` writable floats.
+SwStatus sw_surface_write_velocities(const struct SwSurface *surface, float *xyz, size_t len);
 
 // Computes every node's unit normal and writes them interleaved `x, y, z`, row-major.
 // `len` is in floats and must be at least `3 · nodes`.
@@ -886,6 +1019,69 @@ SwStatus sw_surface_lod_indices(const struct SwSurface *surface,
                                 uint32_t *indices,
                                 size_t len,
                                 size_t *count);
+
+// Writes the LOD parameters the surface's index buffer is built with to `out`, whose
+// `struct_size` must be `sizeof(SwLodParams)` (start it from `sw_lod_params_default()`):
+// the defaults, or what `sw_surface_set_lod_params` set.
+//
+// # Safety
+//
+// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+// initialised.
+SwStatus sw_surface_lod_params(const struct SwSurface *surface, struct SwLodParams *out);
+
+// Writes the LOD mesh's patches `[across, down]` to `out[0..2]`:
+// `ceil((cols − 1) / patch_cells)` and `ceil((rows − 1) / patch_cells)` once the mesh is
+// built, `[0, 0]` before the first `sw_surface_update_lod` or `sw_surface_set_lod_levels`
+// (and after `sw_surface_set_lod_params`).
+//
+// # Safety
+//
+// `out` is NULL or points to 2 writable `size_t`.
+SwStatus sw_surface_lod_patch_grid(const struct SwSurface *surface, size_t *out);
+
+// Copies the level of each patch (0 is full detail), row-major over
+// `sw_surface_lod_patch_grid`, to `levels` and writes their number to `count`. With
+// `levels` NULL only `count` is written; a `len` smaller than the number of patches is
+// `SW_ERROR_BUFFER_TOO_SMALL`, with `count` still written.
+//
+// # Safety
+//
+// `levels` is NULL or points to `len` writable bytes; `count` is NULL or valid.
+SwStatus sw_surface_lod_patch_levels(const struct SwSurface *surface,
+                                     uint8_t *levels,
+                                     size_t len,
+                                     size_t *count);
+
+// Copies the LOD level of each triangle of the index buffer (one per triangle, in its
+// order: for colouring a wireframe) to `levels` and writes their number to `count`. With
+// `levels` NULL only `count` is written; a `len` smaller than the number of triangles is
+// `SW_ERROR_BUFFER_TOO_SMALL`, with `count` still written.
+//
+// # Safety
+//
+// `levels` is NULL or points to `len` writable bytes; `count` is NULL or valid.
+SwStatus sw_surface_lod_triangle_levels(const struct SwSurface *surface,
+                                        uint8_t *levels,
+                                        size_t len,
+                                        size_t *count);
+
+// Builds the LOD index buffer from levels the caller chose, one per patch, row-major
+// (for a renderer with its own error metric, or to force full detail), instead of from an
+// eye: `levels[0..len]` with `len` exactly the number of patches,
+// `ceil((cols − 1) / patch_cells) · ceil((rows − 1) / patch_cells)`; another length is
+// `SW_ERROR_BUFFER_TOO_SMALL` and changes nothing. Levels past the last are taken as the
+// last, then neighbours are kept within one level and stitched as `sw_surface_update_lod`
+// does, whose hysteresis then starts from them. Writes 1 to `changed` (optional) if the
+// index buffer was rebuilt, 0 if it still holds.
+//
+// # Safety
+//
+// `levels` is NULL or points to `len` bytes; `changed` is NULL or a valid pointer.
+SwStatus sw_surface_set_lod_levels(struct SwSurface *surface,
+                                   const uint8_t *levels,
+                                   size_t len,
+                                   SwBool *changed);
 
 // Writes a snapshot of the whole state (a versioned binary format with a checksum) to
 // `buf` and its size in bytes to `size`. With `buf` NULL only `size` is written; a `len`
@@ -1080,6 +1276,30 @@ SwStatus sw_surface_get_buoyancy(const struct SwSurface *surface, struct SwBuoya
 // `buoyancy` is NULL or a valid pointer.
 SwStatus sw_surface_set_buoyancy(struct SwSurface *surface, const struct SwBuoyancy *buoyancy);
 
+// Writes to `out[0..3]` the world velocity of the body's point at world `(x, y, z)`,
+// world units per second: `velocity + angular_velocity × (point − position)`. Only those
+// three fields of `floater` count (a body of any shape, `SW_SHAPE_HULL` too, read back
+// from `sw_surface_floater` or kept in the caller's engine); they and the point must be
+// finite, or the call is `SW_ERROR_INVALID_ARGUMENT` and writes nothing.
+//
+// # Safety
+//
+// `floater` is NULL or a valid pointer; `out` is NULL or points to 3 writable floats.
+SwStatus sw_floater_velocity_at(const struct SwFloater *floater,
+                                float x,
+                                float y,
+                                float z,
+                                float *out);
+
+// Writes to `out` the distance from a sphere's or a box's centre to its farthest point,
+// world units: the radius of a ball that holds the body in any orientation. The body is
+// checked as `sw_surface_add_floater` checks it; a hull's is `sw_hull_bounding_radius`.
+//
+// # Safety
+//
+// `floater` and `out` are NULL or valid pointers.
+SwStatus sw_floater_bounding_radius(const struct SwFloater *floater, float *out);
+
 // An empty `SwBodyForces` with its size set, for `sw_surface_body_forces` to fill.
 struct SwBodyForces sw_body_forces_default(void);
 
@@ -1206,6 +1426,178 @@ SwStatus sw_surface_hull_body_forces(struct SwSurface *surface,
                                      const struct SwFloater *floater,
                                      float seconds,
                                      struct SwBodyForces *out);
+
+// The library's default boat: 6 long, 2 wide, 1 deep, 40 stations of 12 edges a side
+// (2,024 triangles).
+struct SwBoatShape sw_boat_shape_default(void);
+
+// Generates the boat `shape` describes and writes a new hull handle to `out`. A dimension
+// out of range is `SW_ERROR_INVALID_ARGUMENT`, named in the message, and makes nothing.
+//
+// # Safety
+//
+// `shape` and `out` are NULL or valid pointers.
+SwStatus sw_hull_boat(const struct SwBoatShape *shape, struct SwHull **out);
+
+// A box hull of half extents `(half_x, half_y, half_z)` centred on the origin (8
+// vertices, 12 triangles), written to `out` as a new handle. Each half extent must be
+// finite and above 0, and at most 1e9, or the call is `SW_ERROR_INVALID_ARGUMENT`.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_hull_cuboid(float half_x, float half_y, float half_z, struct SwHull **out);
+
+// The mesh of `hull` moved so that its centroid (the centre of mass at uniform density)
+// is at the origin of the body frame, written to `out` as a new handle; `hull` stays as
+// it is.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_hull_centred(const struct SwHull *hull, struct SwHull **out);
+
+// Writes the centroid of the volume `hull` encloses, body frame, world units, to
+// `out[0..3]`: the centre of mass at uniform density.
+//
+// # Safety
+//
+// `out` is NULL or points to 3 writable floats.
+SwStatus sw_hull_centroid(const struct SwHull *hull, float *out);
+
+// Writes to `out` the distance from the body frame's origin to the hull's farthest vertex,
+// world units: the radius of a ball that holds a body of this hull in any orientation.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_hull_bounding_radius(const struct SwHull *hull, float *out);
+
+// Copies the hull's vertices, body frame, three floats each, to `xyz` (`len` in floats)
+// and writes their number, in vertices, to `count`: the mesh to draw a hull the library
+// made. With `xyz` NULL only `count` is written; a `len` under `3 · count` is
+// `SW_ERROR_BUFFER_TOO_SMALL`, with `count` still written.
+//
+// # Safety
+//
+// `xyz` is NULL or points to `len` writable floats; `count` is NULL or a valid pointer.
+SwStatus sw_hull_vertices(const struct SwHull *hull, float *xyz, size_t len, size_t *count);
+
+// Copies the hull's triangles, three vertex indices each, counter-clockwise seen from
+// outside, to `indices` (`len` in indices) and writes their number, in triangles, to
+// `count`. With `indices` NULL only `count` is written; a `len` under `3 · count` is
+// `SW_ERROR_BUFFER_TOO_SMALL`, with `count` still written.
+//
+// # Safety
+//
+// `indices` is NULL or points to `len` writable `uint32_t`; `count` is NULL or a valid
+// pointer.
+SwStatus sw_hull_triangles(const struct SwHull *hull, uint32_t *indices, size_t len, size_t *count);
+
+// Makes rain of `rate` drops per second (finite, at least 0; 0 is no rain) whose drops
+// fall where and when `seed` says (the same seed, the same drops, however the time is cut
+// into frames), with radii from `radius_min` to `radius_max` world units (finite, > 0,
+// ordered; the library's default is 1.5 to 3) and a depth of `depth` of the radius (in
+// (0, 1]; default 0.6), and writes its handle to `out`. Drops land anywhere on the window
+// of the surface it falls on. Refused, making nothing, when a value is out of range.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_rain_create(float rate,
+                        uint64_t seed,
+                        float radius_min,
+                        float radius_max,
+                        float depth,
+                        struct SwDisturbance **out);
+
+// Sets the rate of rain (drops per second, finite, at least 0; 0 stops it). A wake is
+// `SW_ERROR_INVALID_ARGUMENT`.
+SwStatus sw_rain_set_rate(struct SwDisturbance *rain, float rate);
+
+// Writes the number of drops the rain has let fall so far to `out`. A wake is
+// `SW_ERROR_INVALID_ARGUMENT`.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_rain_fallen(const struct SwDisturbance *rain, uint64_t *out);
+
+// Writes the seconds the rain has fallen so far (the substeps it was applied before) to
+// `out`. A wake is `SW_ERROR_INVALID_ARGUMENT`.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_rain_time(const struct SwDisturbance *rain, double *out);
+
+// Makes a wake: an object moving at `speed` world units per second along the closed path
+// of `corners` points (`xz[2k]`, `xz[2k + 1]` is corner `k`, world units in the water's
+// local space; at least two distinct finite corners), from its first corner, pressing
+// the water down under it with the pressure `strength · exp(−d² / radius²)` (lattice force
+// units per unit area) out to three `radius`. The library's defaults are a speed of 60,
+// a radius of 2.5 and a strength of 1.5. `speed` and `strength` must be finite, `radius`
+// finite and > 0. Writes its handle to `out`; refused, making nothing, when a value is
+// out of range.
+//
+// # Safety
+//
+// `xz` is NULL or points to `2 · corners` floats; `out` is NULL or a valid pointer.
+SwStatus sw_wake_create(const float *xz,
+                        size_t corners,
+                        float speed,
+                        float radius,
+                        float strength,
+                        struct SwDisturbance **out);
+
+// Makes a wake going round a circle of `circle_radius` world units about the middle of
+// `surface`'s window, counter-clockwise seen from above (a 64-gon; a circle too small for
+// one is a short back-and-forth), with `speed`, `radius` and `strength` as for
+// `sw_wake_create`, and writes its handle to `out`. The surface is only read.
+//
+// # Safety
+//
+// `out` is NULL or a valid pointer.
+SwStatus sw_wake_circle(const struct SwSurface *surface,
+                        float circle_radius,
+                        float speed,
+                        float radius,
+                        float strength,
+                        struct SwDisturbance **out);
+
+// Writes where the wake's object is now, world `[x, z]`, to `out[0..2]`. Rain is
+// `SW_ERROR_INVALID_ARGUMENT`.
+//
+// # Safety
+//
+// `out` is NULL or points to 2 writable floats.
+SwStatus sw_wake_position(const struct SwDisturbance *wake, float *out);
+
+// Moves the wake's whole path by `(dx, dz)` world units, keeping the object's progress
+// along it: after `sw_surface_rebase(surface, dcols, drows)` a wake follows the water
+// with `dx = −dcols · spacing`, `dz = −drows · spacing`. Refused, with nothing changed,
+// when a corner would not be finite. Rain is `SW_ERROR_INVALID_ARGUMENT`.
+SwStatus sw_wake_translate(struct SwDisturbance *wake, float dx, float dz);
+
+// Frees rain or a wake. NULL, and a handle already destroyed, are no-ops.
+void sw_disturbance_destroy(struct SwDisturbance *disturbance);
+
+// `sw_surface_advance` with the `count` disturbances at `disturbances` applied, in their
+// order, before every substep: each gets the substep's length in seconds, so rain falls
+// and wakes move on the water's clock. Writes the steps taken to `substeps` (optional).
+// Every handle must be live and listed once (`SW_ERROR_INVALID_HANDLE`, `SW_ERROR_BUSY`),
+// checked before anything changes. A disturbance or step that fails stops the frame there:
+// before the first step nothing has changed, after it the earlier steps stay applied.
+//
+// # Safety
+//
+// `disturbances` is NULL or points to `count` handles (NULL for `count` 0); `substeps` is
+// NULL or a valid pointer.
+SwStatus sw_surface_advance_with(struct SwSurface *surface,
+                                 float frame_time,
+                                 struct SwDisturbance *const *disturbances,
+                                 size_t count,
+                                 uint32_t *substeps);
 
 // An empty job system with its size set: fill in `worker_count`, the two callbacks and
 // `user_context`, then hand it to `sw_surface_set_job_system`.

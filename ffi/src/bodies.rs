@@ -43,10 +43,10 @@ impl Input for SwBodyForces {
 
 const _: () = assert!(std::mem::offset_of!(SwBodyForces, struct_size) == 0);
 
-static HULLS: Registry<Hull> = Registry::new();
+pub(crate) static HULLS: Registry<Hull> = Registry::new();
 
 /// The hull behind `hull`.
-fn hull_of(hull: *const SwHull) -> Outcome<Arc<Hull>> {
+pub(crate) fn hull_of(hull: *const SwHull) -> Outcome<Arc<Hull>> {
     if hull.is_null() {
         return Err(Failure::null("hull"));
     }

@@ -1,12 +1,18 @@
-//! What a renderer uploads each frame: node positions, normals, refracted bottom
-//! texture coordinates, packed vertices, and the view-dependent LOD index buffer.
+//! What a renderer uploads each frame: node positions and velocities, normals, refracted
+//! bottom texture coordinates, packed vertices, and the view-dependent LOD index buffer
+//! with its patches' levels.
 
 use crate::handle::{self, SwSurface, Water};
-use crate::params::{finite_eye, refraction_params, SwBool, SwLodParams, SwRefraction};
-use crate::ptr::{copy_list_into, input, optional, out_buffer, out_groups};
+use crate::params::{
+    c_lod_params, finite_eye, refraction_params, rust_lod_params, SwBool, SwLodParams, SwRefraction,
+};
+use crate::ptr::{
+    copy_list_into, in_slice, input, optional, out_array, out_buffer, out_groups, read_sized_into,
+};
 use crate::status::{guard, Outcome, SwStatus};
 use springwater::buffers::{fill_frame, Vertex, VertexBuffers};
-use springwater::mesh::{compute_normals, LodMesh, LodParams, Normals};
+use springwater::mesh::{compute_normals, LodMesh, Normals};
+use springwater::Surface;
 use std::borrow::Cow;
 
 /// One node's packed vertex: 8 floats, 32 bytes (position at byte 0, normal at 12, the
@@ -44,6 +50,23 @@ pub unsafe extern "C" fn sw_surface_write_positions(
     write_triples(surface, xyz, len, |w, out| {
         Ok(w.surface.mesh_view().write_positions(out)?)
     })
+}
+
+/// Writes every node's velocity, interleaved `x, y, z`, row-major, as the lattice holds it:
+/// world units per unit of *model time* (like `sw_surface_add_velocity`; multiply by
+/// `time_scale` for per second, as `sw_surface_velocity_at` gives it). `len` is in floats
+/// and must be at least `3 · nodes`.
+///
+/// # Safety
+///
+/// `xyz` is NULL or points to `len` writable floats.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_write_velocities(
+    surface: *const SwSurface,
+    xyz: *mut f32,
+    len: usize,
+) -> SwStatus {
+    write_components(surface, xyz, len, Surface::velocities)
 }
 
 /// Computes every node's unit normal and writes them interleaved `x, y, z`, row-major.
@@ -127,14 +150,7 @@ pub unsafe extern "C" fn sw_surface_set_lod_params(
     params: *const SwLodParams,
 ) -> SwStatus {
     guard(|| {
-        let p = input(params, "params")?;
-        let lod = LodMesh::new(
-            LodParams::default()
-                .with_patch_cells(p.patch_cells as usize)
-                .with_levels(p.levels)
-                .with_first_range(p.first_range)
-                .with_hysteresis(p.hysteresis),
-        )?;
+        let lod = LodMesh::new(rust_lod_params(&input(params, "params")?))?;
         handle::with(surface, |w| {
             w.lod = lod;
             Ok(())
@@ -192,6 +208,114 @@ pub unsafe extern "C" fn sw_surface_lod_indices(
     })
 }
 
+/// Writes the LOD parameters the surface's index buffer is built with to `out`, whose
+/// `struct_size` must be `sizeof(SwLodParams)` (start it from `sw_lod_params_default()`):
+/// the defaults, or what `sw_surface_set_lod_params` set.
+///
+/// # Safety
+///
+/// `out` is NULL or points to a writable struct whose `struct_size` (its first field) is
+/// initialised.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_lod_params(
+    surface: *const SwSurface,
+    out: *mut SwLodParams,
+) -> SwStatus {
+    read_sized_into(surface, out, |w| Ok(c_lod_params(w.lod.params())))
+}
+
+/// Writes the LOD mesh's patches `[across, down]` to `out[0..2]`:
+/// `ceil((cols − 1) / patch_cells)` and `ceil((rows − 1) / patch_cells)` once the mesh is
+/// built, `[0, 0]` before the first `sw_surface_update_lod` or `sw_surface_set_lod_levels`
+/// (and after `sw_surface_set_lod_params`).
+///
+/// # Safety
+///
+/// `out` is NULL or points to 2 writable `size_t`.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_lod_patch_grid(
+    surface: *const SwSurface,
+    out: *mut usize,
+) -> SwStatus {
+    guard(|| {
+        let out = out_array(out, "out")?;
+        *out = handle::with(surface, |w| Ok(w.lod.patch_grid()))?;
+        Ok(())
+    })
+}
+
+/// Copies the level of each patch (0 is full detail), row-major over
+/// `sw_surface_lod_patch_grid`, to `levels` and writes their number to `count`. With
+/// `levels` NULL only `count` is written; a `len` smaller than the number of patches is
+/// `SW_ERROR_BUFFER_TOO_SMALL`, with `count` still written.
+///
+/// # Safety
+///
+/// `levels` is NULL or points to `len` writable bytes; `count` is NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_lod_patch_levels(
+    surface: *const SwSurface,
+    levels: *mut u8,
+    len: usize,
+    count: *mut usize,
+) -> SwStatus {
+    copy_list_into(surface, (levels, len, "levels"), (count, "count"), |w| {
+        Cow::Borrowed(w.lod.patch_levels())
+    })
+}
+
+/// Copies the LOD level of each triangle of the index buffer (one per triangle, in its
+/// order: for colouring a wireframe) to `levels` and writes their number to `count`. With
+/// `levels` NULL only `count` is written; a `len` smaller than the number of triangles is
+/// `SW_ERROR_BUFFER_TOO_SMALL`, with `count` still written.
+///
+/// # Safety
+///
+/// `levels` is NULL or points to `len` writable bytes; `count` is NULL or valid.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_lod_triangle_levels(
+    surface: *const SwSurface,
+    levels: *mut u8,
+    len: usize,
+    count: *mut usize,
+) -> SwStatus {
+    copy_list_into(surface, (levels, len, "levels"), (count, "count"), |w| {
+        Cow::Borrowed(w.lod.triangle_levels())
+    })
+}
+
+/// Builds the LOD index buffer from levels the caller chose, one per patch, row-major
+/// (for a renderer with its own error metric, or to force full detail), instead of from an
+/// eye: `levels[0..len]` with `len` exactly the number of patches,
+/// `ceil((cols − 1) / patch_cells) · ceil((rows − 1) / patch_cells)`; another length is
+/// `SW_ERROR_BUFFER_TOO_SMALL` and changes nothing. Levels past the last are taken as the
+/// last, then neighbours are kept within one level and stitched as `sw_surface_update_lod`
+/// does, whose hysteresis then starts from them. Writes 1 to `changed` (optional) if the
+/// index buffer was rebuilt, 0 if it still holds.
+///
+/// # Safety
+///
+/// `levels` is NULL or points to `len` bytes; `changed` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_set_lod_levels(
+    surface: *mut SwSurface,
+    levels: *const u8,
+    len: usize,
+    changed: *mut SwBool,
+) -> SwStatus {
+    guard(|| {
+        let levels = in_slice(levels, len, "levels")?;
+        let changed = optional(changed, "changed")?;
+        handle::with(surface, |w| {
+            let rebuilt = w.lod.set_levels(&w.surface.mesh_view(), levels)?;
+            if let Some(out) = changed {
+                *out = rebuilt as SwBool;
+            }
+            Ok(())
+        })
+    })
+}
+
 /// The body of the calls that fill render buffers as seen from the eye in `refraction`:
 /// `buffers` gives the caller's buffers for the surface's node count.
 fn fill_from_eye<'a>(
@@ -205,6 +329,24 @@ fn fill_from_eye<'a>(
             let buffers = buffers(w.surface.node_count())?;
             Ok(fill_frame(&w.surface.mesh_view(), eye, &params, buffers)?)
         })
+    })
+}
+
+/// The body of the calls that write a per-node vector the library keeps as three
+/// component slices (`[x, y, z]`, one value per node each) to the `len` floats at `xyz`,
+/// interleaved.
+pub(crate) fn write_components(
+    surface: *const SwSurface,
+    xyz: *mut f32,
+    len: usize,
+    read: impl FnOnce(&Surface) -> [&[f32]; 3],
+) -> SwStatus {
+    write_triples(surface, xyz, len, |w, out| {
+        let [x, y, z] = read(&w.surface);
+        for (o, ((x, y), z)) in out.iter_mut().zip(x.iter().zip(y).zip(z)) {
+            *o = [*x, *y, *z];
+        }
+        Ok(())
     })
 }
 

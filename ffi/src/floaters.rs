@@ -7,7 +7,9 @@
 
 use crate::handle::{self, SwSurface};
 use crate::params::SwBool;
-use crate::ptr::{copy_list_into, input, input_over, out_ref, read_into, read_sized_into, Input};
+use crate::ptr::{
+    copy_list_into, input, input_over, out_array, out_ref, read_into, read_sized_into, Input,
+};
 use crate::status::{guard, Failure, Outcome, SwStatus};
 use glam::{Mat3, Quat, Vec3};
 use springwater::body::Hull;
@@ -391,6 +393,75 @@ pub unsafe extern "C" fn sw_surface_set_buoyancy(
             density: b.density,
         };
         handle::with(surface, |w| Ok(w.surface.set_buoyancy(b)?))
+    })
+}
+
+/// Writes to `out[0..3]` the world velocity of the body's point at world `(x, y, z)`,
+/// world units per second: `velocity + angular_velocity × (point − position)`. Only those
+/// three fields of `floater` count (a body of any shape, `SW_SHAPE_HULL` too, read back
+/// from `sw_surface_floater` or kept in the caller's engine); they and the point must be
+/// finite, or the call is `SW_ERROR_INVALID_ARGUMENT` and writes nothing.
+///
+/// # Safety
+///
+/// `floater` is NULL or a valid pointer; `out` is NULL or points to 3 writable floats.
+#[no_mangle]
+pub unsafe extern "C" fn sw_floater_velocity_at(
+    floater: *const SwFloater,
+    x: f32,
+    y: f32,
+    z: f32,
+    out: *mut f32,
+) -> SwStatus {
+    guard(|| {
+        let f = input_over(floater, "floater", SwFloater::NEW)?;
+        let out = out_array(out, "out")?;
+        for (what, v) in [
+            ("point", [x, y, z]),
+            ("floater position", f.position),
+            ("floater velocity", f.velocity),
+            ("floater angular_velocity", f.angular_velocity),
+        ] {
+            if !v.iter().all(|c| c.is_finite()) {
+                return Err(Failure::invalid(format!(
+                    "{what} is {v:?}: every component must be finite"
+                )));
+            }
+        }
+        // The motion alone: the point's velocity does not depend on the shape or the mass.
+        let mut body = Floater::sphere(1.0, 1.0, f.position);
+        body.velocity = Vec3::from_array(f.velocity);
+        body.angular_velocity = Vec3::from_array(f.angular_velocity);
+        *out = body.velocity_at([x, y, z]).to_array();
+        Ok(())
+    })
+}
+
+/// Writes to `out` the distance from a sphere's or a box's centre to its farthest point,
+/// world units: the radius of a ball that holds the body in any orientation. The body is
+/// checked as `sw_surface_add_floater` checks it; a hull's is `sw_hull_bounding_radius`.
+///
+/// # Safety
+///
+/// `floater` and `out` are NULL or valid pointers.
+#[no_mangle]
+pub unsafe extern "C" fn sw_floater_bounding_radius(
+    floater: *const SwFloater,
+    out: *mut f32,
+) -> SwStatus {
+    guard(|| {
+        let f = input_over(floater, "floater", SwFloater::NEW)?;
+        if f.shape == SW_SHAPE_HULL {
+            return Err(Failure::invalid(
+                "floater shape = SW_SHAPE_HULL (2): a hull body's bounding radius is its \
+                 hull's, sw_hull_bounding_radius",
+            ));
+        }
+        let body = rust_floater(f, None)?;
+        let out = out_ref(out, "out")?;
+        body.validate()?;
+        *out = body.shape.bounding_radius();
+        Ok(())
     })
 }
 

@@ -1,16 +1,18 @@
 //! The lattice node by node and spring by spring: pins, per-node masses and viscosities,
-//! forces and velocity changes on one node, and single springs' rest lengths and
-//! coefficients (the library's `Surface::set_pinned`, `set_mass`, `set_masses`,
-//! `set_viscosity`, `set_viscosities`, `set_spring`, `add_force`, `add_velocity`,
-//! `clear_forces` and their readers). Nodes are row-major indices, `row * cols + col`; per-node buffers hold one
+//! forces and velocity changes on one node, every node's pending force, the uniform
+//! acceleration, and single springs' rest lengths and coefficients (the library's
+//! `Surface::set_pinned`, `set_mass`, `set_masses`, `set_viscosity`, `set_viscosities`,
+//! `set_spring`, `add_force`, `set_forces`, `add_velocity`, `clear_forces`,
+//! `set_acceleration` and their readers). Nodes are row-major indices, `row * cols + col`; per-node buffers hold one
 //! value per node (`sw_surface_node_count`). Masses and viscosities are the lattice's
 //! (`SwParams::mass`, `SwParams::viscosity`), in model time like them.
 
+use crate::buffers::write_components;
 use crate::handle::{self, SwSurface};
 use crate::params::SwBool;
 use crate::ptr::{in_slice, need, out_array, out_buffer, read_into};
 use crate::status::{guard, Failure, Outcome, SwStatus};
-use springwater::{Family, Spring, SpringId};
+use springwater::{Family, Spring, SpringId, Surface};
 
 /// A family of springs, by the direction from a spring's origin node to its other end
 /// (`SW_FAMILY_*`). Every grid edge and both diagonals of every cell carry one spring, kept
@@ -297,4 +299,62 @@ pub extern "C" fn sw_surface_add_velocity(
     handle::call(surface, |w| {
         Ok(w.surface.add_velocity(node, [dvx, dvy, dvz])?)
     })
+}
+
+/// Replaces every node's force for the next step with `xyz[0..3·nodes]`, interleaved
+/// `x, y, z`, row-major (`len`, in floats, at least `3 · nodes`), in the lattice's force
+/// units like `sw_surface_add_force`: what was added before is replaced (the water's share
+/// of `sw_surface_body_forces`, kept apart, stays). Every value must be finite; a refused
+/// call changes nothing.
+///
+/// # Safety
+///
+/// `xyz` is NULL or points to `len` floats.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_set_forces(
+    surface: *mut SwSurface,
+    xyz: *const f32,
+    len: usize,
+) -> SwStatus {
+    handle::call(surface, |w| {
+        let nodes = w.surface.node_count();
+        need(len, nodes.saturating_mul(3), "xyz")?;
+        // `[f32; 3]` has the size of three floats and the alignment of one.
+        let triples = in_slice(xyz.cast::<[f32; 3]>(), nodes, "xyz")?;
+        let [x, y, z]: [Vec<f32>; 3] =
+            std::array::from_fn(|k| triples.iter().map(|f| f[k]).collect());
+        Ok(w.surface.set_forces([&x, &y, &z])?)
+    })
+}
+
+/// Writes every node's force waiting for the next step, interleaved `x, y, z`, row-major,
+/// in the lattice's force units: what `sw_surface_add_force`, `sw_surface_add_force_at`
+/// and `sw_surface_set_forces` put there (not the water's share of
+/// `sw_surface_body_forces`, which is kept apart). `len` is in floats and must be at least
+/// `3 · nodes`.
+///
+/// # Safety
+///
+/// `xyz` is NULL or points to `len` writable floats.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_write_forces(
+    surface: *const SwSurface,
+    xyz: *mut f32,
+    len: usize,
+) -> SwStatus {
+    write_components(surface, xyz, len, Surface::forces)
+}
+
+/// Sets the uniform acceleration on every free node (gravity, wind), world units per
+/// second², as `SwParams::acceleration_*` sets it at creation (`sw_surface_params` reads it
+/// back). A component that is not finite is `SW_ERROR_INVALID_ARGUMENT` and changes
+/// nothing.
+#[no_mangle]
+pub extern "C" fn sw_surface_set_acceleration(
+    surface: *mut SwSurface,
+    ax: f32,
+    ay: f32,
+    az: f32,
+) -> SwStatus {
+    handle::call(surface, |w| Ok(w.surface.set_acceleration([ax, ay, az])?))
 }

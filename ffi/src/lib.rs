@@ -12,8 +12,9 @@
 //!
 //! ## Conventions
 //!
-//! * **Handles.** A `SwSurface *` (and a hull's `SwHull *`) is opaque and never
-//!   dereferenced by the library: it is a key into a table of live surfaces (hulls).
+//! * **Handles.** A `SwSurface *` (and a hull's `SwHull *`, a rain's or a wake's
+//!   `SwDisturbance *`) is opaque and never dereferenced by the library: it is a key into a
+//!   table of live surfaces (hulls, disturbances).
 //!   NULL, destroyed and made-up handles give `SW_ERROR_INVALID_HANDLE` (or
 //!   `SW_ERROR_NULL_POINTER`), never a crash. Different
 //!   surfaces may be used from different threads at once; calls on one surface must not
@@ -34,8 +35,10 @@
 //!   times, velocities (per second), the uniform acceleration and the buoyancy's gravity
 //!   (per second²), floating bodies' state and forces. `SwParams`' lattice constants
 //!   (`mass`, `stiffness`, `viscosity`, `dt`) are in model time, and `time_scale` converts;
-//!   forces pushed into the water (`sw_surface_add_force_at`) are in the lattice's force
-//!   units. The same as the Rust API (docs/units.md).
+//!   so is the lattice's state node by node: forces pushed into the water
+//!   (`sw_surface_add_force_at`, `sw_surface_set_forces`) are in the lattice's force units,
+//!   every node's velocity (`sw_surface_write_velocities`) per unit of model time. The same
+//!   as the Rust API (docs/units.md).
 
 #![deny(unsafe_op_in_unsafe_fn)]
 
@@ -75,11 +78,17 @@ mod floaters;
 // owns.
 mod bodies;
 
+// Hulls the library makes (a box, the boat, a hull on its centroid) and reads.
+mod hulls;
+
+// Rain and wakes as handles, applied before every substep of a frame.
+mod disturb;
+
 // The host's job system.
 mod jobs;
 
-// For WebAssembly hosts only (the npm package in web/): buffers and disturbances. Not in
-// the header.
+// For WebAssembly hosts only (the npm package in web/): buffers, and rain and wakes by
+// number. Not in the header.
 #[cfg(target_family = "wasm")]
 mod wasm;
 
@@ -95,10 +104,12 @@ mod status;
 
 pub use bodies::*;
 pub use buffers::*;
+pub use disturb::*;
 pub use engine::*;
 pub use errors::*;
 pub use floaters::*;
 pub use handle::SwSurface;
+pub use hulls::*;
 pub use jobs::*;
 pub use lattice::*;
 pub use params::*;

@@ -144,14 +144,7 @@ pub extern "C" fn sw_params_default() -> SwParams {
 /// The default LOD parameters.
 #[no_mangle]
 pub extern "C" fn sw_lod_params_default() -> SwLodParams {
-    let p = LodParams::default();
-    SwLodParams {
-        struct_size: size_of::<SwLodParams>() as u32,
-        patch_cells: p.patch_cells.min(u32::MAX as usize) as u32,
-        levels: p.levels,
-        first_range: p.first_range,
-        hysteresis: p.hysteresis,
-    }
+    c_lod_params(&LodParams::default())
 }
 
 /// The default bottom depth and index of refraction, with the eye at the origin.
@@ -207,6 +200,85 @@ pub unsafe extern "C" fn sw_params_linear_dt_limit(
     out: *mut f32,
 ) -> SwStatus {
     params_limit(params, out, Params::linear_dt_limit)
+}
+
+/// Writes to `out` how fast ripples travel on a surface of `params`, world units per
+/// second: `time_scale · spacing · sqrt(3c (1 − rest_ratio) / m)`. `params` is checked as
+/// for `sw_params_critical_dt`.
+///
+/// # Safety
+///
+/// `params` and `out` are NULL or valid pointers.
+#[no_mangle]
+pub unsafe extern "C" fn sw_params_ripple_speed(
+    params: *const SwParams,
+    out: *mut f32,
+) -> SwStatus {
+    params_limit(params, out, Params::ripple_speed)
+}
+
+/// Sets `params->time_scale` so that ripples travel `speed` world units per second (finite
+/// and above 0), leaving every other field as it is. `params` is checked as for
+/// `sw_params_critical_dt`; refused (`SW_ERROR_INVALID_ARGUMENT`, the struct unchanged) when
+/// the speed is not finite and positive, when the other fields give ripples no speed to
+/// scale (`rest_ratio` 1), or when the time scale it needs is out of range.
+///
+/// # Safety
+///
+/// `params` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_params_set_ripple_speed(params: *mut SwParams, speed: f32) -> SwStatus {
+    guard(|| {
+        let given = input(params.cast_const(), "params")?;
+        let mut rust = rust_params(&given)?;
+        rust.validate_except_dt()?;
+        rust.set_ripple_speed(speed)?;
+        out_ref(params, "params")?.time_scale = rust.time_scale;
+        Ok(())
+    })
+}
+
+/// Writes to `out` the most levels `params->patch_cells` allows, `log2(patch_cells) + 1`:
+/// the largest `levels` `sw_surface_set_lod_params` takes with it. The other fields but
+/// `levels` are checked as `sw_surface_set_lod_params` checks them.
+///
+/// # Safety
+///
+/// `params` and `out` are NULL or valid pointers.
+#[no_mangle]
+pub unsafe extern "C" fn sw_lod_params_max_levels(
+    params: *const SwLodParams,
+    out: *mut u32,
+) -> SwStatus {
+    guard(|| {
+        let params = rust_lod_params(&input(params, "params")?);
+        let out = out_ref(out, "out")?;
+        // One level is always allowed: the check is then of the other fields.
+        params.with_levels(1).validate()?;
+        *out = params.max_levels();
+        Ok(())
+    })
+}
+
+/// Writes to `out` Schlick's reflectance at normal incidence of the water in `refraction`,
+/// `((ior − 1) / (ior + 1))²`: the `R0` of a shader's Fresnel term. `refraction` is checked
+/// as `sw_surface_write_refraction_uvs` checks it.
+///
+/// # Safety
+///
+/// `refraction` and `out` are NULL or valid pointers.
+#[no_mangle]
+pub unsafe extern "C" fn sw_refraction_r0(
+    refraction: *const SwRefraction,
+    out: *mut f32,
+) -> SwStatus {
+    guard(|| {
+        let refraction = input(refraction, "refraction")?;
+        let out = out_ref(out, "out")?;
+        let (_, params) = refraction_params(refraction)?;
+        *out = params.r0();
+        Ok(())
+    })
 }
 
 /// `limit` of the parameters at `params`, written to `out`.
@@ -296,6 +368,28 @@ pub(crate) fn rust_params(p: &SwParams) -> Outcome<Params> {
         .with_boundary(boundary))
 }
 
+/// The one conversion of `LodParams` to `SwLodParams` (`sw_lod_params_default`,
+/// `sw_surface_lod_params`); [`rust_lod_params`] is its inverse.
+pub(crate) fn c_lod_params(p: &LodParams) -> SwLodParams {
+    SwLodParams {
+        struct_size: size_of::<SwLodParams>() as u32,
+        // Validation bounds the patch size by 4096, so it fits.
+        patch_cells: p.patch_cells.min(u32::MAX as usize) as u32,
+        levels: p.levels,
+        first_range: p.first_range,
+        hysteresis: p.hysteresis,
+    }
+}
+
+/// The inverse of [`c_lod_params`]; the library validates the result when it takes it.
+pub(crate) fn rust_lod_params(p: &SwLodParams) -> LodParams {
+    LodParams::default()
+        .with_patch_cells(p.patch_cells as usize)
+        .with_levels(p.levels)
+        .with_first_range(p.first_range)
+        .with_hysteresis(p.hysteresis)
+}
+
 pub(crate) fn simd_code(level: SimdLevel) -> SwSimdLevel {
     match level {
         SimdLevel::Scalar => SW_SIMD_SCALAR,
@@ -324,6 +418,17 @@ pub(crate) fn simd_level(code: SwSimdLevel) -> Outcome<SimdLevel> {
              SW_SIMD_AVX2 (2), SW_SIMD_AVX512 (3), SW_SIMD_PORTABLE (4), SW_SIMD_NEON (5) \
              or SW_SIMD_SIMD128 (6)"
         ))),
+    }
+}
+
+/// Fails unless `value` is finite and above 0, naming it `what`.
+pub(crate) fn finite_positive(what: &str, value: f32) -> Outcome {
+    if value.is_finite() && value > 0.0 {
+        Ok(())
+    } else {
+        Err(Failure::invalid(format!(
+            "{what} is {value}, expected a finite number > 0"
+        )))
     }
 }
 

@@ -1,5 +1,6 @@
 //! A surface's life: create it from parameters, destroy it, read its parameters and size,
-//! and move it on (the fixed-step clock, whole steps, drops).
+//! and move it on (the fixed-step clock, frames cut into variable substeps, whole steps,
+//! drops).
 
 use crate::handle::{self, SwSurface, Water};
 use crate::params::{c_params, rust_params, SwParams};
@@ -89,6 +90,66 @@ pub unsafe extern "C" fn sw_surface_advance(
             }
             Ok(())
         })
+    })
+}
+
+/// Advances the water by one frame of `frame_time` seconds (finite, at least 0) in equal
+/// substeps of *variable* length, never longer than `dt` (`sw_surface_split_frame` says how
+/// many and how long): every frame ends exactly on the caller's clock, at the price of
+/// results that depend on how the time is cut into frames. It leaves
+/// `sw_surface_advance`'s accumulator as it is. A frame of more than 10000 steps is
+/// `SW_ERROR_INVALID_ARGUMENT` and changes nothing. Writes the number of substeps to
+/// `substeps` (optional, may be NULL). A failing step stops the frame there, earlier
+/// steps stay applied.
+///
+/// # Safety
+///
+/// `substeps` is NULL or a valid pointer.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_advance_variable(
+    surface: *mut SwSurface,
+    frame_time: f32,
+    substeps: *mut u32,
+) -> SwStatus {
+    guard(|| {
+        let substeps = optional(substeps, "substeps")?;
+        handle::with(surface, |w| {
+            let taken = w.surface.advance_variable(frame_time)?;
+            if let Some(out) = substeps {
+                *out = taken as u32;
+            }
+            Ok(())
+        })
+    })
+}
+
+/// How `sw_surface_advance_variable` would cut a frame of `frame_time` seconds, without
+/// taking it: the number of equal substeps to `substeps` and the length of each, in
+/// seconds of the caller's clock, to `substep_seconds` (never longer than one step of
+/// `dt`). Either may be NULL. A frame of more than 10000 steps, or a `frame_time` not
+/// finite and at least 0, is `SW_ERROR_INVALID_ARGUMENT`, and nothing is written.
+///
+/// # Safety
+///
+/// `substeps` and `substep_seconds` are NULL or valid pointers.
+#[no_mangle]
+pub unsafe extern "C" fn sw_surface_split_frame(
+    surface: *const SwSurface,
+    frame_time: f32,
+    substeps: *mut u32,
+    substep_seconds: *mut f32,
+) -> SwStatus {
+    guard(|| {
+        let count_out = optional(substeps, "substeps")?;
+        let seconds_out = optional(substep_seconds, "substep_seconds")?;
+        let (count, seconds) = handle::with(surface, |w| Ok(w.surface.split_frame(frame_time)?))?;
+        if let Some(out) = count_out {
+            *out = count as u32;
+        }
+        if let Some(out) = seconds_out {
+            *out = seconds;
+        }
+        Ok(())
     })
 }
 

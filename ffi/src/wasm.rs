@@ -7,11 +7,12 @@
 //! hand out (or freeing twice) is a no-op instead of undefined behaviour, and no `unsafe`
 //! code is needed here.
 
+use crate::disturb::{rain, rain_rate, Disturb};
 use crate::handle::{self, SwSurface};
+use crate::params::finite_positive;
 use crate::ptr::{in_slice, out_ref};
 use crate::status::{guard, Failure, SwStatus};
-use springwater::disturb::{Disturbance, Rain, Wake};
-use springwater::Surface;
+use springwater::disturb::Wake;
 use std::cell::RefCell;
 use std::collections::HashMap;
 
@@ -45,21 +46,6 @@ pub extern "C" fn sw_wasm_free(address: *mut u8) {
     BUFFERS.with(|b| b.borrow_mut().remove(&(address as usize)));
 }
 
-/// A disturbance a handle stands for.
-enum Disturb {
-    Rain(Rain),
-    Wake(Wake),
-}
-
-impl Disturbance for Disturb {
-    fn apply(&mut self, surface: &mut Surface, dt: f32) -> springwater::Result<()> {
-        match self {
-            Disturb::Rain(rain) => rain.apply(surface, dt),
-            Disturb::Wake(wake) => wake.apply(surface, dt),
-        }
-    }
-}
-
 fn keep(d: Disturb) -> u32 {
     DISTURBANCES.with(|t| {
         let mut t = t.borrow_mut();
@@ -68,16 +54,6 @@ fn keep(d: Disturb) -> u32 {
         t.1.insert(id, d);
         id
     })
-}
-
-fn finite_positive(what: &str, value: f32) -> Result<(), Failure> {
-    if value.is_finite() && value > 0.0 {
-        Ok(())
-    } else {
-        Err(Failure::invalid(format!(
-            "{what} is {value}, expected a finite number > 0"
-        )))
-    }
 }
 
 /// Rain (`springwater::disturb::Rain`) of `rate` drops per second (finite, at least 0)
@@ -98,27 +74,9 @@ pub unsafe extern "C" fn sw_wasm_rain_create(
 ) -> SwStatus {
     guard(|| {
         let out = out_ref(out, "out")?;
-        if !(rate.is_finite() && rate >= 0.0) {
-            return Err(Failure::invalid(format!(
-                "rain rate is {rate}, expected a finite number of drops per second, at least 0"
-            )));
-        }
-        finite_positive("rain radius_min", radius_min)?;
-        finite_positive("rain radius_max", radius_max)?;
-        if radius_max < radius_min {
-            return Err(Failure::invalid(format!(
-                "rain radius_max {radius_max} is below radius_min {radius_min}"
-            )));
-        }
-        if !(depth > 0.0 && depth <= 1.0) {
-            return Err(Failure::invalid(format!(
-                "rain depth is {depth}, expected a fraction of the radius in (0, 1]"
-            )));
-        }
-        let mut rain = Rain::new(rate, seed);
-        rain.radius = radius_min..radius_max;
-        rain.depth = depth;
-        *out = keep(Disturb::Rain(rain));
+        *out = keep(Disturb::Rain(rain(
+            rate, seed, radius_min, radius_max, depth,
+        )?));
         Ok(())
     })
 }
@@ -127,11 +85,7 @@ pub unsafe extern "C" fn sw_wasm_rain_create(
 #[no_mangle]
 pub extern "C" fn sw_wasm_rain_set_rate(id: u32, rate: f32) -> SwStatus {
     guard(|| {
-        if !(rate.is_finite() && rate >= 0.0) {
-            return Err(Failure::invalid(format!(
-                "rain rate is {rate}, expected a finite number of drops per second, at least 0"
-            )));
-        }
+        rain_rate(rate)?;
         DISTURBANCES.with(|t| match t.borrow_mut().1.get_mut(&id) {
             Some(Disturb::Rain(rain)) => {
                 rain.rate = rate;

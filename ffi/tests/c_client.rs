@@ -6,7 +6,8 @@
 //!   input; its printed values must equal what the Rust API computes for the same frames.
 //! * `tests/c/rigid.c`: rigid bodies: a heeled box rights itself as a built-in body and
 //!   in the client's own explicit integrator driven by `sw_surface_body_forces`, a hull
-//!   mesh, a client of the version 1 `SwFloater`, bad input.
+//!   mesh, a client of the version 1 `SwFloater`, bad input; the library's boat, its mesh
+//!   read back, floating through rain and a wake (`sw_surface_advance_with`).
 //! * Both run plainly, under AddressSanitizer, and under Valgrind's memcheck where it is
 //!   installed (`tests/c/check.h` holds their shared checks).
 //! * ffi/README.md's C example, linked against the dynamic library;
@@ -367,7 +368,8 @@ fn check_rigid_output(out: &Output, how: &str) {
 
 /// `tests/c/rigid.c` floats a box heeled 15° and rights it, as a built-in body and in its
 /// own explicit 60 Hz integrator driven by `sw_surface_body_forces`, as a hull mesh, and
-/// through a version 1 `SwFloater`; its built-in box ends in the Rust API's bits.
+/// through a version 1 `SwFloater`; its built-in box ends in the Rust API's bits. It also
+/// floats the library's boat through rain and a wake.
 #[test]
 fn the_rigid_body_client_rights_its_boxes() {
     if skip() {

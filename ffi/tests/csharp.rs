@@ -9,6 +9,10 @@
 //!   orientation the Rust API's bits), in an engine's own integrator driven by
 //!   `BodyForces`, and as a `Hull`; `Tests~/Lattice.cs`: pins, masses, viscosities, a
 //!   spring and a torque push, read back (the state's hash the Rust API's);
+//!   `Tests~/Frames.cs`, `Tests~/Shapes.cs` and `Tests~/Disturbances.cs`: variable frames,
+//!   every node's force and velocity, the LOD mesh from chosen levels, the hulls the
+//!   library makes, a point's velocity on a body, rain and wakes (their values recomputed
+//!   through the Rust API in `csharp_values/`);
 //! * the declarations against `include/springwater.h`: every function, constant, struct,
 //!   field, size and offset of the header (the C compiler's `sizeof` and `offsetof`) must be
 //!   in `Native` and the structs with the same types (`Tests~/Layout.cs` prints them);
@@ -19,6 +23,7 @@
 //! the tests say so and pass, unless `SPRINGWATER_REQUIRE_TOOLS` is set, where they fail.
 
 mod common;
+mod csharp_values;
 
 use common::{assert_ok, build_release, floater_floats, fnv, righted_box, tool_missing};
 use springwater::{Boundary, Family, Floater, FloaterId, Params, Spring, SpringId, Surface};
@@ -230,6 +235,9 @@ const RUNNER_TESTS: &[&str] = &[
     "queries_agree_with_the_buffers",
     "a_heeled_box_rights_itself",
     "the_lattice_node_by_node",
+    "frames_forces_velocities_and_the_lod_mesh",
+    "the_hulls_the_library_makes_and_points_on_bodies",
+    "rain_and_wakes",
 ];
 
 #[test]
@@ -246,6 +254,9 @@ fn the_csharp_tests_pass_under_mono_with_the_command_lines_bits() {
             test_source("Runner.cs"),
             test_source("RigidBodies.cs"),
             test_source("Lattice.cs"),
+            test_source("Frames.cs"),
+            test_source("Shapes.cs"),
+            test_source("Disturbances.cs"),
         ],
     );
     let out = mono(&exe, &[&dir]);
@@ -267,6 +278,9 @@ fn the_csharp_tests_pass_under_mono_with_the_command_lines_bits() {
         .chain(window())
         .chain(righted_box())
         .chain(lattice())
+        .chain(csharp_values::frames())
+        .chain(csharp_values::shapes())
+        .chain(csharp_values::disturbances())
     {
         assert_eq!(
             values.get(key).copied(),
@@ -406,12 +420,15 @@ fn csharp_type(c_type: &str, aliases: &HashMap<String, String>, returned: bool) 
         }
         _ => {}
     }
-    // A `void *` and a returned string are addresses; a surface or a hull is a handle.
+    // A `void *` and a returned string are addresses; a surface, a hull or a disturbance
+    // is a handle.
     if stars == 1 && (base == "void" || (base == "char" && returned)) {
         return "IntPtr".into();
     }
     let primitive = match base {
-        "SwSurface" | "SwHull" => return format!("IntPtr{}", pointers(stars - 1)),
+        "SwSurface" | "SwHull" | "SwDisturbance" => {
+            return format!("IntPtr{}", pointers(stars - 1))
+        }
         "char" | "uint8_t" => "byte",
         "uint32_t" => "uint",
         "int32_t" => "int",

@@ -40,6 +40,94 @@ namespace Springwater
             handle = new HullHandle(created);
         }
 
+        Hull(IntPtr created)
+        {
+            raw = created;
+            handle = new HullHandle(created);
+        }
+
+        /// <summary>A box hull of half extents (hx, hy, hz) centred on the origin: 8 vertices, 12 triangles.</summary>
+        public static Hull Cuboid(float hx, float hy, float hz)
+        {
+            IntPtr created;
+            SpringwaterException.Check(Native.sw_hull_cuboid(hx, hy, hz, &created));
+            return new Hull(created);
+        }
+
+        /// <summary>
+        /// The library's procedural boat of <paramref name="shape"/> (start it from
+        /// SwBoatShape.Default()): bow to +x, y up, the origin on the keel amidships
+        /// (<see cref="Centred"/> moves it onto its centroid).
+        /// </summary>
+        public static Hull Boat(SwBoatShape shape)
+        {
+            IntPtr created;
+            SpringwaterException.Check(Native.sw_hull_boat(&shape, &created));
+            return new Hull(created);
+        }
+
+        /// <summary>A new hull of this mesh moved so that its centroid is at the origin; this one stays as it is.</summary>
+        public Hull Centred()
+        {
+            IntPtr created;
+            using (var h = Enter())
+                SpringwaterException.Check(Native.sw_hull_centred(h.Ptr, &created));
+            return new Hull(created);
+        }
+
+        /// <summary>The centroid of the enclosed volume, body frame: the centre of mass at uniform density.</summary>
+        public Float3 Centroid
+        {
+            get
+            {
+                var c = new Float3();
+                using (var h = Enter())
+                    SpringwaterException.Check(Native.sw_hull_centroid(h.Ptr, &c.x));
+                return c;
+            }
+        }
+
+        /// <summary>The distance from the body frame's origin to the farthest vertex.</summary>
+        public float BoundingRadius
+        {
+            get
+            {
+                float r;
+                using (var h = Enter())
+                    SpringwaterException.Check(Native.sw_hull_bounding_radius(h.Ptr, &r));
+                return r;
+            }
+        }
+
+        /// <summary>The vertices, body frame, three floats each (to draw a hull the library made).</summary>
+        public float[] Vertices()
+        {
+            UIntPtr count;
+            using (var h = Enter())
+            {
+                SpringwaterException.Check(Native.sw_hull_vertices(h.Ptr, null, UIntPtr.Zero, &count));
+                var xyz = new float[3 * checked((int)count.ToUInt64())];
+                fixed (float* p = xyz)
+                    SpringwaterException.Check(Native.sw_hull_vertices(h.Ptr, p, (UIntPtr)xyz.Length, &count));
+                return xyz;
+            }
+        }
+
+        /// <summary>The triangles, three vertex indices each, counter-clockwise seen from outside.</summary>
+        public int[] Triangles()
+        {
+            UIntPtr count;
+            using (var h = Enter())
+            {
+                SpringwaterException.Check(Native.sw_hull_triangles(h.Ptr, null, UIntPtr.Zero, &count));
+                var indices = new int[3 * checked((int)count.ToUInt64())];
+                fixed (int* p = indices)
+                    SpringwaterException.Check(Native.sw_hull_triangles(
+                        h.Ptr, (uint*)p, (UIntPtr)indices.Length, &count));
+                return indices;
+            }
+        }
+
         /// <summary>Frees the native hull; bodies made of it keep their mesh. Twice is harmless.</summary>
         public void Dispose()
         {

@@ -14,7 +14,7 @@ namespace Springwater
     /// every status, boolean and enum is an <c>int</c>. Prefer <see cref="WaterSurface"/>,
     /// which owns the handle and turns statuses into exceptions.
     /// </summary>
-    public static unsafe class Native
+    public static unsafe partial class Native
     {
         /// <summary>
         /// The native library's name: <c>springwater_ffi</c> (libspringwater_ffi.so,

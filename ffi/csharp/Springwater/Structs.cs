@@ -164,6 +164,23 @@ namespace Springwater
             SpringwaterException.Check(Native.sw_params_linear_dt_limit(&p, &dt));
             return dt;
         }
+
+        /// <summary>How fast ripples travel on a surface of these parameters, world units per second.</summary>
+        public unsafe float RippleSpeed()
+        {
+            float speed;
+            SwParams p = this;
+            SpringwaterException.Check(Native.sw_params_ripple_speed(&p, &speed));
+            return speed;
+        }
+
+        /// <summary>Sets time_scale so that ripples travel <paramref name="speed"/> world units per second; the other fields stay.</summary>
+        public unsafe void SetRippleSpeed(float speed)
+        {
+            SwParams p = this;
+            SpringwaterException.Check(Native.sw_params_set_ripple_speed(&p, speed));
+            this = p;
+        }
     }
 
     /// <summary>The LOD index buffer's parameters (<see cref="Default"/>).</summary>
@@ -184,6 +201,15 @@ namespace Springwater
         {
             return Native.sw_lod_params_default();
         }
+
+        /// <summary>The most levels patch_cells allows, log2(patch_cells) + 1 (the other fields but levels are checked).</summary>
+        public unsafe uint MaxLevels()
+        {
+            uint max;
+            SwLodParams p = this;
+            SpringwaterException.Check(Native.sw_lod_params_max_levels(&p, &max));
+            return max;
+        }
     }
 
     /// <summary>The eye and the bottom for the refraction coordinates (<see cref="Default"/>, then set the eye).</summary>
@@ -203,6 +229,41 @@ namespace Springwater
         public static SwRefraction Default()
         {
             return Native.sw_refraction_default();
+        }
+
+        /// <summary>Schlick's reflectance at normal incidence, ((ior − 1) / (ior + 1))²: a shader's Fresnel R0.</summary>
+        public unsafe float R0()
+        {
+            float r0;
+            SwRefraction p = this;
+            SpringwaterException.Check(Native.sw_refraction_r0(&p, &r0));
+            return r0;
+        }
+    }
+
+    /// <summary>
+    /// The procedural boat's dimensions and resolution (<see cref="Default"/>, then change
+    /// fields): <see cref="Hull.Boat"/> makes its hull. The bow points to +x, y is up, the
+    /// origin is on the keel amidships.
+    /// </summary>
+    [StructLayout(LayoutKind.Sequential)]
+    public struct SwBoatShape
+    {
+        public uint struct_size;
+        /// <summary>Length overall, transom to stem, world units (default 6).</summary>
+        public float length;
+        /// <summary>Greatest beam, world units (default 2).</summary>
+        public float beam;
+        /// <summary>Depth from the keel to the deck amidships, world units (default 1).</summary>
+        public float depth;
+        /// <summary>Cross-sections from the transom to the stem (2 to 1024; default 40).</summary>
+        public uint stations;
+        /// <summary>Edges per side of each cross-section (2 to 1024; default 12).</summary>
+        public uint segments;
+
+        public static SwBoatShape Default()
+        {
+            return Native.sw_boat_shape_default();
         }
     }
 
@@ -305,6 +366,30 @@ namespace Springwater
         public static SwFloater Box(float hx, float hy, float hz, float mass, float x, float y, float z)
         {
             return Native.sw_floater_box(hx, hy, hz, mass, x, y, z);
+        }
+
+        /// <summary>
+        /// The world velocity of the body's point at world (x, y, z), per second: Velocity +
+        /// AngularVelocity × (point − Position), for a body of any shape.
+        /// </summary>
+        public Float3 VelocityAt(float x, float y, float z)
+        {
+            var v = new Float3();
+            SwFloater f = this;
+            SpringwaterException.Check(Native.sw_floater_velocity_at(&f, x, y, z, &v.x));
+            return v;
+        }
+
+        /// <summary>
+        /// The distance from a sphere's or a box's centre to its farthest point (a hull's is
+        /// <see cref="Hull.BoundingRadius"/>); the body is checked as AddFloater checks it.
+        /// </summary>
+        public float BoundingRadius()
+        {
+            float r;
+            SwFloater f = this;
+            SpringwaterException.Check(Native.sw_floater_bounding_radius(&f, &r));
+            return r;
         }
 
         public Float3 HalfExtents

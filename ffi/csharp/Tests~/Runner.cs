@@ -30,6 +30,9 @@ static unsafe partial class Runner
         Run("queries_agree_with_the_buffers", Queries);
         Run("a_heeled_box_rights_itself", RigidBodies);
         Run("the_lattice_node_by_node", Lattice);
+        Run("frames_forces_velocities_and_the_lod_mesh", Frames);
+        Run("the_hulls_the_library_makes_and_points_on_bodies", Shapes);
+        Run("rain_and_wakes", Disturbances);
         Console.WriteLine(failures == 0 ? "all passed" : failures + " failed");
         Environment.Exit(failures == 0 ? 0 : 1);
     }

@@ -1,7 +1,8 @@
 /* A C client of springwater.h's rigid bodies, written only from the header: a box heeled
  * 15° rights itself as a built-in floating body, and again in the client's own explicit
  * 60 Hz integrator driven by sw_surface_body_forces, as a game engine would; the same box
- * as a hull mesh; a client built against the version 1 SwFloater; bad input.
+ * as a hull mesh; a client built against the version 1 SwFloater; bad input; the
+ * library's boat floating through rain and a wake.
  *
  * It prints `key value` lines that tests/c_client.rs compares with the Rust API, and
  * exits non-zero (after printing `FAIL ...`) when a check here fails. */
@@ -404,12 +405,91 @@ static void bad_input(void) {
     sw_surface_destroy(surface);
 }
 
+/* The library's boat, centred on its centroid, floats through rain and a circling wake
+ * applied by sw_surface_advance_with; its mesh is read back the C way (the count first). */
+static void boat_in_rain_and_a_wake(void) {
+    SwSurface *surface = water();
+    SwBoatShape shape = sw_boat_shape_default();
+    shape.stations = 12;
+    shape.segments = 4;
+    SwHull *keel = NULL, *boat = NULL;
+    OK(sw_hull_boat(&shape, &keel));
+    OK(sw_hull_centred(keel, &boat));
+    sw_hull_destroy(keel);
+    float centroid[3] = {1.0f, 1.0f, 1.0f};
+    OK(sw_hull_centroid(boat, centroid));
+    CHECK(fabsf(centroid[0]) < 1e-4f && fabsf(centroid[1]) < 1e-4f && fabsf(centroid[2]) < 1e-4f);
+
+    size_t vertices = 0, triangles = 0;
+    OK(sw_hull_vertices(boat, NULL, 0, &vertices));
+    OK(sw_hull_triangles(boat, NULL, 0, &triangles));
+    CHECK(triangles == 4 * 12 * 4 + 2 * 12 + 2 * 4);
+    float *xyz = malloc(3 * vertices * sizeof *xyz);
+    uint32_t *indices = malloc(3 * triangles * sizeof *indices);
+    FAILS(SW_ERROR_BUFFER_TOO_SMALL, sw_hull_vertices(boat, xyz, 3 * vertices - 1, &vertices));
+    OK(sw_hull_vertices(boat, xyz, 3 * vertices, &vertices));
+    OK(sw_hull_triangles(boat, indices, 3 * triangles, &triangles));
+    /* The mesh read back makes the same hull. */
+    SwHull *again = NULL;
+    OK(sw_hull_create(xyz, vertices, indices, triangles, &again));
+    float volume = 0.0f, volume_again = -1.0f, radius = 0.0f;
+    OK(sw_hull_volume(boat, &volume));
+    OK(sw_hull_volume(again, &volume_again));
+    CHECK(volume > 0.0f && volume == volume_again);
+    OK(sw_hull_bounding_radius(boat, &radius));
+    CHECK(radius > 0.5f * shape.length && radius < shape.length);
+    sw_hull_destroy(again);
+    free(xyz);
+    free(indices);
+
+    SwBuoyancy buoyancy = buoyancy_of(surface);
+    SwFloater body = {.struct_size = sizeof body};
+    OK(sw_floater_hull(boat, 0.4f * buoyancy.density * volume, 24.0f, 0.0f, 24.0f, &body));
+    SwFloaterId id = 0;
+    OK(sw_surface_add_hull_floater(surface, boat, &body, &id));
+    sw_hull_destroy(boat); /* the surface keeps the mesh */
+
+    SwDisturbance *rain = NULL, *wake = NULL;
+    OK(sw_rain_create(30.0f, 11, 1.0f, 2.0f, 0.5f, &rain));
+    OK(sw_wake_circle(surface, 14.0f, 40.0f, 2.0f, 1.0f, &wake));
+    SwDisturbance *both[2] = {rain, wake};
+    uint32_t steps = 0;
+    for (int frame = 0; frame < 120; frame++) {
+        uint32_t taken = 0;
+        OK(sw_surface_advance_with(surface, FRAME, both, 2, &taken));
+        steps += taken;
+    }
+    CHECK(steps == 120);
+    uint64_t fallen = 0;
+    OK(sw_rain_fallen(rain, &fallen));
+    CHECK(fallen > 30);
+    float at[2];
+    OK(sw_wake_position(wake, at));
+    CHECK(fabsf(hypotf(at[0] - 23.5f, at[1] - 23.5f) - 14.0f) < 0.5f);
+    SwFloater afloat = floater_of(surface, id);
+    CHECK(isfinite(afloat.position[1]) && fabsf(afloat.position[1]) < 1.0f);
+    float bow[3];
+    OK(sw_floater_velocity_at(&afloat, afloat.position[0] + 3.0f, afloat.position[1],
+                              afloat.position[2], bow));
+    CHECK(isfinite(bow[0]) && isfinite(bow[1]) && isfinite(bow[2]));
+
+    /* Refusals: the same rain twice, the wrong kind, a destroyed handle. */
+    SwDisturbance *twice[2] = {rain, rain};
+    FAILS(SW_ERROR_BUSY, sw_surface_advance_with(surface, FRAME, twice, 2, NULL));
+    FAILS(SW_ERROR_INVALID_ARGUMENT, sw_rain_fallen(wake, &fallen));
+    sw_disturbance_destroy(rain);
+    FAILS(SW_ERROR_INVALID_HANDLE, sw_surface_advance_with(surface, FRAME, both, 2, NULL));
+    sw_disturbance_destroy(wake);
+    sw_surface_destroy(surface);
+}
+
 int main(void) {
     built_in_box_rights_itself();
     engine_box_rights_itself();
     hull_box_rights_itself();
     version_1_client();
     bad_input();
+    boat_in_rain_and_a_wake();
     if (failures == 0)
         printf("rigid_checks passed\n");
     return failures == 0 ? 0 : 1;
