@@ -2,8 +2,9 @@
 //! static and dynamic libraries this crate builds:
 //!
 //! * `tests/c/client.c`: a frame loop over the whole API, a job system on the host's own
-//!   threads, floating bodies on an absorbing (open water) surface, and every kind of bad
-//!   input; its printed values must equal what the Rust API computes for the same frames.
+//!   threads, floating bodies on an absorbing (open water) surface (`client_floaters.h`,
+//!   a part it includes), and every kind of bad input; its printed values must equal what
+//!   the Rust API computes for the same frames.
 //! * `tests/c/rigid.c`: rigid bodies: a heeled box rights itself as a built-in body and
 //!   in the client's own explicit integrator driven by `sw_surface_body_forces`, a hull
 //!   mesh, a client of the version 1 `SwFloater`, bad input; the library's boat, its mesh
