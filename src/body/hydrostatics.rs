@@ -208,6 +208,7 @@ impl Hull {
 
     /// The pressure pass behind [`submerged_parts`](Self::submerged_parts), in `f64`:
     /// `part(point, force, area)` for each wet (clipped) triangle, and the totals.
+    #[inline(always)]
     pub(crate) fn pressed(
         &self,
         position: Vec3,
