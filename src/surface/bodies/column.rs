@@ -83,7 +83,8 @@ pub(crate) struct Entry {
     pub carried: [f32; 3],
     /// Pushes of `body_forces` waiting for the next step.
     pub pending: [f32; 3],
-    /// This step's pushes of the surface's own bodies (zero between steps).
+    /// This step's pushes of the surface's own bodies, and once [`Column::water`] has
+    /// run, what the water gets, `W`, for [`Column::commit`] (zero between steps).
     #[cfg_attr(feature = "serde", serde(skip))]
     fresh: [f32; 3],
 }
@@ -223,17 +224,22 @@ impl Column {
         e.fresh = std::array::from_fn(|k| e.fresh[k] + f[k]);
     }
 
-    /// What the water gets this step, node by node (distinct nodes): `W` of every entry.
-    pub fn water(&self) -> impl Iterator<Item = (usize, [f32; 3])> + '_ {
-        self.entries.iter().map(|e| (e.node, e.water()))
+    /// What the water gets this step, node by node (distinct nodes): `W` of every entry,
+    /// kept in its `fresh` for [`Column::commit`] (the pushes are summed in it by then).
+    pub fn water(&mut self) -> impl Iterator<Item = (usize, [f32; 3])> + '_ {
+        self.entries.iter_mut().map(|e| {
+            e.fresh = e.water();
+            (e.node, e.fresh)
+        })
     }
 
-    /// The step succeeded: the column takes up `rate` of what the water got, the pushes
-    /// are spent, and nodes with nothing left leave.
+    /// The step succeeded: the column takes up `rate` of what the water got (`W`, which
+    /// [`Column::water`] left in `fresh`), the pushes are spent, and nodes with nothing
+    /// left leave.
     pub fn commit(&mut self, rate: f32) {
         let mut left = false;
         for e in &mut self.entries {
-            let w = e.water();
+            let w = e.fresh;
             e.carried = std::array::from_fn(|k| e.carried[k] + rate * w[k]);
             e.pending = [0.0; 3];
             e.fresh = [0.0; 3];
