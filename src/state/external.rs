@@ -130,8 +130,15 @@ impl External {
     /// every force once the list is gone.
     fn touched(&self) -> impl Iterator<Item = f32> + '_ {
         let [fx, fy, fz] = &self.forces;
-        let listed = self.nodes.iter().flatten().flat_map(|&i| [fx[i], fy[i], fz[i]]);
-        let all = self.nodes.is_none().then(|| fx.iter().chain(fy.iter()).chain(fz.iter()).copied());
+        let listed = self
+            .nodes
+            .iter()
+            .flatten()
+            .flat_map(|&i| [fx[i], fy[i], fz[i]]);
+        let all = self
+            .nodes
+            .is_none()
+            .then(|| fx.iter().chain(fy.iter()).chain(fz.iter()).copied());
         listed.chain(all.into_iter().flatten())
     }
 

@@ -392,7 +392,8 @@ mod tests {
         let mut c = Column::default();
         water(&mut c, &[(4, [0.0, 1.0, 0.0])]);
         c.commit(0.5);
-        c.hold([(4, [1.0; 3]), (8, [2.0; 3])].into_iter(), 16).unwrap();
+        c.hold([(4, [1.0; 3]), (8, [2.0; 3])].into_iter(), 16)
+            .unwrap();
         c.drop_pending();
         // Node 8 only awaited a push: it leaves; node 4 keeps its load, nothing waits.
         assert_eq!(c.entries(), &[Entry::stored(4, [0.0, 0.5, 0.0], [0.0; 3])]);

@@ -317,12 +317,16 @@ impl Surface {
         let n = self.node_count();
         let column = &mut self.bodies.column;
         column.begin_gather(n);
+        // A share of zero (either sign: a corner of a spread with no weight, a point on a
+        // cell's edge) changes no bit of the column or the forces (sums there start at +0
+        // and stay off −0, and the lattice takes a zero force's sign to +0): it is left
+        // out, so it makes no entry that the commit would drop again.
         for slot in &c.slots {
             let rows = slot.window.chunks_exact(slot.width.max(1));
             for (r, row) in rows.enumerate() {
                 let at = slot.first + r * slot.cols;
                 for (c, &(f, seen)) in row.iter().enumerate() {
-                    if seen {
+                    if seen && f != [0.0; 3] {
                         column.gather(at + c, f);
                     }
                 }
