@@ -306,6 +306,36 @@ mod tests {
     }
 
     #[test]
+    fn a_batch_onto_no_force_is_refused_or_undone_to_zeros_without_a_log() {
+        // Listed: 64 nodes hold a list of up to 4.
+        let mut e = External::new(64, 80);
+        let err = e.add([(3, [1.0, -0.0, 2.0]), (9, [f32::INFINITY; 3])]);
+        assert_eq!(err, Err(f32::INFINITY));
+        assert!(!e.is_pending() && bits(&e).iter().all(|&b| b == 0));
+        e.add([(3, [1.0, -0.0, 2.0]), (9, [-0.0; 3])]).unwrap();
+        assert!(e.log.is_empty());
+        e.undo();
+        assert!(!e.is_pending() && bits(&e).iter().all(|&b| b == 0));
+        assert_eq!(e.for_step(8, 8), (None, None));
+        // Past the list: refusing it or taking it back clears every force, and the list
+        // starts again.
+        let bad_last = |i| match i {
+            5 => [f32::INFINITY; 3],
+            _ => [1.0; 3],
+        };
+        let err = e.add((0..6).map(|i| (i * 9, bad_last(i))));
+        assert_eq!(err, Err(f32::INFINITY));
+        assert!(!e.is_pending() && bits(&e).iter().all(|&b| b == 0));
+        e.add((0..6).map(|i| (i * 9, [1.0; 3]))).unwrap();
+        assert_eq!(e.for_step(8, 8).1, None);
+        e.undo();
+        assert!(!e.is_pending() && bits(&e).iter().all(|&b| b == 0));
+        e.add([(63, [1.0; 3])]).unwrap();
+        let last_row = [false, false, false, false, false, false, false, true];
+        assert_eq!(e.for_step(8, 8).1, Some(&last_row[..]));
+    }
+
+    #[test]
     fn past_a_sixteenth_of_the_nodes_every_row_is_read() {
         let mut e = External::new(64, 80);
         e.add((0..4).map(|i| (i * 8, [1.0; 3]))).unwrap();
