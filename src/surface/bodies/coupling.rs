@@ -322,15 +322,11 @@ impl Surface {
         // and stay off −0, and the lattice takes a zero force's sign to +0): it is left
         // out, so it makes no entry that the commit would drop again.
         for slot in &c.slots {
-            let rows = slot.window.chunks_exact(slot.width.max(1));
-            for (r, row) in rows.enumerate() {
-                let at = slot.first + r * slot.cols;
-                for (c, &(f, seen)) in row.iter().enumerate() {
-                    if seen && f != [0.0; 3] {
-                        column.gather(at + c, f);
-                    }
+            slot.shares().for_each(|(node, f)| {
+                if f != [0.0; 3] {
+                    column.gather(node, f);
                 }
-            }
+            });
         }
         let water = self.bodies.column.water();
         self.lattice
