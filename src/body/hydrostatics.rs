@@ -208,6 +208,7 @@ impl Hull {
 
     /// The pressure pass behind [`submerged_parts`](Self::submerged_parts), in `f64`:
     /// `part(point, force, area)` for each wet (clipped) triangle, and the totals.
+    #[inline(always)]
     pub(crate) fn pressed(
         &self,
         position: Vec3,
@@ -240,32 +241,25 @@ impl Hull {
 
         let mut sums = Sums::default();
         let corners = &scratch.corners;
-        for &[i, j, k] in self.triangles() {
-            let c = [
-                corners[i as usize],
-                corners[j as usize],
-                corners[k as usize],
-            ];
-            let wet = [c[0].d > 0.0, c[1].d > 0.0, c[2].d > 0.0];
-            let count = wet[0] as usize + wet[1] as usize + wet[2] as usize;
-            if count == 3 {
-                sums.add(c[0], c[1], c[2], rho_g, origin, &mut part);
-                continue;
-            }
-            if count == 0 {
-                continue;
-            }
-            // Rotate the corners (keeping their order) so that the odd one out comes
-            // first: the only wet corner, or the only dry one.
-            let odd = if wet[0] == (count == 1) {
-                0
-            } else if wet[1] == (count == 1) {
-                1
-            } else {
-                2
+        for tri in self.triangles() {
+            let corner = |k: usize| corners[tri[k] as usize];
+            // Which corners are wet, one bit each, and from that the corners' order
+            // starting at the odd one out (the only wet corner, or the only dry one).
+            let wet = (corner(0).d > 0.0) as usize
+                | ((corner(1).d > 0.0) as usize) << 1
+                | ((corner(2).d > 0.0) as usize) << 2;
+            let [k, a, b] = match wet {
+                0b111 => {
+                    sums.add(corner(0), corner(1), corner(2), rho_g, origin, &mut part);
+                    continue;
+                }
+                0 => continue,
+                wet => {
+                    let [k, a, b] = ODD_FIRST[wet];
+                    [corner(k), corner(a), corner(b)]
+                }
             };
-            let [k, a, b] = [c[odd], c[(odd + 1) % 3], c[(odd + 2) % 3]];
-            if count == 1 {
+            if wet.count_ones() == 1 {
                 let (ka, kb) = (crossing(k, a), crossing(k, b));
                 sums.add(k, ka, kb, rho_g, origin, &mut part);
                 sums.waterline(ka.r, kb.r);
@@ -279,6 +273,19 @@ impl Hull {
         Ok(sums.finish(origin, rho_g, self.extent()))
     }
 }
+
+/// A cut triangle's corners in their order (turned, not reversed) starting at the odd one
+/// out, by which corners are wet (bit `k` for corner `k`): one wet corner, or one dry.
+const ODD_FIRST: [[usize; 3]; 8] = [
+    [0, 1, 2], // dry: not cut
+    [0, 1, 2], // corner 0 wet
+    [1, 2, 0], // corner 1 wet
+    [2, 0, 1], // corner 2 dry
+    [2, 0, 1], // corner 2 wet
+    [1, 2, 0], // corner 1 dry
+    [0, 1, 2], // corner 0 dry
+    [0, 1, 2], // wet: not cut
+];
 
 /// The body-to-world rotation of `q`, as a function of body-frame vectors, scaled by
 /// `2 / |q|²` so that it is a rotation for any `q` near unit length.

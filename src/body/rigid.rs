@@ -348,13 +348,12 @@ fn quadrature(a: f64, [sxx, sxz, szz]: [f64; 3]) -> [(f64, f64); 4] {
 /// symmetric positive definite).
 fn solve(mut sys: [[f64; 7]; 6]) -> [f64; 6] {
     for col in 0..6 {
-        let pivot = sys[col][col];
-        for row in col + 1..6 {
-            let (above, below) = sys.split_at_mut(row);
-            let (pivot_row, this) = (&above[col], &mut below[0]);
-            let factor = this[col] / pivot;
+        let pivot = sys[col];
+        for row in &mut sys[col + 1..] {
+            let factor = row[col] / pivot[col];
+            // (Column `col` of the rows below is never read again: left as it is.)
             if factor != 0.0 {
-                for (x, p) in this[col..].iter_mut().zip(&pivot_row[col..]) {
+                for (x, p) in row[col + 1..].iter_mut().zip(&pivot[col + 1..]) {
                     *x -= factor * p;
                 }
             }

@@ -34,6 +34,8 @@ pub(crate) struct External {
     log: Vec<(usize, [f32; 3])>,
     /// `pending` and the list's length before the last batch.
     before: (bool, Option<usize>),
+    /// Whether the last batch went onto no pending force (and keeps no log).
+    from_zero: bool,
 }
 
 impl External {
@@ -47,6 +49,7 @@ impl External {
             rows: Vec::new(),
             log: Vec::new(),
             before: (false, Some(0)),
+            from_zero: false,
         }
     }
 
@@ -69,51 +72,106 @@ impl External {
     /// Adds each `(node, force)` of `batch` (distinct nodes), all or nothing: if a sum is
     /// not finite, every node gets its old force back and that sum is the error. The
     /// batch can be taken back by [`External::undo`] until the next one.
+    ///
+    /// A batch onto no pending force at all (the bodies' reactions, most steps) keeps no
+    /// log: every old force was `+0`, so the nodes it listed (or, past a sixteenth of the
+    /// grid, the whole buffers) are what taking it back clears.
     pub fn add(&mut self, batch: impl IntoIterator<Item = (usize, [f32; 3])>) -> Result<(), f32> {
         self.log.clear();
         self.before = (self.pending, self.nodes.as_ref().map(Vec::len));
+        let from_zero = !self.pending;
+        let limit = self.len / 16;
         let [fx, fy, fz] = slices(&mut self.forces);
         let n = fx.len();
-        let mut finite = true;
+        let (mut finite, mut any) = (true, false);
         for (i, f) in batch {
             assert!(i < n, "node {i} of {n}");
             let old = [fx[i], fy[i], fz[i]];
             let sum = [old[0] + f[0], old[1] + f[1], old[2] + f[2]];
             (fx[i], fy[i], fz[i]) = (sum[0], sum[1], sum[2]);
-            self.log.push((i, old));
+            if !from_zero {
+                self.log.push((i, old));
+            } else if let Some(nodes) = &mut self.nodes {
+                match nodes.len() < limit {
+                    true => nodes.push(i),
+                    false => self.nodes = None,
+                }
+            }
+            any = true;
             finite &= sum[0].is_finite() & sum[1].is_finite() & sum[2].is_finite();
         }
+        self.from_zero = from_zero;
         if !finite {
-            let sum = self
-                .log
-                .iter()
-                .flat_map(|&(i, _)| [fx[i], fy[i], fz[i]])
-                .find(|s| !s.is_finite())
-                .unwrap_or(f32::INFINITY);
+            let sum = match from_zero {
+                true => self.touched().find(|s| !s.is_finite()),
+                false => self
+                    .log
+                    .iter()
+                    .flat_map(|&(i, _)| [fx[i], fy[i], fz[i]])
+                    .find(|s| !s.is_finite()),
+            };
             self.undo();
-            return Err(sum);
+            return Err(sum.unwrap_or(f32::INFINITY));
         }
-        self.pending |= !self.log.is_empty();
-        let limit = self.len / 16;
-        if let Some(nodes) = &mut self.nodes {
-            if nodes.len() + self.log.len() <= limit {
-                nodes.extend(self.log.iter().map(|&(i, _)| i));
-            } else {
-                self.nodes = None;
+        self.pending |= any;
+        if !from_zero {
+            if let Some(nodes) = &mut self.nodes {
+                if nodes.len() + self.log.len() <= limit {
+                    nodes.extend(self.log.iter().map(|&(i, _)| i));
+                } else {
+                    self.nodes = None;
+                }
             }
         }
         Ok(())
     }
 
+    /// The forces a batch onto no pending force may have written: the listed nodes', or
+    /// every force once the list is gone.
+    fn touched(&self) -> impl Iterator<Item = f32> + '_ {
+        let [fx, fy, fz] = &self.forces;
+        let listed = self
+            .nodes
+            .iter()
+            .flatten()
+            .flat_map(|&i| [fx[i], fy[i], fz[i]]);
+        let all = self
+            .nodes
+            .is_none()
+            .then(|| fx.iter().chain(fy.iter()).chain(fz.iter()).copied());
+        listed.chain(all.into_iter().flatten())
+    }
+
     /// Takes the last batch of [`External::add`] back: its nodes get their old bits,
     /// newest first, and the flag and list go back to what they were (a list that
-    /// overflowed stays `None`, which is still correct).
+    /// overflowed stays `None`, which is still correct). A batch onto no pending force
+    /// clears what it wrote (every force was `+0`), and the list is empty again.
     pub fn undo(&mut self) {
+        if std::mem::take(&mut self.from_zero) {
+            let [fx, fy, fz] = slices(&mut self.forces);
+            match &mut self.nodes {
+                Some(nodes) => {
+                    for &i in nodes.iter() {
+                        (fx[i], fy[i], fz[i]) = (0.0, 0.0, 0.0);
+                    }
+                    nodes.clear();
+                }
+                None => {
+                    for c in &mut self.forces {
+                        c.fill(0.0);
+                    }
+                    self.nodes = Some(Vec::new());
+                }
+            }
+            self.pending = false;
+            return;
+        }
         let [fx, fy, fz] = slices(&mut self.forces);
         for &(i, old) in self.log.iter().rev() {
             (fx[i], fy[i], fz[i]) = (old[0], old[1], old[2]);
         }
         self.log.clear();
+        self.from_zero = false;
         self.pending = self.before.0;
         if let (Some(len), Some(nodes)) = (self.before.1, &mut self.nodes) {
             nodes.truncate(len);
@@ -151,6 +209,7 @@ impl External {
             self.pending = false;
         }
         self.log.clear();
+        self.from_zero = false;
     }
 
     /// Notes that any node may now hold a force (the buffers were written whole).
@@ -158,6 +217,7 @@ impl External {
         self.pending = true;
         self.nodes = None;
         self.log.clear();
+        self.from_zero = false;
     }
 
     /// What a step reads, on a grid of `cols` columns and `rows` rows: the force
@@ -193,6 +253,7 @@ impl External {
             *nodes = kept;
         }
         self.log.clear();
+        self.from_zero = false;
     }
 
     /// Loads the forces of a snapshot (`pending` as it recorded; `read` fills the three
@@ -242,6 +303,36 @@ mod tests {
         assert_eq!(bits(&e), before);
         let row_of_3_and_9 = [true, true, false, false, false, false, false, false];
         assert_eq!(e.for_step(8, 8).1, Some(&row_of_3_and_9[..]));
+    }
+
+    #[test]
+    fn a_batch_onto_no_force_is_refused_or_undone_to_zeros_without_a_log() {
+        // Listed: 64 nodes hold a list of up to 4.
+        let mut e = External::new(64, 80);
+        let err = e.add([(3, [1.0, -0.0, 2.0]), (9, [f32::INFINITY; 3])]);
+        assert_eq!(err, Err(f32::INFINITY));
+        assert!(!e.is_pending() && bits(&e).iter().all(|&b| b == 0));
+        e.add([(3, [1.0, -0.0, 2.0]), (9, [-0.0; 3])]).unwrap();
+        assert!(e.log.is_empty());
+        e.undo();
+        assert!(!e.is_pending() && bits(&e).iter().all(|&b| b == 0));
+        assert_eq!(e.for_step(8, 8), (None, None));
+        // Past the list: refusing it or taking it back clears every force, and the list
+        // starts again.
+        let bad_last = |i| match i {
+            5 => [f32::INFINITY; 3],
+            _ => [1.0; 3],
+        };
+        let err = e.add((0..6).map(|i| (i * 9, bad_last(i))));
+        assert_eq!(err, Err(f32::INFINITY));
+        assert!(!e.is_pending() && bits(&e).iter().all(|&b| b == 0));
+        e.add((0..6).map(|i| (i * 9, [1.0; 3]))).unwrap();
+        assert_eq!(e.for_step(8, 8).1, None);
+        e.undo();
+        assert!(!e.is_pending() && bits(&e).iter().all(|&b| b == 0));
+        e.add([(63, [1.0; 3])]).unwrap();
+        let last_row = [false, false, false, false, false, false, false, true];
+        assert_eq!(e.for_step(8, 8).1, Some(&last_row[..]));
     }
 
     #[test]

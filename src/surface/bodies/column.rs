@@ -83,7 +83,8 @@ pub(crate) struct Entry {
     pub carried: [f32; 3],
     /// Pushes of `body_forces` waiting for the next step.
     pub pending: [f32; 3],
-    /// This step's pushes of the surface's own bodies (zero between steps).
+    /// This step's pushes of the surface's own bodies, and once [`Column::water`] has
+    /// run, what the water gets, `W`, for [`Column::commit`] (zero between steps).
     #[cfg_attr(feature = "serde", serde(skip))]
     fresh: [f32; 3],
 }
@@ -185,11 +186,15 @@ impl Column {
 
     /// Adds `shares` (distinct nodes) to what waits for the next step: a body another
     /// engine owns. Refused, with nothing changed, if a sum is not finite.
-    pub fn hold(&mut self, shares: &[(usize, [f32; 3])], nodes: usize) -> Result<()> {
+    pub fn hold(
+        &mut self,
+        shares: impl Iterator<Item = (usize, [f32; 3])> + Clone,
+        nodes: usize,
+    ) -> Result<()> {
         let before = self.entries.len();
         self.fit_slots(nodes);
         let mut finite = true;
-        for &(i, f) in shares {
+        for (i, f) in shares.clone() {
             let e = self.entry(i);
             finite &= (0..3).all(|k| (e.pending[k] + f[k]).is_finite());
         }
@@ -197,7 +202,7 @@ impl Column {
             self.drop_after(before);
             return Err(overflow());
         }
-        for &(i, f) in shares {
+        for (i, f) in shares {
             let e = self.entry(i);
             e.pending = std::array::from_fn(|k| e.pending[k] + f[k]);
         }
@@ -205,32 +210,36 @@ impl Column {
         Ok(())
     }
 
-    /// Gathers this step's pushes of the surface's own bodies (`shares`, in the bodies'
-    /// order) on a grid of `nodes`.
-    pub fn gather<'a>(
-        &mut self,
-        shares: impl Iterator<Item = &'a (usize, [f32; 3])>,
-        nodes: usize,
-    ) {
+    /// Starts gathering this step's pushes of the surface's own bodies on a grid of
+    /// `nodes` ([`Column::gather`] each, in the bodies' order).
+    pub fn begin_gather(&mut self, nodes: usize) {
         self.kept = self.entries.len();
         self.fit_slots(nodes);
-        for &(i, f) in shares {
-            let e = self.entry(i);
-            e.fresh = std::array::from_fn(|k| e.fresh[k] + f[k]);
-        }
     }
 
-    /// What the water gets this step, node by node (distinct nodes): `W` of every entry.
-    pub fn water(&self) -> impl Iterator<Item = (usize, [f32; 3])> + '_ {
-        self.entries.iter().map(|e| (e.node, e.water()))
+    /// Gathers a push `f` of the surface's own bodies into `node`.
+    #[inline]
+    pub fn gather(&mut self, node: usize, f: [f32; 3]) {
+        let e = self.entry(node);
+        e.fresh = std::array::from_fn(|k| e.fresh[k] + f[k]);
     }
 
-    /// The step succeeded: the column takes up `rate` of what the water got, the pushes
-    /// are spent, and nodes with nothing left leave.
+    /// What the water gets this step, node by node (distinct nodes): `W` of every entry,
+    /// kept in its `fresh` for [`Column::commit`] (the pushes are summed in it by then).
+    pub fn water(&mut self) -> impl Iterator<Item = (usize, [f32; 3])> + '_ {
+        self.entries.iter_mut().map(|e| {
+            e.fresh = e.water();
+            (e.node, e.fresh)
+        })
+    }
+
+    /// The step succeeded: the column takes up `rate` of what the water got (`W`, which
+    /// [`Column::water`] left in `fresh`), the pushes are spent, and nodes with nothing
+    /// left leave.
     pub fn commit(&mut self, rate: f32) {
         let mut left = false;
         for e in &mut self.entries {
-            let w = e.water();
+            let w = e.fresh;
             e.carried = std::array::from_fn(|k| e.carried[k] + rate * w[k]);
             e.pending = [0.0; 3];
             e.fresh = [0.0; 3];
@@ -326,7 +335,10 @@ mod tests {
     use super::*;
 
     fn water(column: &mut Column, shares: &[(usize, [f32; 3])]) -> Vec<(usize, [f32; 3])> {
-        column.gather(shares.iter(), 16);
+        column.begin_gather(16);
+        for &(i, f) in shares {
+            column.gather(i, f);
+        }
         column.water().collect()
     }
 
@@ -359,18 +371,18 @@ mod tests {
     #[test]
     fn pending_pushes_come_first_and_a_failed_step_changes_nothing() {
         let mut c = Column::default();
-        c.hold(&[(5, [1.0, 2.0, 3.0])], 16).unwrap();
+        c.hold([(5, [1.0, 2.0, 3.0])].into_iter(), 16).unwrap();
         let before = c.entries().to_vec();
         let w = water(&mut c, &[(5, [0.5, 0.5, 0.5]), (9, [0.0, 1.0, 0.0])]);
         assert_eq!(w, vec![(5, [1.5, 2.5, 3.5]), (9, [0.0, 1.0, 0.0])]);
         c.discard();
         assert_eq!(c.entries(), &before[..]);
         // Refused: nothing changes.
-        assert!(c.hold(&[(5, [f32::MAX, 0.0, 0.0])], 16).is_ok());
+        assert!(c.hold([(5, [f32::MAX, 0.0, 0.0])].into_iter(), 16).is_ok());
         let kept = c.entries().to_vec();
-        assert!(c.hold(&[(5, [f32::MAX, 0.0, 0.0])], 16).is_err());
+        assert!(c.hold([(5, [f32::MAX, 0.0, 0.0])].into_iter(), 16).is_err());
         assert!(c
-            .hold(&[(7, [0.0; 3]), (5, [f32::MAX, 0.0, 0.0])], 16)
+            .hold([(7, [0.0; 3]), (5, [f32::MAX, 0.0, 0.0])].into_iter(), 16)
             .is_err());
         assert_eq!(c.entries(), &kept[..]);
     }
@@ -380,7 +392,8 @@ mod tests {
         let mut c = Column::default();
         water(&mut c, &[(4, [0.0, 1.0, 0.0])]);
         c.commit(0.5);
-        c.hold(&[(4, [1.0; 3]), (8, [2.0; 3])], 16).unwrap();
+        c.hold([(4, [1.0; 3]), (8, [2.0; 3])].into_iter(), 16)
+            .unwrap();
         c.drop_pending();
         // Node 8 only awaited a push: it leaves; node 4 keeps its load, nothing waits.
         assert_eq!(c.entries(), &[Entry::stored(4, [0.0, 0.5, 0.0], [0.0; 3])]);

@@ -49,11 +49,13 @@ struct Slot {
     /// The forces the body feels and where (the water gets minus each): first one per
     /// piece, then the waterplane's.
     forces: Vec<(DVec3, DVec3)>,
-    /// The water's share of the body's reactions, node by node (row by row), in the
-    /// lattice's units.
-    shares: Vec<(usize, [f32; 3])>,
-    /// The nodes under the body, a window of rows, while the shares are summed.
+    /// The water's share of the body's reactions, in the lattice's units, summed for the
+    /// nodes under the body: a window of `width` nodes by rows, its first the node
+    /// `first` of a grid of `cols` columns ([`Slot::shares`] reads it).
     window: Vec<Sum>,
+    first: usize,
+    width: usize,
+    cols: usize,
     /// What the step changes of the body, or why its step failed (`None` until it steps).
     motion: Option<Result<Motion>>,
 }
@@ -229,19 +231,18 @@ impl Context<'_> {
     }
 
     /// Each node's share of minus every force the body of `slot` feels, times `factor`,
-    /// in the lattice's units, summed node by node into `slot.shares`, row by row (forces
-    /// off the patch push nothing), each node's in the order of the forces. The sums are
-    /// kept in a window of the grid just wide enough for the body's spreads, where a node
-    /// is found by its place.
+    /// in the lattice's units, summed node by node in `slot.window` (forces off the patch
+    /// push nothing), each node's in the order of the forces. The window is the part of
+    /// the grid just wide enough for the body's spreads, where a node is found by its
+    /// place; the column reads the sums straight from it ([`Slot::shares`]).
     fn shares(&self, slot: &mut Slot, factor: f64) {
         let Slot {
             spreads,
             forces,
-            shares,
             window,
             ..
         } = slot;
-        shares.clear();
+        window.clear();
         // The pieces' spreads were found with the water under them; the others' now.
         for &(point, _) in forces.iter().skip(spreads.len()) {
             spreads.push(self.waters.spread(point.x as f32, point.z as f32));
@@ -258,7 +259,6 @@ impl Context<'_> {
         }
         let width = hi[0] - lo[0] + 1;
         let nodes = width * (hi[1] - lo[1] + 1);
-        window.clear();
         window.resize(nodes, NO_SUM);
         // The lattice's forces are per unit of model time²: a body's force in seconds goes
         // in divided by `time_scale²`.
@@ -279,31 +279,35 @@ impl Context<'_> {
             {
                 let add = reaction.map(|f| f * w);
                 let (sum, seen) = &mut window[k];
-                // A node's first share is taken as it is (its sign of zero kept).
-                *sum = if *seen {
-                    [sum[0] + add[0], sum[1] + add[1], sum[2] + add[2]]
-                } else {
-                    add
-                };
+                // A node's sum starts at −0, so its first share is taken as it is (its
+                // sign of zero kept: −0 + x is x, bit for bit).
+                *sum = [sum[0] + add[0], sum[1] + add[1], sum[2] + add[2]];
                 *seen = true;
             }
         }
         let cols = self.waters.cols();
-        for (r, row) in (lo[1]..).zip(window.chunks_exact(width)) {
-            for (c, &(f, seen)) in (lo[0]..).zip(row) {
-                if seen {
-                    shares.push((r * cols + c, f));
-                }
-            }
-        }
+        (slot.first, slot.width, slot.cols) = (lo[1] * cols + lo[0], width, cols);
+    }
+}
+
+impl Slot {
+    /// The body's shares of the water, node by node, row by row: the nodes of the window
+    /// that got any.
+    fn shares(&self) -> impl Iterator<Item = (usize, [f32; 3])> + Clone + '_ {
+        let (first, cols) = (self.first, self.cols);
+        let rows = self.window.chunks_exact(self.width.max(1));
+        rows.enumerate().flat_map(move |(r, row)| {
+            let nodes = row.iter().enumerate().filter(|(_, sum)| sum.1);
+            nodes.map(move |(c, &(f, _))| (first + r * cols + c, f))
+        })
     }
 }
 
 /// A node's sum of shares while a body's are summed, and whether it has any.
 type Sum = ([f32; 3], bool);
 
-/// A node without shares.
-const NO_SUM: Sum = ([0.0; 3], false);
+/// A node without shares: its sum starts at −0, the one zero that adds nothing.
+const NO_SUM: Sum = ([-0.0; 3], false);
 
 impl Surface {
     /// The coupled step's second stage: the bodies' shares (`c`, in the bodies' order) go
@@ -311,8 +315,19 @@ impl Surface {
     /// nothing: refused, with nothing changed, if a node's force would not be finite.
     pub(crate) fn apply_reactions(&mut self, c: &Coupling) -> Result<()> {
         let n = self.node_count();
-        let shares = c.slots.iter().flat_map(|slot| &slot.shares);
-        self.bodies.column.gather(shares, n);
+        let column = &mut self.bodies.column;
+        column.begin_gather(n);
+        // A share of zero (either sign: a corner of a spread with no weight, a point on a
+        // cell's edge) changes no bit of the column or the forces (sums there start at +0
+        // and stay off −0, and the lattice takes a zero force's sign to +0): it is left
+        // out, so it makes no entry that the commit would drop again.
+        for slot in &c.slots {
+            slot.shares().for_each(|(node, f)| {
+                if f != [0.0; 3] {
+                    column.gather(node, f);
+                }
+            });
+        }
         let water = self.bodies.column.water();
         self.lattice
             .state
@@ -454,14 +469,14 @@ impl Surface {
         let out = self
             .foreign_forces(&body, seconds, &mut c)
             .and_then(|forces| {
-                let shares = &c.foreign_slot.shares;
+                let shares = c.foreign_slot.shares();
                 self.bodies.column.hold(shares, n).map(|()| forces)
             });
         self.bodies.scratch = c;
         out
     }
 
-    /// The water's forces on `body` over `seconds`, its reactions' shares in `c.shares`.
+    /// The water's forces on `body` over `seconds`, its reactions' shares in `c.foreign_slot`.
     fn foreign_forces(&self, body: &Floater, seconds: f32, c: &mut Coupling) -> Result<BodyForces> {
         let mesh = match c
             .foreign
