@@ -22,6 +22,7 @@
 //! out and why. XXH3-64 over a checksum such as CRC-32: 64 bits (a desync missed with
 //! odds 2⁻⁶⁴ a comparison, not 2⁻³²), and several bytes a cycle.
 
+mod crc;
 mod read;
 mod restore;
 mod stream;
@@ -412,7 +413,7 @@ fn encode_into(fields: &stream::Fields<'_>, out: &mut Vec<u8>) {
     out.reserve(fields.encoded_len());
     let mut bytes = Bytes {
         out,
-        crc: crc32fast::Hasher::new(),
+        crc: crc::Hasher::new(),
     };
     fields.encode(&mut bytes);
     let crc = bytes.crc.finalize();

@@ -148,7 +148,7 @@ pub(super) fn framing(bytes: &[u8]) -> Result<(u32, Reader<'_>)> {
     }
     let (body, crc) = bytes.split_at(total - CRC);
     let stored = u32::from_le_bytes(crc.try_into().expect("4 bytes"));
-    let actual = crc32fast::hash(body);
+    let actual = super::crc::hash(body);
     if stored != actual {
         return Err(bad(format!(
             "checksum mismatch (stored {stored:08x}, computed {actual:08x}): the data is corrupted"

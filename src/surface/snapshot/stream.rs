@@ -24,7 +24,7 @@ use crate::surface::{Overflow, Surface};
 /// while it is still in the cache (a piece at a time), for the CRC-32 at the end.
 pub(super) struct Bytes<'a> {
     pub out: &'a mut Vec<u8>,
-    pub crc: crc32fast::Hasher,
+    pub crc: super::crc::Hasher,
 }
 
 impl Bytes<'_> {
