@@ -32,8 +32,16 @@ const rustc = (args) => execFileSync("rustc", args, { cwd: root, encoding: "utf8
 const host = rustc(["-vV"]).match(/^host: (.+)$/m)[1];
 const lld = join(rustc(["--print", "sysroot"]).trim(), "lib", "rustlib", host, "bin", "rust-lld");
 
+// The SIMD128 build's LLVM options (see above): inline below a cost of 25 instead of 250,
+// no runtime unrolling, no auto-vectorisation.
+const lean = [
+  "-C llvm-args=-inline-threshold=25",
+  "-C llvm-args=-unroll-runtime=false",
+  "-C no-vectorize-loops",
+  "-C no-vectorize-slp",
+].join(" ");
 for (const [name, flags, opt] of [
-  ["simd128", "-C target-feature=+simd128 ", "3"],
+  ["simd128", `-C target-feature=+simd128 ${lean} `, "3"],
   ["portable", "", "s"],
 ]) {
   const targetDir = `${base}/${name}`;
