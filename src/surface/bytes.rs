@@ -6,7 +6,8 @@
 
 use crate::error::Error;
 
-/// Where an encoder's fields go.
+/// Where an encoder's fields go. Encoders take it as `dyn Sink`, so their code exists once
+/// for both sinks (saving and the state hash): a call per field or row, not per value.
 pub(crate) trait Sink {
     /// Bytes of a field that decides the surface's future.
     fn state(&mut self, bytes: &[u8]);
@@ -16,12 +17,12 @@ pub(crate) trait Sink {
 }
 
 /// `values` little-endian, as state.
-pub(crate) fn floats(sink: &mut impl Sink, values: &[f32]) {
+pub(crate) fn floats(sink: &mut dyn Sink, values: &[f32]) {
     words(sink, bytemuck::cast_slice(values));
 }
 
 /// `values` little-endian, as state.
-pub(crate) fn words(sink: &mut impl Sink, values: &[u32]) {
+pub(crate) fn words(sink: &mut dyn Sink, values: &[u32]) {
     if cfg!(target_endian = "little") {
         sink.state(bytemuck::cast_slice(values));
     } else {

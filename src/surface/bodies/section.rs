@@ -513,7 +513,7 @@ impl<'a> Section<'a> {
     /// Sends the section to `sink`: each body's record, each distinct hull mesh (its vertex
     /// and triangle counts as `u32`, its vertices, its triangles), each entry of the
     /// column (its node as `u64`, the load it carries, the load waiting).
-    pub fn write(&self, sink: &mut impl Sink) {
+    pub fn write(&self, sink: &mut dyn Sink) {
         // Bodies that share a mesh usually come in runs: the last one found is tried first.
         let mut last: Option<(&Hull, u32)> = None;
         for k in 0..self.bodies.len() {

@@ -97,7 +97,7 @@ impl Fields<'_> {
     }
 
     /// Sends every field but the checksum to `sink`, in the format's order.
-    pub fn encode(&self, sink: &mut impl Sink) {
+    pub fn encode(&self, sink: &mut dyn Sink) {
         let (s, p) = (&self.scalars, &self.scalars.params);
         sink.record(&MAGIC);
         sink.record(&VERSION.to_le_bytes());
@@ -170,7 +170,7 @@ impl Fields<'_> {
     }
 
     /// One value per node of `values`, row by row.
-    fn values(&self, sink: &mut impl Sink, values: Values<'_>) {
+    fn values(&self, sink: &mut dyn Sink, values: Values<'_>) {
         let cols = self.grid.cols;
         match values {
             Values::Nodes(a) => floats(sink, a),
@@ -195,7 +195,7 @@ impl Fields<'_> {
 }
 
 /// `value` `count` times, little-endian.
-fn repeat(sink: &mut impl Sink, value: f32, count: usize) {
+fn repeat(sink: &mut dyn Sink, value: f32, count: usize) {
     const BLOCK: usize = 256;
     let block = [value; BLOCK];
     for start in (0..count).step_by(BLOCK) {
