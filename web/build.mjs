@@ -32,17 +32,24 @@ const rustc = (args) => execFileSync("rustc", args, { cwd: root, encoding: "utf8
 const host = rustc(["-vV"]).match(/^host: (.+)$/m)[1];
 const lld = join(rustc(["--print", "sysroot"]).trim(), "lib", "rustlib", host, "bin", "rust-lld");
 
-// The SIMD128 build's LLVM options (see above): inline below a cost of 25 instead of 250,
-// no runtime unrolling, no auto-vectorisation.
-const lean = [
-  "-C llvm-args=-inline-threshold=25",
+// LLVM's options (docs/performance.md). Both builds: inline a function only below a cost
+// of 25, or 50 where Rust marks it #[inline] (LLVM's defaults at opt-level 3: 250 and
+// 325; lower at "s"); the row kernels' lane operations are #[inline(always)], which these
+// do not touch. The SIMD128 build, at opt-level 3, also: loops unrolled whole only below a
+// cost of 150 (300), none unrolled by a count known at run time, no loop copied per value
+// of a condition (non-trivial unswitching), no auto-vectorisation (the kernels are
+// vectorised by hand).
+const inlining = "-C llvm-args=-inline-threshold=25 -C llvm-args=-inlinehint-threshold=50 ";
+const loops = [
+  "-C llvm-args=-unroll-threshold=150",
   "-C llvm-args=-unroll-runtime=false",
+  "-C llvm-args=-unswitch-threshold=0",
   "-C no-vectorize-loops",
   "-C no-vectorize-slp",
 ].join(" ");
 for (const [name, flags, opt] of [
-  ["simd128", `-C target-feature=+simd128 ${lean} `, "3"],
-  ["portable", "", "s"],
+  ["simd128", `-C target-feature=+simd128 ${inlining}${loops} `, "3"],
+  ["portable", inlining, "s"],
 ]) {
   const targetDir = `${base}/${name}`;
   execFileSync(
