@@ -4,11 +4,11 @@
 //! Natively `crc32fast` computes it, with carry-less multiplies where the CPU has them. On
 //! WebAssembly it has none of those, and its fallback loop reads sixteen tables of 1 KiB
 //! held as constant data: 16 kB in each of the npm package's two modules that gzip cannot
-//! shrink (random-looking words; `docs/performance.md`). There the [`Sliced`] loop below
+//! shrink (random-looking words; `docs/performance.md`). There the `Sliced` loop below
 //! runs instead: eight bytes a round from eight tables it computes at the first checksum,
 //! into memory the module does not ship. The choice between the two is made here and
 //! nowhere else (callers use `hash` and `Hasher`). Both compute the same function, so a
-//! snapshot saved on one platform loads on every other; the tests hold [`Sliced`] to the
+//! snapshot saved on one platform loads on every other; the tests hold `Sliced` to the
 //! standard check value on every target and to `crc32fast` natively.
 
 #[cfg(not(target_family = "wasm"))]
