@@ -5,15 +5,16 @@
 // (CARGO_TARGET_DIR overrides), release, one codegen unit, LTO, stripped (no custom
 // sections are left; wasm32 aborts on panic by default), linked by wasm-ld.mjs: Rust's
 // own rust-lld with the exports cut to the functions springwater.js calls. The SIMD128
-// build at opt-level 2; the portable one, the fallback for engines without SIMD128, at
+// build at opt-level 3; the portable one, the fallback for engines without SIMD128, at
 // "s": 8% smaller gzipped than at 3 for 0.8x the step rate ("z": 10%, 0.47x). Both with
 // LLVM's inliner held to small functions, and the SIMD128 build without runtime unrolling
 // or auto-vectorisation (the options below), at the same step rates: the SIMD128 module
-// 195 kB gzipped against 232 at opt-level 3 without them (198 at 3 with them), the
-// portable one 200 against 205. Measured and not used for the SIMD128 build: opt-level
-// "s" (0.48x the step rate, with or without more unrolling), full unrolling only below a
-// cost of 50 (0.73x), and, for both, wasm-opt -O2, -O3 or -Os from npm's binaryen (within
-// 2%, up to 8 minutes a module) (docs/performance.md).
+// 207 kB gzipped against 232 without them, the portable one 201 against 206. Measured and
+// not used for the SIMD128 build: opt-level "s" (0.48x the step rate), and with the
+// options above opt-level 2 (6 kB smaller gzipped), #[inline] functions inlined only below
+// 50 (5 kB), or full unrolling below a cost of 150 with no non-trivial unswitching (1.7
+// kB), each at 0.72x the rate; for both, wasm-opt -O2, -O3 or -Os from npm's binaryen
+// (within 2%, up to 8 minutes a module) (docs/performance.md).
 //
 // Why wasm32-wasip1 and not wasm32-unknown-unknown: the library's exponentials (drops,
 // wakes) call the C library's expf, and wasm32-unknown-unknown has none, so Rust's own
@@ -37,15 +38,16 @@ const host = rustc(["-vV"]).match(/^host: (.+)$/m)[1];
 const lld = join(rustc(["--print", "sysroot"]).trim(), "lib", "rustlib", host, "bin", "rust-lld");
 
 // LLVM's options (docs/performance.md). Both builds: inline a function only below a cost
-// of 25, or 50 where Rust marks it #[inline] (LLVM's defaults at opt-level 2: 225 and 325;
-// lower at "s"); the row kernels' lane operations are #[inline(always)], which these do
-// not touch. The SIMD128 build also: no loop unrolled by a count known only at run time,
-// no auto-vectorisation (the kernels are vectorised by hand).
-const inlining = "-C llvm-args=-inline-threshold=25 -C llvm-args=-inlinehint-threshold=50 ";
+// of 25 (LLVM's default at opt-level 3: 250; lower at "s"); the row kernels' lane
+// operations are #[inline(always)], which this does not touch. The SIMD128 build also: no
+// loop unrolled by a count known only at run time, no auto-vectorisation (the kernels are
+// vectorised by hand). The portable build also inlines functions Rust marks #[inline] only
+// below 50 (325): in the SIMD128 build that costs the row kernels a quarter of their rate.
+const inlining = "-C llvm-args=-inline-threshold=25 ";
 const loops = "-C llvm-args=-unroll-runtime=false -C no-vectorize-loops -C no-vectorize-slp ";
 for (const [name, flags, opt] of [
-  ["simd128", `-C target-feature=+simd128 ${inlining}${loops}`, "2"],
-  ["portable", inlining, "s"],
+  ["simd128", `-C target-feature=+simd128 ${inlining}${loops}`, "3"],
+  ["portable", `${inlining}-C llvm-args=-inlinehint-threshold=50 `, "s"],
 ]) {
   const targetDir = `${base}/${name}`;
   execFileSync(
