@@ -3,18 +3,18 @@
 //   node build.mjs            (npm run build)
 // Needs the Rust target: rustup target add wasm32-wasip1. The builds go to ../target/web
 // (CARGO_TARGET_DIR overrides), release, one codegen unit, LTO, stripped (no custom
-// sections are left; wasm32 aborts on panic by default), linked by wasm-ld.mjs: Rust's
-// own rust-lld with the exports cut to the functions springwater.js calls. The SIMD128
-// build at opt-level 3; the portable one, the fallback for engines without SIMD128, at
-// "s": 8% smaller gzipped than at 3 for 0.8x the step rate ("z": 10%, 0.47x). Both with
-// LLVM's inliner held to small functions, and the SIMD128 build without runtime unrolling
-// or auto-vectorisation (the options below), at the same step rates: the SIMD128 module
-// 207 kB gzipped against 232 without them, the portable one 201 against 206. Measured and
-// not used for the SIMD128 build: opt-level "s" (0.48x the step rate), and with the
-// options above opt-level 2 (6 kB smaller gzipped), #[inline] functions inlined only below
-// 50 (5 kB), or full unrolling below a cost of 150 with no non-trivial unswitching (1.7
-// kB), each at 0.72x the rate; for both, wasm-opt -O2, -O3 or -Os from npm's binaryen
-// (within 2%, up to 8 minutes a module) (docs/performance.md).
+// sections are left; wasm32 aborts on panic by default), linked by wasm-ld.mjs: Rust's own
+// rust-lld with the exports cut to the functions springwater.js calls. The SIMD128 build
+// at opt-level 3; the portable one, the fallback for engines without SIMD128, at "s": 8%
+// smaller gzipped than at 3 for 0.8x the step rate ("z": 10%, 0.47x). Both with LLVM's
+// inliner held to small functions, and the SIMD128 build without runtime unrolling or
+// auto-vectorisation (the options below), at the same step rates: the modules about 11%
+// and 3% smaller gzipped (209 and 202 kB, docs/performance.md). Measured and not used for
+// the SIMD128 build: opt-level "s" (0.48x the step rate), and with the options above
+// opt-level 2 (6 kB smaller gzipped), #[inline] functions inlined only below 50 (5 kB), or
+// full unrolling below a cost of 150 with no non-trivial unswitching (1.7 kB), each at
+// 0.72x the rate; for both, wasm-opt -O2, -O3 or -Os from npm's binaryen (within 2%, up to
+// 8 minutes a module) (docs/performance.md).
 //
 // Why wasm32-wasip1 and not wasm32-unknown-unknown: the library's exponentials (drops,
 // wakes) call the C library's expf, and wasm32-unknown-unknown has none, so Rust's own
