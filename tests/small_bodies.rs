@@ -2,8 +2,8 @@
 //! one plane fitted to the water under them) against the same bodies cut into triangles:
 //! how far apart the two keep on waves.
 
-use springwater::glam::{Quat, Vec3};
 use springwater::body::Hull;
+use springwater::glam::{Quat, Vec3};
 use springwater::{Floater, Params, Surface};
 use std::sync::Arc;
 

@@ -11,6 +11,9 @@
 //! first: the same IEEE operation per lane as a level with one wide register, so the same
 //! bits.
 
+// Indexed loops on purpose: see the note above `Halves`'s helpers.
+#![allow(clippy::needless_range_loop)]
+
 use super::{baseline_entry, SimdLevel, Task, Vector};
 
 /// Four `f32` lanes in one register, with what [`Halves`] needs of them. Every method is
@@ -120,24 +123,40 @@ unsafe impl<H: Half, const N: usize> bytemuck::Pod for Halves<H, N> {}
 #[derive(Debug, Clone, Copy)]
 pub(crate) struct HalvesMask<H: Half, const N: usize>([H::Mask; N]);
 
+// The operations below are plain loops over the halves, of a constant count that the
+// compiler unrolls at any optimisation level, with no helper of the standard library
+// between (`array::from_fn` and iterators are functions of their own a build with a low
+// inlining threshold would call).
 impl<H: Half, const N: usize> Halves<H, N> {
     /// `f` on each half.
     #[inline(always)]
     fn map(self, f: impl Fn(H) -> H) -> Self {
-        Self(std::array::from_fn(|i| f(self.0[i])))
+        let mut out = self.0;
+        for h in &mut out {
+            *h = f(*h);
+        }
+        Self(out)
     }
 
     /// `f` on each pair of halves (a half's method: the halves' instruction sets are
     /// part of their targets' baselines, so nothing is lost where it is compiled).
     #[inline(always)]
     fn zip(self, o: Self, f: impl Fn(H, H) -> H) -> Self {
-        Self(std::array::from_fn(|i| f(self.0[i], o.0[i])))
+        let mut out = self.0;
+        for i in 0..N {
+            out[i] = f(self.0[i], o.0[i]);
+        }
+        Self(out)
     }
 
     /// The comparison `f` on each pair of halves.
     #[inline(always)]
     fn test(self, o: Self, f: impl Fn(H, H) -> H::Mask) -> HalvesMask<H, N> {
-        HalvesMask(std::array::from_fn(|i| f(self.0[i], o.0[i])))
+        let mut out = [H::all_lanes(); N];
+        for i in 0..N {
+            out[i] = f(self.0[i], o.0[i]);
+        }
+        HalvesMask(out)
     }
 }
 
@@ -192,7 +211,11 @@ impl<H: Half, const N: usize> core::ops::BitAnd for HalvesMask<H, N> {
     type Output = Self;
     #[inline(always)]
     fn bitand(self, o: Self) -> Self {
-        Self(std::array::from_fn(|i| H::mask_and(self.0[i], o.0[i])))
+        let mut out = self.0;
+        for i in 0..N {
+            out[i] = H::mask_and(self.0[i], o.0[i]);
+        }
+        Self(out)
     }
 }
 
@@ -207,7 +230,11 @@ impl<H: Half, const N: usize> core::ops::Not for HalvesMask<H, N> {
     type Output = Self;
     #[inline(always)]
     fn not(self) -> Self {
-        Self(self.0.map(H::mask_not))
+        let mut out = self.0;
+        for m in &mut out {
+            *m = H::mask_not(*m);
+        }
+        Self(out)
     }
 }
 
@@ -257,7 +284,11 @@ impl<H: Half, const N: usize> Vector for Halves<H, N> {
 
     #[inline(always)]
     fn select(m: Self::Mask, a: Self, b: Self) -> Self {
-        Self(std::array::from_fn(|i| H::select(m.0[i], a.0[i], b.0[i])))
+        let mut out = a.0;
+        for i in 0..N {
+            out[i] = H::select(m.0[i], a.0[i], b.0[i]);
+        }
+        Self(out)
     }
 
     #[inline(always)]
@@ -268,56 +299,75 @@ impl<H: Half, const N: usize> Vector for Halves<H, N> {
     #[inline(always)]
     fn first_lanes(count: usize) -> Self::Mask {
         let n = count.min(Self::LANES) as u32;
-        HalvesMask(std::array::from_fn(|i| H::lanes_below(4 * i as u32, n)))
+        let mut out = [H::all_lanes(); N];
+        for (i, m) in out.iter_mut().enumerate() {
+            *m = H::lanes_below(4 * i as u32, n);
+        }
+        HalvesMask(out)
     }
 
     #[inline(always)]
     fn all(m: Self::Mask) -> bool {
-        let both = m.0.into_iter().reduce(H::mask_and);
-        H::all(both.expect("at least one half"))
+        let mut every = m.0[0];
+        for i in 1..N {
+            every = H::mask_and(every, m.0[i]);
+        }
+        H::all(every)
     }
 
     #[inline(always)]
     fn any_nan(self) -> bool {
-        self.0.iter().fold(false, |any, h| any | h.any_nan())
+        let mut any = false;
+        for i in 0..N {
+            any |= self.0[i].any_nan();
+        }
+        any
     }
 
     #[inline(always)]
     fn east(lo: Self, hi: Self) -> Self {
         // Half `i` with the first lane of the half after it.
-        Self(std::array::from_fn(|i| {
-            H::east(lo.0[i], if i + 1 < N { lo.0[i + 1] } else { hi.0[0] })
-        }))
+        let mut out = lo.0;
+        for i in 0..N {
+            out[i] = H::east(lo.0[i], if i + 1 < N { lo.0[i + 1] } else { hi.0[0] });
+        }
+        Self(out)
     }
 
     #[inline(always)]
     fn west(lo: Self, hi: Self) -> Self {
         // Half `i` of `hi` with the last lane of the half before it.
-        Self(std::array::from_fn(|i| {
-            H::west(if i == 0 { lo.0[N - 1] } else { hi.0[i - 1] }, hi.0[i])
-        }))
+        let mut out = hi.0;
+        for i in 0..N {
+            out[i] = H::west(if i == 0 { lo.0[N - 1] } else { hi.0[i - 1] }, hi.0[i]);
+        }
+        Self(out)
     }
 
     #[inline(always)]
     unsafe fn load(p: *const f32) -> Self {
-        // SAFETY: the caller guarantees `p` is readable for `4 N` floats.
-        Self(std::array::from_fn(|i| unsafe { H::load(p.add(4 * i)) }))
+        let mut out = [H::splat(0.0); N];
+        for (i, h) in out.iter_mut().enumerate() {
+            // SAFETY: the caller guarantees `p` is readable for `4 N` floats.
+            *h = unsafe { H::load(p.add(4 * i)) };
+        }
+        Self(out)
     }
 
     #[inline(always)]
     unsafe fn store(p: *mut f32, v: Self) {
-        for (i, h) in v.0.into_iter().enumerate() {
+        for i in 0..N {
             // SAFETY: the caller guarantees `p` is writable for `4 N` floats.
-            unsafe { H::store(p.add(4 * i), h) }
+            unsafe { H::store(p.add(4 * i), v.0[i]) }
         }
     }
 
     #[inline(always)]
     unsafe fn stream(p: *mut f32, v: Self) {
-        for (i, h) in v.0.into_iter().enumerate() {
+        for i in 0..N {
             // SAFETY: the caller guarantees `p` is writable for `4 N` floats and aligned
             // to `16 N` bytes, so each half is 16-byte aligned.
-            unsafe { H::stream(p.add(4 * i), h) }
+            unsafe { H::stream(p.add(4 * i), v.0[i]) }
         }
     }
 
