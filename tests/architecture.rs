@@ -1,5 +1,6 @@
 //! The house rules of ARCHITECTURE.md, checked on the sources of every crate in the
-//! workspace: where `unsafe` may live, no source file over 800 lines, and no circle
+//! workspace: where `unsafe` may live, no source file over 800 lines (of any language, in
+//! the whole repository), and no circle
 //! between sibling modules, of imports or of calls between one type's `impl` blocks in
 //! different files. Each check asserts that it found what it scans (files, lines, edges),
 //! so a broken path or pattern fails instead of passing on nothing; the circle check also
@@ -146,12 +147,42 @@ fn unsafe_lives_only_in_its_places() {
     );
 }
 
+/// What a person writes, by extension: the workspace's Rust, the C and C# clients of the
+/// C ABI, the web package's JavaScript and TypeScript, the scripts.
+const SOURCE_EXTENSIONS: [&str; 10] = ["rs", "c", "h", "cpp", "cs", "js", "mjs", "ts", "py", "sh"];
+
+/// Written by a tool, not by hand (`ffi/tests/header.rs` keeps it current).
+const GENERATED: [&str; 1] = ["ffi/include/springwater.h"];
+
+/// Every source file below `dir` (relative to the workspace root) but what builds, tools
+/// and packages put there (`target/`, `node_modules/`, hidden folders).
+fn source_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    let mut entries: Vec<_> = std::fs::read_dir(root().join(dir))
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.unwrap().path())
+        .collect();
+    entries.sort();
+    for path in entries {
+        let rel = path.strip_prefix(root()).unwrap().to_path_buf();
+        let name = path.file_name().unwrap().to_string_lossy();
+        if path.is_dir() {
+            if !(name.starts_with('.') || name == "target" || name == "node_modules") {
+                source_files(&rel, out);
+            }
+        } else if path
+            .extension()
+            .is_some_and(|e| SOURCE_EXTENSIONS.iter().any(|x| e == *x))
+            && !GENERATED.contains(&slash(&rel).as_str())
+        {
+            out.push(rel);
+        }
+    }
+}
+
 #[test]
 fn no_source_file_is_over_800_lines() {
     let mut files = Vec::new();
-    for dir in CRATES {
-        rust_files(Path::new(dir), &mut files);
-    }
+    source_files(Path::new(""), &mut files);
     let lengths: Vec<(String, usize)> = files
         .iter()
         .map(|f| {
@@ -159,10 +190,24 @@ fn no_source_file_is_over_800_lines() {
             (slash(f), text.lines().count())
         })
         .collect();
-    // A broken path or a count that sees nothing cannot pass.
+    // A broken path or a count that sees nothing cannot pass: the library, the tests, the
+    // C and C# clients and the web package are all in it.
     let total: usize = lengths.iter().map(|(_, n)| n).sum();
-    assert!(lengths.len() >= 100, "only {} files", lengths.len());
-    assert!(total >= 25_000, "only {total} lines in all");
+    assert!(lengths.len() >= 200, "only {} files", lengths.len());
+    assert!(total >= 50_000, "only {total} lines in all");
+    for seen in [
+        "src/surface/mod.rs",
+        "tests/architecture.rs",
+        "ffi/tests/c/client.c",
+    ] {
+        assert!(lengths.iter().any(|(f, _)| f == seen), "{seen} not scanned");
+    }
+    for seen in [".cs", ".js", ".py", ".sh"] {
+        assert!(
+            lengths.iter().any(|(f, _)| f.ends_with(seen)),
+            "no {seen} file scanned"
+        );
+    }
     let long: Vec<String> = lengths
         .iter()
         .filter(|(_, lines)| *lines > MAX_LINES)

@@ -1,7 +1,24 @@
 // springwater for JavaScript: the library's C ABI (springwater-ffi, built for
 // wasm32-wasip1) wrapped in classes, as the C# package wraps the same functions.
-// Every call goes to the library; this file only moves numbers in and out of wasm memory
-// and turns a refused call's status into an Error carrying the library's message.
+// Every call goes to the library; this file and abi.js (the structs' layouts, the moves
+// in and out of wasm memory, refused calls as Errors carrying the library's message) only
+// move numbers between JavaScript and the module.
+
+import {
+  BUOYANCY_SIZE,
+  Buffers,
+  FLOATER_SIZE,
+  FORCES_SIZE,
+  LOD_SIZE,
+  Lib,
+  PARAMS_SIZE,
+  SAMPLE_FLOATS,
+  asBytes,
+  readFloater,
+  readParams,
+  vec,
+  writeRefraction,
+} from "./abi.js";
 
 const WASM = {
   simd128: new URL("./wasm/springwater-simd128.wasm", import.meta.url),
@@ -21,31 +38,6 @@ const SIMD_PROBE = new Uint8Array([
 export function hasSimd128() {
   return WebAssembly.validate(SIMD_PROBE);
 }
-
-// Sizes (bytes) and field offsets of the C structs on wasm32 (ffi/include/springwater.h).
-const PARAMS_SIZE = 60;
-const PARAMS_FIELDS = [
-  ["cols", 4, "u32"], ["rows", 8, "u32"], ["spacing", 12], ["mass", 16], ["stiffness", 20],
-  ["viscosity", 24], ["dt", 28], ["restRatio", 32], ["timeScale", 36],
-  ["accelerationX", 40], ["accelerationY", 44], ["accelerationZ", 48],
-  ["boundary", 52, "boundary"], ["absorbingWidth", 56, "u32"],
-];
-const BOUNDARIES = ["pinned", "free", "absorbing"];
-const SHAPES = ["sphere", "box", "hull"];
-const FLOATER_SIZE = 172;
-const FLOATER_FIELDS = [
-  ["radius", 8, 1], ["halfExtents", 12, 3], ["mass", 24, 1], ["drag", 28, 1],
-  ["position", 32, 3], ["velocity", 44, 3], ["push", 56, 3], ["waterForce", 68, 3],
-  ["orientation", 80, 4], ["angularVelocity", 96, 3], ["pushTorque", 108, 3],
-  ["waterTorque", 120, 3], ["inertia", 136, 9],
-];
-const REFRACTION_SIZE = 24;
-const LOD_SIZE = 20;
-const BUOYANCY_SIZE = 12;
-const FORCES_SIZE = 28;
-const SAMPLE_FLOATS = 7; // height, normal xyz, velocity xyz
-const SCRATCH_BYTES = 1024; // out-parameters and structs of one call at a time
-const MESSAGE_BYTES = 1024;
 
 /**
  * Loads the library: the SIMD128 build where this engine validates SIMD128, else the
@@ -186,198 +178,6 @@ class Springwater {
   }
 }
 
-// The instance's exports and memory, and the moves between JavaScript and wasm memory.
-class Lib {
-  constructor(exports) {
-    this.x = exports;
-    this.memory = exports.memory;
-    this.scratch = this.alloc(SCRATCH_BYTES);
-    this.message = this.alloc(MESSAGE_BYTES);
-    // Surfaces and hulls dropped without free(): freed when collected.
-    this.finalizers = new FinalizationRegistry((release) => release());
-    const params = this.callStruct("sw_params_default", PARAMS_SIZE, (p) => this.u32(p));
-    if (params !== PARAMS_SIZE) {
-      throw new Error(`SwParams is ${params} bytes in this build, ${PARAMS_SIZE} expected`);
-    }
-  }
-
-  alloc(bytes) {
-    const p = this.x.sw_wasm_alloc(bytes);
-    if (p === 0 && bytes > 0) throw new Error(`cannot allocate ${bytes} bytes of wasm memory`);
-    return p;
-  }
-
-  free(p) {
-    this.x.sw_wasm_free(p);
-  }
-
-  // Views over the memory, made again after it grows (growing detaches the old buffer).
-  f32(p, n) {
-    return new Float32Array(this.memory.buffer, p, n);
-  }
-  u32(p) {
-    return new DataView(this.memory.buffer).getUint32(p, true);
-  }
-  bytes(p, n) {
-    return new Uint8Array(this.memory.buffer, p, n);
-  }
-  view() {
-    return new DataView(this.memory.buffer);
-  }
-
-  string(p) {
-    const all = new Uint8Array(this.memory.buffer);
-    let end = p;
-    while (all[end] !== 0) end++;
-    return new TextDecoder().decode(all.subarray(p, end));
-  }
-
-  // Throws the library's message for a refused call.
-  check(status) {
-    if (status >= 0) return;
-    const needed = this.x.sw_last_error(this.message, MESSAGE_BYTES);
-    const text = this.string(this.message);
-    const name = this.string(this.x.sw_status_name(status));
-    const error = new Error(text || `${name} (${needed})`);
-    error.code = name;
-    error.status = status;
-    throw error;
-  }
-
-  // Calls a function that returns a struct (its address is the call's first argument on
-  // wasm32) and reads it with `read(address)`.
-  callStruct(name, size, read, ...args) {
-    const p = this.scratch;
-    this.bytes(p, size).fill(0);
-    this.x[name](p, ...args);
-    return read.call(this, p);
-  }
-
-  // Copies `data` (a typed array) into fresh wasm memory, runs `f(address, length)` and
-  // frees it.
-  withInput(data, f) {
-    const bytes = data.byteLength;
-    const p = bytes > 0 ? this.alloc(bytes) : 0;
-    try {
-      if (bytes > 0) this.bytes(p, bytes).set(new Uint8Array(data.buffer, data.byteOffset, bytes));
-      return f(p, data.length);
-    } finally {
-      if (p !== 0) this.free(p);
-    }
-  }
-
-  paramsDefault() {
-    return this.callStruct("sw_params_default", PARAMS_SIZE, readParams);
-  }
-
-  // Writes the params struct at `p`: the library's defaults with `given`'s fields over them.
-  writeParams(p, given) {
-    const base = this.paramsDefault();
-    for (const key of Object.keys(given)) {
-      if (!(key in base)) throw new Error(`unknown parameter ${key}`);
-    }
-    const params = { ...base, ...given };
-    const d = this.view();
-    d.setUint32(p, PARAMS_SIZE, true);
-    for (const [key, at, kind] of PARAMS_FIELDS) {
-      const value = params[key];
-      if (kind === "boundary") {
-        const code = BOUNDARIES.indexOf(value);
-        if (code < 0) throw new Error(`boundary is ${value}, expected one of ${BOUNDARIES.join(", ")}`);
-        d.setInt32(p + at, code, true);
-      } else if (kind === "u32") {
-        if (!Number.isInteger(value) || value < 0 || value > 0xffffffff) {
-          throw new Error(`${key} is ${value}, expected a whole number from 0 to 4294967295`);
-        }
-        d.setUint32(p + at, value, true);
-      } else {
-        d.setFloat32(p + at, value, true);
-      }
-    }
-  }
-
-  writeFloater(p, body) {
-    const d = this.view();
-    d.setUint32(p, FLOATER_SIZE, true);
-    const shape = SHAPES.indexOf(body.shape);
-    if (shape < 0) throw new Error(`shape is ${body.shape}, expected one of ${SHAPES.join(", ")}`);
-    d.setInt32(p + 4, shape, true);
-    for (const [key, at, n] of FLOATER_FIELDS) {
-      const value = body[key];
-      if (n === 1) {
-        d.setFloat32(p + at, value ?? 0, true);
-      } else {
-        const v = value ?? new Array(n).fill(0);
-        if (v.length !== n) throw new Error(`${key} has ${v.length} numbers, expected ${n}`);
-        for (let k = 0; k < n; k++) d.setFloat32(p + at + 4 * k, v[k], true);
-      }
-    }
-    d.setInt32(p + 132, body.hasInertia ? 1 : 0, true);
-  }
-}
-
-function readParams(p) {
-  const d = this.view();
-  const out = {};
-  for (const [key, at, kind] of PARAMS_FIELDS) {
-    if (kind === "boundary") out[key] = BOUNDARIES[d.getInt32(p + at, true)] ?? "unknown";
-    else if (kind === "u32") out[key] = d.getUint32(p + at, true);
-    else out[key] = d.getFloat32(p + at, true);
-  }
-  return out;
-}
-
-function readFloater(p) {
-  const d = this.view();
-  const out = { shape: SHAPES[d.getInt32(p + 4, true)] ?? "unknown" };
-  for (const [key, at, n] of FLOATER_FIELDS) {
-    if (n === 1) out[key] = d.getFloat32(p + at, true);
-    else out[key] = Array.from({ length: n }, (_, k) => d.getFloat32(p + at + 4 * k, true));
-  }
-  out.hasInertia = d.getInt32(p + 132, true) === 1;
-  return out;
-}
-
-function vec(v, n, what) {
-  if (v == null || v.length !== n) throw new Error(`${what} must hold ${n} numbers`);
-  return v;
-}
-
-function writeRefraction(lib, p, view = {}) {
-  const base = lib.callStruct("sw_refraction_default", REFRACTION_SIZE, function (q) {
-    const d = this.view();
-    return { depth: d.getFloat32(q + 16, true), ior: d.getFloat32(q + 20, true) };
-  });
-  const [ex, ey, ez] = vec(view.eye ?? [0, 0, 0], 3, "eye");
-  const d = lib.view();
-  d.setUint32(p, REFRACTION_SIZE, true);
-  d.setFloat32(p + 4, ex, true);
-  d.setFloat32(p + 8, ey, true);
-  d.setFloat32(p + 12, ez, true);
-  d.setFloat32(p + 16, view.depth ?? base.depth, true);
-  d.setFloat32(p + 20, view.ior ?? base.ior, true);
-}
-
-// The per-surface buffers that back the zero-copy views, grown when a call needs more.
-class Buffers {
-  constructor(lib) {
-    this.lib = lib;
-    this.parts = new Map(); // name -> { p, bytes }
-  }
-  get(name, bytes) {
-    const have = this.parts.get(name);
-    if (have && have.bytes >= bytes) return have.p;
-    if (have) this.lib.free(have.p);
-    const p = this.lib.alloc(Math.max(bytes, 8));
-    this.parts.set(name, { p, bytes });
-    return p;
-  }
-  release() {
-    for (const { p } of this.parts.values()) this.lib.free(p);
-    this.parts.clear();
-  }
-}
-
 /**
  * A water surface: a mass-spring lattice of cols × rows nodes, in world units, y up. Every
  * method does what it says or throws an Error with the library's message, changing
@@ -489,9 +289,9 @@ class WaterSurface {
   advance(seconds, disturbances = []) {
     if (disturbances.length === 0) return this.#out("sw_surface_advance", this.#u32, seconds);
     const lib = this.#lib;
-    const ids = Uint32Array.from(disturbances, (d) => d.id);
-    return lib.withInput(ids, (p, n) => {
-      lib.check(lib.x.sw_wasm_advance_with(this.#handle, seconds, p, n, lib.scratch));
+    const handles = Uint32Array.from(disturbances, (d) => d.id);
+    return lib.withInput(handles, (p, n) => {
+      lib.check(lib.x.sw_surface_advance_with(this.#handle, seconds, p, n, lib.scratch));
       return lib.u32(lib.scratch);
     });
   }
@@ -761,13 +561,6 @@ class WaterSurface {
 
 const FROM_HANDLE = Symbol("handle");
 
-function asBytes(bytes) {
-  if (bytes instanceof Uint8Array) return bytes;
-  if (bytes instanceof ArrayBuffer) return new Uint8Array(bytes);
-  if (ArrayBuffer.isView(bytes)) return new Uint8Array(bytes.buffer, bytes.byteOffset, bytes.byteLength);
-  throw new Error("expected a Uint8Array, an ArrayBuffer or a typed array");
-}
-
 /**
  * A closed triangle mesh for floating bodies: `vertices` x, y, z per vertex (the body's
  * frame, centre of mass at the origin), `triangles` three indices each, wound outward.
@@ -836,23 +629,23 @@ class Rain {
     const lib = new.target.lib;
     this.#lib = lib;
     const s = lib.scratch;
-    lib.check(lib.x.sw_wasm_rain_create(rate, BigInt(seed), radius[0], radius[1], depth, s));
+    lib.check(lib.x.sw_rain_create(rate, BigInt(seed), radius[0], radius[1], depth, s));
     const id = lib.u32(s);
     this.id = id;
     this.#rate = rate;
-    lib.finalizers.register(this, () => lib.x.sw_wasm_disturbance_destroy(id), this);
+    lib.finalizers.register(this, () => lib.x.sw_disturbance_destroy(id), this);
   }
   /** Drops per second (0 stops the rain). */
   get rate() {
     return this.#rate;
   }
   set rate(rate) {
-    this.#lib.check(this.#lib.x.sw_wasm_rain_set_rate(this.id, rate));
+    this.#lib.check(this.#lib.x.sw_rain_set_rate(this.id, rate));
     this.#rate = rate;
   }
   free() {
     this.#lib.finalizers.unregister(this);
-    this.#lib.x.sw_wasm_disturbance_destroy(this.id);
+    this.#lib.x.sw_disturbance_destroy(this.id);
   }
   [Symbol.dispose]() {
     this.free();
@@ -872,15 +665,15 @@ class Wake {
     this.#lib = lib;
     const xz = Float32Array.from(path.flat ? path.flat() : path);
     lib.withInput(xz, (p, n) => {
-      lib.check(lib.x.sw_wasm_wake_create(p, n >> 1, speed, radius, strength, lib.scratch));
+      lib.check(lib.x.sw_wake_create(p, n >> 1, speed, radius, strength, lib.scratch));
     });
     const id = lib.u32(lib.scratch);
     this.id = id;
-    lib.finalizers.register(this, () => lib.x.sw_wasm_disturbance_destroy(id), this);
+    lib.finalizers.register(this, () => lib.x.sw_disturbance_destroy(id), this);
   }
   free() {
     this.#lib.finalizers.unregister(this);
-    this.#lib.x.sw_wasm_disturbance_destroy(this.id);
+    this.#lib.x.sw_disturbance_destroy(this.id);
   }
   [Symbol.dispose]() {
     this.free();

@@ -1,7 +1,7 @@
 #!/usr/bin/env node
 // The linker of the package's builds (build.mjs names it): Rust's own wasm-ld (rust-lld),
-// run with the module's exports cut to the sw_* functions springwater.js names. The C ABI
-// exports every function of its header; the package's JavaScript calls fewer, and the
+// run with the module's exports cut to the sw_* functions springwater.js and abi.js name.
+// The C ABI exports every function of its header; the package's JavaScript calls fewer, and the
 // linker then leaves out what only the others reach (the spring, mass and pin edits, the
 // job system's hook, ...). The compiler's output is not changed: the linker only drops
 // functions nothing calls.
@@ -10,7 +10,9 @@ import { spawnSync } from "node:child_process";
 import { readFileSync } from "node:fs";
 
 const used = new Set(
-  readFileSync(new URL("./springwater.js", import.meta.url), "utf8").match(/\bsw_[a-z0-9_]+/g),
+  ["./springwater.js", "./abi.js"].flatMap((file) =>
+    readFileSync(new URL(file, import.meta.url), "utf8").match(/\bsw_[a-z0-9_]+/g),
+  ),
 );
 // rustc may pass its arguments in a response file (@path, one argument a line).
 const given = process.argv.slice(2).flatMap((a) =>

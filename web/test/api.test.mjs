@@ -84,7 +84,7 @@ for (const simd of builds) {
     refused("a wake of one point", () => new sw.Wake([[3, 3], [3, 3]]), "SW_ERROR_INVALID_ARGUMENT", /wake path/);
     const rain = new sw.Rain(10, 1);
     rain.free();
-    refused("advancing with rain already freed", () => water.advance(0.1, [rain]), "SW_ERROR_INVALID_ARGUMENT", /not live/);
+    refused("advancing with rain already freed", () => water.advance(0.1, [rain]), "SW_ERROR_INVALID_HANDLE", /not a live rain or wake/);
 
     assert.throws(() => new sw.WaterSurface({ cols: 8, rows: 8, boundary: "sticky" }), /boundary is sticky/);
     assert.throws(() => new sw.WaterSurface({ cols: 8, rows: 8, colour: 1 }), /unknown parameter colour/);

@@ -12,7 +12,7 @@ const web = fileURLToPath(new URL("..", import.meta.url));
 const [packed] = JSON.parse(execFileSync("npm", ["pack", "--json"], { cwd: web, encoding: "utf8" }));
 const names = packed.files.map((f) => f.path).sort();
 console.log(`${packed.filename}: ${(packed.size / 1000).toFixed(1)} kB packed (target 400 kB), ${names.join(", ")}`);
-for (const want of ["springwater.js", "springwater.d.ts", "wasm/springwater-simd128.wasm", "wasm/springwater-portable.wasm"]) {
+for (const want of ["springwater.js", "abi.js", "springwater.d.ts", "wasm/springwater-simd128.wasm", "wasm/springwater-portable.wasm"]) {
   if (!names.includes(want)) throw new Error(`the tarball has no ${want}`);
 }
 const dir = mkdtempSync(join(tmpdir(), "springwater-pack-"));
