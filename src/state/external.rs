@@ -148,22 +148,7 @@ impl External {
     /// clears what it wrote (every force was `+0`), and the list is empty again.
     pub fn undo(&mut self) {
         if std::mem::take(&mut self.from_zero) {
-            let [fx, fy, fz] = slices(&mut self.forces);
-            match &mut self.nodes {
-                Some(nodes) => {
-                    for &i in nodes.iter() {
-                        (fx[i], fy[i], fz[i]) = (0.0, 0.0, 0.0);
-                    }
-                    nodes.clear();
-                }
-                None => {
-                    for c in &mut self.forces {
-                        c.fill(0.0);
-                    }
-                    self.nodes = Some(Vec::new());
-                }
-            }
-            self.pending = false;
+            self.zero_written();
             return;
         }
         let [fx, fy, fz] = slices(&mut self.forces);
@@ -190,26 +175,32 @@ impl External {
     /// Clears every force (after a step applied them, or to discard them).
     pub fn clear(&mut self) {
         if self.pending {
-            match &mut self.nodes {
-                Some(nodes) => {
-                    let [fx, fy, fz] = slices(&mut self.forces);
-                    for &i in nodes.iter() {
-                        assert!(i < fx.len(), "node {i} of {}", fx.len());
-                        (fx[i], fy[i], fz[i]) = (0.0, 0.0, 0.0);
-                    }
-                    nodes.clear();
-                }
-                None => {
-                    for c in &mut self.forces {
-                        c.fill(0.0);
-                    }
-                    self.nodes = Some(Vec::new());
-                }
-            }
-            self.pending = false;
+            self.zero_written();
         }
         self.log.clear();
         self.from_zero = false;
+    }
+
+    /// Sets every force that may be non-zero to `+0`: the listed nodes', or the whole
+    /// buffers once the list is gone (which starts again, empty). Nothing is pending then.
+    fn zero_written(&mut self) {
+        match &mut self.nodes {
+            Some(nodes) => {
+                let [fx, fy, fz] = slices(&mut self.forces);
+                for &i in nodes.iter() {
+                    assert!(i < fx.len(), "node {i} of {}", fx.len());
+                    (fx[i], fy[i], fz[i]) = (0.0, 0.0, 0.0);
+                }
+                nodes.clear();
+            }
+            None => {
+                for c in &mut self.forces {
+                    c.fill(0.0);
+                }
+                self.nodes = Some(Vec::new());
+            }
+        }
+        self.pending = false;
     }
 
     /// Notes that any node may now hold a force (the buffers were written whole).
