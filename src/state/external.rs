@@ -76,6 +76,10 @@ impl External {
     /// A batch onto no pending force at all (the bodies' reactions, most steps) keeps no
     /// log: every old force was `+0`, so the nodes it listed (or, past a sixteenth of the
     /// grid, the whole buffers) are what taking it back clears.
+    // Never inlined: a batch's loop is compiled with its iterator in a function of its
+    // own, where the iterator's closures inline into it (inside the large coupled step
+    // they may not, and each force becomes a call).
+    #[inline(never)]
     pub fn add(&mut self, batch: impl IntoIterator<Item = (usize, [f32; 3])>) -> Result<(), f32> {
         self.log.clear();
         self.before = (self.pending, self.nodes.as_ref().map(Vec::len));
