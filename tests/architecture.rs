@@ -37,8 +37,10 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// Every `.rs` file under `dir`, as paths relative to the workspace root.
-fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+/// Every file below `dir` whose extension `keep` accepts, as paths relative to the
+/// workspace root, but what builds, tools and packages put there (`target/`,
+/// `node_modules/`, hidden folders).
+fn files(dir: &Path, keep: &dyn Fn(&str) -> bool, out: &mut Vec<PathBuf>) {
     let mut entries: Vec<_> = std::fs::read_dir(root().join(dir))
         .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
         .map(|e| e.unwrap().path())
@@ -46,12 +48,20 @@ fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
     entries.sort();
     for path in entries {
         let rel = path.strip_prefix(root()).unwrap().to_path_buf();
+        let name = path.file_name().unwrap().to_string_lossy();
         if path.is_dir() {
-            rust_files(&rel, out);
-        } else if path.extension().is_some_and(|e| e == "rs") {
+            if !(name.starts_with('.') || name == "target" || name == "node_modules") {
+                files(&rel, keep, out);
+            }
+        } else if path.extension().is_some_and(|e| keep(&e.to_string_lossy())) {
             out.push(rel);
         }
     }
+}
+
+/// Every `.rs` file under `dir`, as paths relative to the workspace root.
+fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+    files(dir, &|e| e == "rs", out);
 }
 
 /// A file's code without its comments (line comments and doc comments; the crate uses no
@@ -154,29 +164,10 @@ const SOURCE_EXTENSIONS: [&str; 10] = ["rs", "c", "h", "cpp", "cs", "js", "mjs",
 /// Written by a tool, not by hand (`ffi/tests/header.rs` keeps it current).
 const GENERATED: [&str; 1] = ["ffi/include/springwater.h"];
 
-/// Every source file below `dir` (relative to the workspace root) but what builds, tools
-/// and packages put there (`target/`, `node_modules/`, hidden folders).
+/// Every hand-written source file below `dir` (see [`files`] for what is passed over).
 fn source_files(dir: &Path, out: &mut Vec<PathBuf>) {
-    let mut entries: Vec<_> = std::fs::read_dir(root().join(dir))
-        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
-        .map(|e| e.unwrap().path())
-        .collect();
-    entries.sort();
-    for path in entries {
-        let rel = path.strip_prefix(root()).unwrap().to_path_buf();
-        let name = path.file_name().unwrap().to_string_lossy();
-        if path.is_dir() {
-            if !(name.starts_with('.') || name == "target" || name == "node_modules") {
-                source_files(&rel, out);
-            }
-        } else if path
-            .extension()
-            .is_some_and(|e| SOURCE_EXTENSIONS.iter().any(|x| e == *x))
-            && !GENERATED.contains(&slash(&rel).as_str())
-        {
-            out.push(rel);
-        }
-    }
+    files(dir, &|e| SOURCE_EXTENSIONS.contains(&e), out);
+    out.retain(|f| !GENERATED.contains(&slash(f).as_str()));
 }
 
 #[test]
