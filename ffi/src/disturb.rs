@@ -10,6 +10,7 @@ use crate::ptr::{in_slice, optional, out_array, out_ref};
 use crate::status::{
     guard, Failure, Outcome, SwStatus, SW_ERROR_BUSY, SW_ERROR_INTERNAL, SW_ERROR_INVALID_HANDLE,
 };
+use crate::surface::frame;
 use springwater::disturb::{Disturbance, Rain, Wake};
 use springwater::Surface;
 use std::sync::{Arc, Mutex, MutexGuard, TryLockError};
@@ -132,28 +133,31 @@ fn lock<'a>(
     }
 }
 
-/// The body of the calls on one rain: `f` on it, or an error for a wake.
-fn with_rain<T>(d: *const SwDisturbance, f: impl FnOnce(&mut Rain) -> Outcome<T>) -> Outcome<T> {
+/// `f` on one live disturbance, locked for the call.
+fn with<T>(d: *const SwDisturbance, f: impl FnOnce(&mut Disturb) -> Outcome<T>) -> Outcome<T> {
     let entry = entry(d)?;
     let mut guard = lock(d, &entry)?;
-    match &mut *guard {
+    f(&mut guard)
+}
+
+/// The body of the calls on one rain: `f` on it, or an error for a wake.
+fn with_rain<T>(d: *const SwDisturbance, f: impl FnOnce(&mut Rain) -> Outcome<T>) -> Outcome<T> {
+    with(d, |disturbance| match disturbance {
         Disturb::Rain(rain) => f(rain),
         Disturb::Wake(_) => Err(Failure::invalid(format!(
             "disturbance {d:p} is a wake, not rain"
         ))),
-    }
+    })
 }
 
 /// The body of the calls on one wake: `f` on it, or an error for rain.
 fn with_wake<T>(d: *const SwDisturbance, f: impl FnOnce(&mut Wake) -> Outcome<T>) -> Outcome<T> {
-    let entry = entry(d)?;
-    let mut guard = lock(d, &entry)?;
-    match &mut *guard {
+    with(d, |disturbance| match disturbance {
         Disturb::Wake(wake) => f(wake),
         Disturb::Rain(_) => Err(Failure::invalid(format!(
             "disturbance {d:p} is rain, not a wake"
         ))),
-    }
+    })
 }
 
 /// Makes rain of `rate` drops per second (finite, at least 0; 0 is no rain) whose drops
@@ -353,12 +357,8 @@ pub unsafe extern "C" fn sw_surface_advance_with(
             .map(|(&d, e)| lock(d, e))
             .collect::<Outcome<Vec<_>>>()?;
         let mut list: Vec<&mut Disturb> = guards.iter_mut().map(|g| &mut **g).collect();
-        handle::with(surface, |w| {
-            let taken = w.surface.advance_with(frame_time, &mut list[..])?;
-            if let Some(out) = substeps {
-                *out = taken as u32;
-            }
-            Ok(())
+        frame(surface, substeps, |s| {
+            s.advance_with(frame_time, &mut list[..])
         })
     })
 }

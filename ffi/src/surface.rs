@@ -5,7 +5,7 @@
 use crate::handle::{self, SwSurface, Water};
 use crate::params::{c_params, rust_params, SwParams};
 use crate::ptr::{input, optional, out_ref, read_into, read_sized_into};
-use crate::status::{guard, Failure, SwStatus};
+use crate::status::{guard, Failure, Outcome, SwStatus};
 use springwater::{Overflow, Surface};
 
 /// Creates a flat surface at rest from `params` (validated: the message names the field
@@ -83,13 +83,7 @@ pub unsafe extern "C" fn sw_surface_advance(
 ) -> SwStatus {
     guard(|| {
         let substeps = optional(substeps, "substeps")?;
-        handle::with(surface, |w| {
-            let taken = w.surface.advance(frame_time)?;
-            if let Some(out) = substeps {
-                *out = taken as u32;
-            }
-            Ok(())
-        })
+        frame(surface, substeps, |s| s.advance(frame_time))
     })
 }
 
@@ -113,13 +107,24 @@ pub unsafe extern "C" fn sw_surface_advance_variable(
 ) -> SwStatus {
     guard(|| {
         let substeps = optional(substeps, "substeps")?;
-        handle::with(surface, |w| {
-            let taken = w.surface.advance_variable(frame_time)?;
-            if let Some(out) = substeps {
-                *out = taken as u32;
-            }
-            Ok(())
-        })
+        frame(surface, substeps, |s| s.advance_variable(frame_time))
+    })
+}
+
+/// The body of the frame calls (`sw_surface_advance`, `_advance_variable`,
+/// `_advance_with`): one frame of `advance` on the surface, the steps it took written to
+/// `substeps` if given.
+pub(crate) fn frame(
+    surface: *mut SwSurface,
+    substeps: Option<&mut u32>,
+    advance: impl FnOnce(&mut Surface) -> springwater::Result<usize>,
+) -> Outcome<()> {
+    handle::with(surface, |w| {
+        let taken = advance(&mut w.surface)?;
+        if let Some(out) = substeps {
+            *out = taken as u32;
+        }
+        Ok(())
     })
 }
 

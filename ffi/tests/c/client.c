@@ -85,6 +85,18 @@ static void *enqueue_nothing(SwTaskFn task, uint32_t item_count, uint32_t min_ra
     return NULL;
 }
 
+/* The host's job system: WORKERS threads of this client's own, counting into `stats`. */
+static SwJobSystem host_jobs(JobStats *stats) {
+    atomic_init(&stats->enqueued, 0);
+    atomic_init(&stats->items, 0);
+    SwJobSystem jobs = sw_job_system_default();
+    jobs.worker_count = WORKERS;
+    jobs.enqueue_task = enqueue_task;
+    jobs.finish_task = finish_task;
+    jobs.user_context = stats;
+    return jobs;
+}
+
 #include "client_floaters.h"
 
 /* ---- The frame loop, the same as tests/c_client.rs runs through the Rust API. ---- */
@@ -372,13 +384,7 @@ int main(void) {
 
     /* The host's job system: the same bits as the built-in pool, on its own threads. */
     JobStats stats;
-    atomic_init(&stats.enqueued, 0);
-    atomic_init(&stats.items, 0);
-    SwJobSystem jobs = sw_job_system_default();
-    jobs.worker_count = WORKERS;
-    jobs.enqueue_task = enqueue_task;
-    jobs.finish_task = finish_task;
-    jobs.user_context = &stats;
+    SwJobSystem jobs = host_jobs(&stats);
     SwSurface *hosted = NULL;
     OK(sw_surface_load(snapshot, size, &hosted));
     OK(sw_surface_set_job_system(hosted, &jobs));

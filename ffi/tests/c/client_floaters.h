@@ -166,13 +166,7 @@ static void floating_bodies(void) {
     OK(sw_surface_floater(copy, box_id, &theirs));
     CHECK(memcmp(&mine, &theirs, sizeof mine) == 0);
     JobStats stats;
-    atomic_init(&stats.enqueued, 0);
-    atomic_init(&stats.items, 0);
-    SwJobSystem jobs = sw_job_system_default();
-    jobs.worker_count = WORKERS;
-    jobs.enqueue_task = enqueue_task;
-    jobs.finish_task = finish_task;
-    jobs.user_context = &stats;
+    SwJobSystem jobs = host_jobs(&stats);
     OK(sw_surface_set_job_system(hosted, &jobs));
     OK(sw_surface_step(copy, 25));
     OK(sw_surface_step(hosted, 25));
